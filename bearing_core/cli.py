@@ -1,0 +1,158 @@
+"""Command-line interface: ``bearing <subcommand>``.
+
+User-facing units are labelled: speeds in rpm, forces in N, moments in N m, lengths in the JSON keys'
+units. Bad arguments exit with code 2 and a one-line reason on stderr.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+import numpy as np
+
+RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one-line reason, exit 2
+        sys.stderr.write(f"{self.prog}: error: {message}\n")
+        raise SystemExit(2)
+
+
+def _finite(name):
+    def conv(s):
+        try:
+            v = float(s)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} must be a number, got {s!r}")
+        if not math.isfinite(v):
+            raise argparse.ArgumentTypeError(f"{name} must be finite, got {s!r}")
+        return v
+    return conv
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="bearing", description="Angular-contact ball bearing tribo-dynamic model")
+    sub = p.add_subparsers(dest="cmd", parser_class=_Parser)
+    sub.required = True
+
+    q = sub.add_parser("quasistatic", help="Jones-Harris 5-DOF quasi-static solution")
+    q.add_argument("--bearing", required=True, help="preset name (see 'bearing presets')")
+    q.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"), help="inner-ring speed [rpm]")
+    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
+        q.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
+    q.add_argument("--control", choices=("outer", "inner", "hybrid"), default="outer",
+                   help="raceway control hypothesis (default outer)")
+    q.add_argument("--json", action="store_true", help="print one JSON object")
+    q.set_defaults(func=cmd_quasistatic)
+
+    pr = sub.add_parser("presets", help="list the bearing presets with their sources")
+    pr.add_argument("--json", action="store_true")
+    pr.set_defaults(func=cmd_presets)
+    return p
+
+
+def quasistatic_dict(res) -> dict:
+    """JSON-ready dict of a QuasiStaticResult (keys carry their units)."""
+    g = res.geometry
+    deg = np.degrees
+    d = {
+        "bearing": g.name,
+        "speed_rpm": res.omega / RPM,
+        "control": res.control,
+        "loads": dict(zip(("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm"), map(float, res.loads))),
+        "psi_deg": deg(res.psi).tolist(),
+        "alpha_i_deg": deg(res.alpha_i).tolist(),
+        "alpha_o_deg": deg(res.alpha_o).tolist(),
+        "Q_i_N": res.Q_i.tolist(),
+        "Q_o_N": res.Q_o.tolist(),
+        "delta_i_m": res.delta_i.tolist(),
+        "delta_o_m": res.delta_o.tolist(),
+        "a_i_m": res.a_i.tolist(), "b_i_m": res.b_i.tolist(),
+        "a_o_m": res.a_o.tolist(), "b_o_m": res.b_o.tolist(),
+        "p_max_i_Pa": res.p_i.tolist(), "p_max_o_Pa": res.p_o.tolist(),
+        "omega_m_rpm": (res.omega_m / RPM).tolist(),
+        "omega_R_rpm": (res.omega_R / RPM).tolist(),
+        "beta_deg": deg(res.beta).tolist(),
+        "spin_roll_i": res.spin_roll_i.tolist(),
+        "spin_roll_o": res.spin_roll_o.tolist(),
+        "outer_control": res.outer_control.tolist(),
+        "cage_speed_rpm": res.cage_speed / RPM,
+        "displacement": dict(zip(("dx_m", "dy_m", "dz_m", "tx_rad", "ty_rad"), map(float, res.u))),
+        "stiffness": None if res.stiffness is None else res.stiffness.tolist(),
+        "stiffness_units": "rows Fx,Fy,Fz [N],Mx,My [N m]; columns dx,dy,dz [m],tx,ty [rad]",
+        "equilibrium_residual_rel": res.residual,
+    }
+    return d
+
+
+def cmd_quasistatic(a) -> int:
+    from .geometry import load_preset
+    from .quasistatic import solve_quasistatic
+
+    if a.speed_rpm < 0:
+        raise _BadArg(f"--speed-rpm = {a.speed_rpm} is invalid; allowed: 0 <= speed <= 190000 rpm")
+    g = load_preset(a.bearing)
+    res = solve_quasistatic(g, a.speed_rpm * RPM, (a.fx, a.fy, a.fz, a.mx, a.my), control=a.control)
+    d = quasistatic_dict(res)
+    if a.json:
+        print(json.dumps(d))
+        return 0
+    print(f"bearing {g.name}  speed {a.speed_rpm:g} rpm  control {a.control}")
+    print(f"loads  Fx {a.fx:g} N  Fy {a.fy:g} N  Fz {a.fz:g} N  Mx {a.mx:g} N m  My {a.my:g} N m")
+    u = res.u
+    print(f"displacement  dx {u[0]*1e6:.3f} um  dy {u[1]*1e6:.3f} um  dz {u[2]*1e6:.3f} um  "
+          f"tx {u[3]*1e3:.4f} mrad  ty {u[4]*1e3:.4f} mrad")
+    print(f"pure-rolling cage speed {d['cage_speed_rpm']:.1f} rpm   equilibrium residual {res.residual:.1e}")
+    hdr = (f"{'ball':>4} {'psi':>6} {'a_i':>7} {'a_o':>7} {'Q_i':>9} {'Q_o':>9} {'p_i':>7} {'p_o':>7} "
+           f"{'w_m':>8} {'w_R':>9} {'beta':>6} {'s/r_i':>7} {'s/r_o':>7}")
+    print(hdr)
+    print(f"{'':>4} {'deg':>6} {'deg':>7} {'deg':>7} {'N':>9} {'N':>9} {'GPa':>7} {'GPa':>7} "
+          f"{'rpm':>8} {'rpm':>9} {'deg':>6} {'-':>7} {'-':>7}")
+    for j in range(g.Z):
+        print(f"{j:4d} {d['psi_deg'][j]:6.1f} {d['alpha_i_deg'][j]:7.3f} {d['alpha_o_deg'][j]:7.3f} "
+              f"{res.Q_i[j]:9.2f} {res.Q_o[j]:9.2f} {res.p_i[j]/1e9:7.3f} {res.p_o[j]/1e9:7.3f} "
+              f"{d['omega_m_rpm'][j]:8.1f} {d['omega_R_rpm'][j]:9.1f} {d['beta_deg'][j]:6.2f} "
+              f"{d['spin_roll_i'][j]:7.4f} {d['spin_roll_o'][j]:7.4f}")
+    if res.stiffness is not None:
+        print("stiffness matrix (rows Fx,Fy,Fz [N], Mx,My [N m]; cols dx,dy,dz [m], tx,ty [rad]):")
+        for row in res.stiffness:
+            print("  " + " ".join(f"{v:12.4e}" for v in row))
+    return 0
+
+
+def cmd_presets(a) -> int:
+    from .geometry import list_presets, preset_data
+
+    rows = [{"name": n, "source": preset_data(n).get("source", "")} for n in list_presets()]
+    if a.json:
+        print(json.dumps(rows))
+    else:
+        for r in rows:
+            print(f"{r['name']:18s} {r['source']}")
+    return 0
+
+
+class _BadArg(Exception):
+    pass
+
+
+def main(argv=None) -> int:
+    from .errors import BearingInputError, ConvergenceError
+
+    parser = build_parser()
+    a = parser.parse_args(argv)
+    try:
+        return a.func(a)
+    except (BearingInputError, _BadArg) as e:
+        sys.stderr.write(f"bearing {a.cmd}: error: {e}\n")
+        return 2
+    except ConvergenceError as e:
+        sys.stderr.write(f"bearing {a.cmd}: solver failed: {e}\n")
+        return 3
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,382 @@
+"""Quasi-static ball bearing model, 5 degrees of freedom (Jones 1960; Harris & Kotzalas, Rolling
+Bearing Analysis 5th ed., Vol. 2 Ch. 3 'High-speed operation'; seed 003 Eqs. 1-19).
+
+Unknowns: inner-ring displacements u = (dx, dy, dz, tx, ty) [m, m, m, rad, rad] relative to the fixed
+outer ring, and for each ball the position X = (Xr, Xz) of its centre relative to the outer groove
+curvature centre [m]. Per ball j at azimuth psi_j = 2 pi j / Z (from +x towards +y):
+
+  delta_r = dx cos psi + dy sin psi,   delta_a = dz + Ri (tx sin psi - ty cos psi)
+  C = O_i - O_o = (A cos a0 + delta_r, A sin a0 + delta_a)          (seed 003 Eqs. 3, 5, 6)
+  n_o = X/|X|,  delta_o = |X| - (fo - 1/2) D;  n_i = (X - C)/|X - C|,  delta_i = |X - C| - (fi - 1/2) D
+  Q = K(alpha) delta^1.5  (Hertz, exact load-deflection constant interpolated in contact angle)
+  ball:  -Q_i n_i - Q_o n_o + F_i e_i + F_o e_o + Fc r = 0,   e_k = (n_kz, -n_kr)          (Eq. 17)
+  Fc = m dm omega_m^2 / 2,   Mg = J omega_m omega_R sin(beta)  (Eqs. 9-10)
+  F_i = lambda_i Mg / D, F_o = lambda_o Mg / D: outer control lambda_o = 2, lambda_i = 0; inner control
+        lambda_i = lambda_o = 1 (Harris & Kotzalas; seed 003 Eq. 12)
+  ring:  F_ext + sum_j (Q_i n_i - F_i e_i) = 0 (forces), moments about the ring centre with the force
+         applied at the inner groove-centre locus of radius Ri plus the friction force's moment
+         arm fi D about it (Eqs. 18-19).
+
+Separated contacts carry a tiny linear tension spring (k_reg = 1e-3 N/m) so that an unloaded ball keeps
+a defined position; its force is < 1e-8 N for any real clearance and enters both balances consistently.
+Hybrid control follows Harris's criterion: the outer race controls a ball when
+Q_o a_o E(k_o) cos(alpha_i - alpha_o) > Q_i a_i E(k_i) (Harris & Kotzalas Vol. 2 Ch. 3).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import kinematics as kin
+from .errors import BearingInputError, ConvergenceError, check_range
+from .geometry import BearingGeometry
+from .hertz_tables import HertzInterp
+
+K_REG = 1e-3  # N/m, tension spring of separated contacts (see module docstring)
+LOAD_NAMES = ("Fx", "Fy", "Fz", "Mx", "My")
+DOF_NAMES = ("dx", "dy", "dz", "tx", "ty")
+
+
+@dataclass
+class QuasiStaticResult:
+    """Quasi-static solution. Arrays are per ball (length Z). SI units: m, rad, N, rad/s, Pa."""
+
+    geometry: BearingGeometry
+    omega: float                 # inner-ring speed [rad/s]
+    loads: np.ndarray            # (Fx, Fy, Fz, Mx, My) [N, N m]
+    control: str
+    u: np.ndarray                # (dx, dy, dz, tx, ty) [m, rad]
+    psi: np.ndarray              # ball azimuths [rad]
+    alpha_i: np.ndarray
+    alpha_o: np.ndarray
+    Q_i: np.ndarray
+    Q_o: np.ndarray
+    delta_i: np.ndarray          # contact deflections [m] (<= 0: separated)
+    delta_o: np.ndarray
+    a_i: np.ndarray              # Hertz semi-major axes [m]
+    b_i: np.ndarray
+    a_o: np.ndarray
+    b_o: np.ndarray
+    p_i: np.ndarray              # maximum Hertz pressure [Pa]
+    p_o: np.ndarray
+    omega_m: np.ndarray          # orbital speed [rad/s]
+    omega_R: np.ndarray          # ball spin speed relative to the cage frame [rad/s]
+    beta: np.ndarray             # attitude angle [rad]
+    spin_i: np.ndarray           # spin speeds relative to each race [rad/s]
+    spin_o: np.ndarray
+    roll_i: np.ndarray
+    roll_o: np.ndarray
+    Fc: np.ndarray               # centrifugal force [N]
+    Mg: np.ndarray               # gyroscopic moment [N m]
+    outer_control: np.ndarray    # bool, which race controls (hybrid), else all equal
+    residual: float              # relative force residual of the ring equilibrium
+    iterations: int
+    stiffness: np.ndarray | None = None  # 5x5 [N/m, N/rad, N m/m, N m/rad]
+    X: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def spin_roll_i(self):
+        return self.spin_i / np.where(self.roll_i > 0, self.roll_i, np.inf)
+
+    @property
+    def spin_roll_o(self):
+        return self.spin_o / np.where(self.roll_o > 0, self.roll_o, np.inf)
+
+    @property
+    def cage_speed(self) -> float:
+        """Pure-rolling cage speed [rad/s]: mean orbital speed of the loaded balls (all balls if
+        none is loaded)."""
+        loaded = (self.Q_i > 0) & (self.Q_o > 0)
+        return float(np.mean(self.omega_m[loaded])) if loaded.any() else float(np.mean(self.omega_m))
+
+    def ring_reaction(self) -> np.ndarray:
+        """(Fx, Fy, Fz, Mx, My) that the balls exert on the inner ring [N, N m]."""
+        return _ring_forces(self.geometry, self.psi, self.alpha_i, self.Q_i, self.Mg, self._lam_i())
+
+    def _lam_i(self):
+        return _lambda_i(self.control, self.outer_control)
+
+
+def _lambda_i(control, outer_control):
+    # share of the gyroscopic moment taken at the inner contact (lambda_i; lambda_o = 2 - lambda_i)
+    return np.where(outer_control, 0.0, 1.0) if control != "inner" else np.ones_like(outer_control, dtype=float)
+
+
+def _ring_forces(g, psi, alpha_i, Q_i_eff, Mg, lam_i):
+    """Force and moment of the balls on the inner ring; Q_i_eff includes the regularisation."""
+    nir, niz = -np.cos(alpha_i), -np.sin(alpha_i)
+    Fi = lam_i * Mg / g.D
+    eir, eiz = niz, -nir
+    fr = Q_i_eff * nir - Fi * eir
+    fz = Q_i_eff * niz - Fi * eiz
+    c, s = np.cos(psi), np.sin(psi)
+    Ri = g.Ri
+    Fx = np.sum(fr * c)
+    Fy = np.sum(fr * s)
+    Fz = np.sum(fz)
+    # moment of fz at radius Ri, plus friction force moment about the groove centre (arm fi D) about t
+    Mx = np.sum(Ri * s * fz + g.ri * Fi * s)
+    My = np.sum(-Ri * c * fz - g.ri * Fi * c)
+    return np.array([Fx, Fy, Fz, Mx, My])
+
+
+class QuasiStaticModel:
+    """Jones-Harris 5-DOF quasi-static model of one bearing (outer ring fixed, inner ring turning)."""
+
+    def __init__(self, geometry: BearingGeometry, control: str = "outer", n_table: int = 721):
+        if control not in kin.CONTROL_MODES:
+            raise BearingInputError("control", control, " | ".join(kin.CONTROL_MODES))
+        self.g = geometry
+        self.control = control
+        self.hz = HertzInterp(geometry, n_table)
+        Z = geometry.Z
+        self.psi = 2.0 * np.pi * np.arange(Z) / Z
+
+    # ---- per-ball geometry and forces --------------------------------------------------------
+    def _centres(self, u):
+        g = self.g
+        c, s = np.cos(self.psi), np.sin(self.psi)
+        dr = u[0] * c + u[1] * s
+        da = u[2] + g.Ri * (u[3] * s - u[4] * c)
+        Cr = g.A * math.cos(g.alpha0) + dr
+        Cz = g.A * math.sin(g.alpha0) + da
+        return Cr, Cz
+
+    def _ball_state(self, X, Cr, Cz, omega, outer_ctrl):
+        g = self.g
+        Xr, Xz = X[:, 0], X[:, 1]
+        lo = np.hypot(Xr, Xz)
+        nor, noz = Xr / lo, Xz / lo
+        dvr, dvz = Xr - Cr, Xz - Cz
+        li = np.hypot(dvr, dvz)
+        nir, niz = dvr / li, dvz / li
+        d_o = lo - (g.fo - 0.5) * g.D
+        d_i = li - (g.fi - 0.5) * g.D
+        ao = np.arctan2(noz, nor)
+        ai = np.arctan2(-niz, -nir)
+        Ki = self.hz.K(ai, inner=True)
+        Ko = self.hz.K(ao, inner=False)
+        Qi = np.where(d_i > 0, Ki * np.abs(d_i) ** 1.5, K_REG * d_i)
+        Qo = np.where(d_o > 0, Ko * np.abs(d_o) ** 1.5, K_REG * d_o)
+        beta, wm, wR = kin.kinematics(omega, ai, ao, g.D, g.dm, self.control, outer_ctrl)
+        Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
+        Mg = g.ball_inertia * wm * wR * np.sin(beta) * -1.0  # J omega_m Omega_r, Omega_r = -omega_R sin(beta)
+        lam_i = _lambda_i(self.control, outer_ctrl)
+        lam_o = 2.0 - lam_i
+        Fi = lam_i * Mg / g.D
+        Fo = lam_o * Mg / g.D
+        # ball equilibrium residual (r, z)
+        Rr = -Qi * nir - Qo * nor + Fi * niz + Fo * noz + Fc
+        Rz = -Qi * niz - Qo * noz - Fi * nir - Fo * nor
+        return dict(Rr=Rr, Rz=Rz, Qi=Qi, Qo=Qo, d_i=d_i, d_o=d_o, ai=ai, ao=ao, beta=beta, wm=wm,
+                    wR=wR, Fc=Fc, Mg=Mg, lam_i=lam_i)
+
+    def _solve_balls(self, u, omega, X0, outer_ctrl, tol=1e-12, maxit=60):
+        """Newton per ball (vectorised, 2x2 finite-difference Jacobians) for the ball equilibrium."""
+        g = self.g
+        Cr, Cz = self._centres(u)
+        X = X0.copy()
+        scale = max(1.0, 0.5 * g.ball_mass * g.dm * omega ** 2)
+        h = 1e-10 * g.D
+        for it in range(maxit):
+            st = self._ball_state(X, Cr, Cz, omega, outer_ctrl)
+            R = np.stack([st["Rr"], st["Rz"]], axis=1)
+            if np.max(np.abs(R)) < tol * scale + 1e-9 * np.max(np.abs([st["Qi"].max(), st["Qo"].max(), 1.0])):
+                return X, st, True
+            J = np.empty((g.Z, 2, 2))
+            for k in range(2):
+                Xp = X.copy()
+                Xp[:, k] += h
+                sp = self._ball_state(Xp, Cr, Cz, omega, outer_ctrl)
+                J[:, 0, k] = (sp["Rr"] - st["Rr"]) / h
+                J[:, 1, k] = (sp["Rz"] - st["Rz"]) / h
+            det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
+            det = np.where(np.abs(det) > 0, det, 1e-300)
+            dX0 = -(J[:, 1, 1] * R[:, 0] - J[:, 0, 1] * R[:, 1]) / det
+            dX1 = -(-J[:, 1, 0] * R[:, 0] + J[:, 0, 0] * R[:, 1]) / det
+            dX = np.stack([dX0, dX1], axis=1)
+            # limit a step to a fraction of the ball diameter (keeps Newton inside the groove)
+            lim = 0.02 * g.D
+            mag = np.max(np.abs(dX), axis=1, keepdims=True)
+            dX = np.where(mag > lim, dX * lim / np.maximum(mag, 1e-300), dX)
+            X = X + dX
+        st = self._ball_state(X, Cr, Cz, omega, outer_ctrl)
+        return X, st, False
+
+    def _x_start(self, u):
+        """Initial ball positions: on the line of centres, with equal deflections."""
+        g = self.g
+        Cr, Cz = self._centres(u)
+        L = np.hypot(Cr, Cz)
+        ro, ri = (g.fo - 0.5) * g.D, (g.fi - 0.5) * g.D
+        d = 0.5 * (L - (ro + ri))           # equal share of the interference (may be negative)
+        t = (ro + d) / np.maximum(L, 1e-300)
+        return np.stack([Cr * t, Cz * t], axis=1)
+
+    def residual(self, u, omega, X0=None, outer_ctrl=None):
+        """Ring equilibrium residual R(u) = F_ext + F_balls (needs self._loads) and the ball solution."""
+        if X0 is None:
+            X0 = self._x_start(u)
+        if outer_ctrl is None:
+            outer_ctrl = np.ones(self.g.Z, dtype=bool)
+        X, st, ok = self._solve_balls(u, omega, X0, outer_ctrl)
+        if not ok:
+            # retry from the geometric start (the warm start may sit in a bad basin)
+            X, st, ok = self._solve_balls(u, omega, self._x_start(u), outer_ctrl, maxit=200)
+        Fb = _ring_forces(self.g, self.psi, st["ai"], st["Qi"], st["Mg"], st["lam_i"])
+        return Fb, X, st, ok
+
+    # ---- the 5-DOF solve ---------------------------------------------------------------------
+    def solve(self, omega: float, loads, u0=None, tol: float = 1e-10, maxit: int = 100,
+              stiffness: bool = True) -> QuasiStaticResult:
+        """Solve for the inner-ring displacements under loads (Fx, Fy, Fz, Mx, My) [N, N m] at inner-ring
+        speed omega [rad/s]. Uses continuation in speed from the static solution when a direct solve
+        fails. Raises ConvergenceError if no equilibrium is found."""
+        omega = check_range("omega", omega, 0.0, 2.0e4, unit="rad/s")
+        loads = np.asarray(loads, dtype=float).reshape(-1)
+        if loads.size != 5:
+            raise BearingInputError("loads", loads.tolist(), "5 values (Fx, Fy, Fz, Mx, My)")
+        for nm, v in zip(LOAD_NAMES, loads):
+            check_range(nm, v, -1e7, 1e7, unit="N or N m")
+        try:
+            return self._solve(omega, loads, u0, tol, maxit, stiffness)
+        except ConvergenceError:
+            pass
+        # continuation: static solution first, then speed in steps
+        res = self._solve(0.0, loads, u0, tol, maxit, False)
+        u = res.u
+        for w in np.linspace(0.0, omega, 9)[1:]:
+            res = self._solve(float(w), loads, u, tol, maxit, False)
+            u = res.u
+        return self._solve(omega, loads, u, tol, maxit, stiffness)
+
+    def _u_guess(self, loads):
+        """Static rigid-ring estimate: a uniform axial/radial approach that carries the load."""
+        g = self.g
+        Ki = float(self.hz.K(np.array([g.alpha0]), inner=True)[0])
+        Ko = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
+        Kn = 1.0 / (Ki ** (-2 / 3) + Ko ** (-2 / 3)) ** 1.5  # series Hertz constant
+        Fa, Fr = abs(loads[2]), math.hypot(loads[0], loads[1])
+        sa, ca = math.sin(g.alpha0), math.cos(g.alpha0)
+        u = np.zeros(5)
+        Qa = (Fa + 0.5 * Fr * sa / max(ca, 0.2) + 1e-3) / (g.Z * max(sa, 0.1))
+        dn = (Qa / Kn) ** (2 / 3)
+        clear = g.A * (1 - math.cos(g.alpha0))
+        u[2] = math.copysign(1.0, loads[2] if loads[2] != 0 else 1.0) * (dn / max(sa, 0.1))
+        if Fr > 0:
+            Qr = 5.0 * Fr / (g.Z * max(ca, 0.2))
+            dr = (Qr / Kn) ** (2 / 3) / max(ca, 0.2)
+            u[0] = dr * loads[0] / Fr
+            u[1] = dr * loads[1] / Fr
+        return u
+
+    def _solve(self, omega, loads, u0, tol, maxit, stiffness):
+        g = self.g
+        # scales: displacement ~ 1 um, tilt ~ 1e-5 rad; force scale from the load
+        us = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5])
+        Fscale = max(np.linalg.norm(loads[:3]), np.linalg.norm(loads[3:]) / (0.5 * g.dm), 1.0)
+        fs = np.array([Fscale, Fscale, Fscale, Fscale * 0.5 * g.dm, Fscale * 0.5 * g.dm])
+        u = self._u_guess(loads) if u0 is None else np.array(u0, dtype=float)
+        outer_ctrl = np.ones(g.Z, dtype=bool)
+        X = self._x_start(u)
+
+        def R_of(uu, Xw, oc):
+            Fb, Xn, st, ok = self.residual(uu, omega, Xw, oc)
+            return (loads + Fb) / fs, Xn, st, ok
+
+        r, X, st, ok = R_of(u, X, outer_ctrl)
+        it = 0
+        converged = False
+        for it in range(1, maxit + 1):
+            if self.control == "hybrid":
+                new_oc = self._hybrid_criterion(st)
+                if np.any(new_oc != outer_ctrl):
+                    outer_ctrl = new_oc
+                    r, X, st, ok = R_of(u, X, outer_ctrl)
+            if ok and np.max(np.abs(r)) < tol:
+                converged = True
+                break
+            J = np.empty((5, 5))
+            for k in range(5):
+                up = u.copy()
+                up[k] += 1e-3 * us[k]
+                rp, _, _, _ = R_of(up, X, outer_ctrl)
+                J[:, k] = (rp - r) / (1e-3)
+            try:
+                step = -np.linalg.lstsq(J, r, rcond=1e-12)[0]
+            except np.linalg.LinAlgError:
+                break
+            # backtracking line search on |r|, step limited to 20 um / 1 mrad scaled units
+            smax = np.max(np.abs(step) / np.array([20.0, 20.0, 20.0, 100.0, 100.0]))
+            if smax > 1:
+                step /= smax
+            lam = 1.0
+            n0 = np.linalg.norm(r)
+            for _ in range(30):
+                un = u + lam * step * us
+                rn, Xn, stn, okn = R_of(un, X, outer_ctrl)
+                if okn and np.linalg.norm(rn) < (1 - 1e-4 * lam) * n0:
+                    break
+                lam *= 0.5
+            else:
+                raise ConvergenceError(f"quasi-static line search failed at omega={omega:.4g} rad/s, "
+                                       f"loads={loads.tolist()}, |residual|={n0:.3e}")
+            u, r, X, st, ok = un, rn, Xn, stn, okn
+        if not converged:
+            raise ConvergenceError(f"quasi-static model did not converge in {maxit} iterations at "
+                                   f"omega={omega:.4g} rad/s, loads={loads.tolist()}, "
+                                   f"max scaled residual={np.max(np.abs(r)):.3e}")
+        res = self._result(omega, loads, u, X, st, outer_ctrl, it)
+        if stiffness:
+            res.stiffness = self.stiffness_matrix(res)
+        return res
+
+    def _hybrid_criterion(self, st):
+        """Harris: outer control where Q_o a_o E(k_o) cos(ai - ao) > Q_i a_i E(k_i)."""
+        ai, ao = st["ai"], st["ao"]
+        Qi, Qo = np.maximum(st["Qi"], 0), np.maximum(st["Qo"], 0)
+        a_i, _, _, Ei = self.hz.ab_E(ai, Qi, inner=True)
+        a_o, _, _, Eo = self.hz.ab_E(ao, Qo, inner=False)
+        return Qo * a_o * Eo * np.cos(ai - ao) > Qi * a_i * Ei
+
+    def _result(self, omega, loads, u, X, st, outer_ctrl, it):
+        g = self.g
+        Qi = np.maximum(st["Qi"], 0.0)
+        Qo = np.maximum(st["Qo"], 0.0)
+        a_i, b_i, p_i, _ = self.hz.ab_E(st["ai"], Qi, inner=True)
+        a_o, b_o, p_o, _ = self.hz.ab_E(st["ao"], Qo, inner=False)
+        si, ri_, so, ro_ = kin.contact_spin_roll(omega, st["wm"], st["wR"], st["beta"], st["ai"], st["ao"])
+        Fb = _ring_forces(g, self.psi, st["ai"], st["Qi"], st["Mg"], st["lam_i"])
+        resid = float(np.linalg.norm(loads + Fb) / max(np.linalg.norm(loads), 1e-12))
+        return QuasiStaticResult(
+            geometry=g, omega=omega, loads=loads.copy(), control=self.control, u=u.copy(), psi=self.psi.copy(),
+            alpha_i=st["ai"], alpha_o=st["ao"], Q_i=Qi, Q_o=Qo, delta_i=st["d_i"], delta_o=st["d_o"],
+            a_i=a_i, b_i=b_i, a_o=a_o, b_o=b_o, p_i=p_i, p_o=p_o, omega_m=st["wm"], omega_R=st["wR"],
+            beta=st["beta"], spin_i=si, spin_o=so, roll_i=ri_, roll_o=ro_, Fc=st["Fc"], Mg=st["Mg"],
+            outer_control=outer_ctrl.copy(), residual=resid, iterations=it, X=X.copy())
+
+    def stiffness_matrix(self, res: QuasiStaticResult) -> np.ndarray:
+        """5x5 bearing stiffness K_kl = d(load_k)/d(u_l) at the solution, by central differences
+        of the ring force with every ball re-equilibrated [N/m, N/rad, N m/m, N m/rad]."""
+        h = np.array([1e-8, 1e-8, 1e-8, 1e-7, 1e-7])
+        Kmat = np.empty((5, 5))
+        for k in range(5):
+            up = res.u.copy()
+            um = res.u.copy()
+            up[k] += h[k]
+            um[k] -= h[k]
+            Fp, _, _, _ = self.residual(up, res.omega, res.X, res.outer_control)
+            Fm, _, _, _ = self.residual(um, res.omega, res.X, res.outer_control)
+            Kmat[:, k] = -(Fp - Fm) / (2 * h[k])
+        return Kmat
+
+
+def solve_quasistatic(geometry: BearingGeometry, omega: float, loads, control: str = "outer",
+                      stiffness: bool = True) -> QuasiStaticResult:
+    """Convenience wrapper: QuasiStaticModel(geometry, control).solve(omega, loads).
+
+    omega: inner-ring speed [rad/s] (>= 0); loads: (Fx, Fy, Fz, Mx, My) [N, N m] applied to the inner
+    ring; control: 'outer' | 'inner' | 'hybrid'."""
+    return QuasiStaticModel(geometry, control).solve(omega, loads, stiffness=stiffness)
