@@ -100,8 +100,9 @@ class QuasiStaticResult:
 
 
 def _lambda_i(control, outer_control):
-    # share of the gyroscopic moment taken at the inner contact (lambda_i; lambda_o = 2 - lambda_i)
-    return np.where(outer_control, 0.0, 1.0) if control != "inner" else np.ones_like(outer_control, dtype=float)
+    """Share of the gyroscopic moment taken at the inner contact (lambda_i; lambda_o = 2 - lambda_i):
+    0 where the outer race controls, 1 under inner control (Harris & Kotzalas)."""
+    return np.where(outer_control, 0.0, 1.0)
 
 
 def _ring_forces(g, psi, alpha_i, Q_i_eff, Mg, lam_i):
@@ -156,6 +157,11 @@ class QuasiStaticModel:
         d_i = li - (g.fi - 0.5) * g.D
         ao = np.arctan2(noz, nor)
         ai = np.arctan2(-niz, -nir)
+        # hybrid: balls without inner contact roll on the outer race only (outer control for them)
+        if self.control == "inner":
+            outer_ctrl = np.zeros(d_i.shape, dtype=bool)
+        elif self.control == "hybrid":
+            outer_ctrl = outer_ctrl | (d_i <= 0)
         Ki = self.hz.K(ai, inner=True)
         Ko = self.hz.K(ao, inner=False)
         Qi = np.where(d_i > 0, Ki * np.abs(d_i) ** 1.5, K_REG * d_i)
@@ -171,7 +177,7 @@ class QuasiStaticModel:
         Rr = -Qi * nir - Qo * nor + Fi * niz + Fo * noz + Fc
         Rz = -Qi * niz - Qo * noz - Fi * nir - Fo * nor
         return dict(Rr=Rr, Rz=Rz, Qi=Qi, Qo=Qo, d_i=d_i, d_o=d_o, ai=ai, ao=ao, beta=beta, wm=wm,
-                    wR=wR, Fc=Fc, Mg=Mg, lam_i=lam_i)
+                    wR=wR, Fc=Fc, Mg=Mg, lam_i=lam_i, outer_ctrl=outer_ctrl)
 
     def _solve_balls(self, u, omega, X0, outer_ctrl, tol=1e-12, maxit=60):
         """Newton per ball (vectorised, 2x2 finite-difference Jacobians) for the ball equilibrium."""
@@ -197,6 +203,9 @@ class QuasiStaticModel:
             dX0 = -(J[:, 1, 1] * R[:, 0] - J[:, 0, 1] * R[:, 1]) / det
             dX1 = -(-J[:, 1, 0] * R[:, 0] + J[:, 0, 0] * R[:, 1]) / det
             dX = np.stack([dX0, dX1], axis=1)
+            bad = ~np.all(np.isfinite(dX), axis=1)
+            if bad.any():  # singular 2x2 (e.g. degenerate kinematics): small steepest-descent step
+                dX[bad] = -1e-4 * g.D * np.sign(np.nan_to_num(R[bad]))
             # limit a step to a fraction of the ball diameter (keeps Newton inside the groove)
             lim = 0.02 * g.D
             mag = np.max(np.abs(dX), axis=1, keepdims=True)
@@ -240,17 +249,24 @@ class QuasiStaticModel:
             raise BearingInputError("loads", loads.tolist(), "5 values (Fx, Fy, Fz, Mx, My)")
         for nm, v in zip(LOAD_NAMES, loads):
             check_range(nm, v, -1e7, 1e7, unit="N or N m")
-        try:
-            return self._solve(omega, loads, u0, tol, maxit, stiffness)
-        except ConvergenceError:
-            pass
-        # continuation: static solution first, then speed in steps
-        res = self._solve(0.0, loads, u0, tol, maxit, False)
-        u = res.u
-        for w in np.linspace(0.0, omega, 9)[1:]:
-            res = self._solve(float(w), loads, u, tol, maxit, False)
-            u = res.u
-        return self._solve(omega, loads, u, tol, maxit, stiffness)
+        with np.errstate(all="ignore"):
+            try:
+                return self._solve(omega, loads, u0, tol, maxit, stiffness)
+            except ConvergenceError as e:
+                first = e
+            # continuation: static solution first, then speed in steps
+            try:
+                res = self._solve(0.0, loads, None, tol, maxit, False)
+                u = res.u
+                for w in np.linspace(0.0, omega, 9)[1:]:
+                    res = self._solve(float(w), loads, u, tol, maxit, False)
+                    u = res.u
+                return self._solve(omega, loads, u, tol, maxit, stiffness)
+            except ConvergenceError as e:
+                raise ConvergenceError(
+                    f"no quasi-static equilibrium found for omega = {omega:.6g} rad/s, loads = "
+                    f"{loads.tolist()}, control = {self.control!r} (direct solve: {first}; speed "
+                    f"continuation: {e})") from None
 
     def _u_guess(self, loads):
         """Static rigid-ring estimate: a uniform axial/radial approach that carries the load."""
@@ -290,7 +306,7 @@ class QuasiStaticModel:
         it = 0
         converged = False
         for it in range(1, maxit + 1):
-            if self.control == "hybrid":
+            if self.control == "hybrid" and it <= 15:
                 new_oc = self._hybrid_criterion(st)
                 if np.any(new_oc != outer_ctrl):
                     outer_ctrl = new_oc
@@ -328,7 +344,7 @@ class QuasiStaticModel:
             raise ConvergenceError(f"quasi-static model did not converge in {maxit} iterations at "
                                    f"omega={omega:.4g} rad/s, loads={loads.tolist()}, "
                                    f"max scaled residual={np.max(np.abs(r)):.3e}")
-        res = self._result(omega, loads, u, X, st, outer_ctrl, it)
+        res = self._result(omega, loads, u, X, st, st["outer_ctrl"], it)
         if stiffness:
             res.stiffness = self.stiffness_matrix(res)
         return res
@@ -355,7 +371,7 @@ class QuasiStaticModel:
             alpha_i=st["ai"], alpha_o=st["ao"], Q_i=Qi, Q_o=Qo, delta_i=st["d_i"], delta_o=st["d_o"],
             a_i=a_i, b_i=b_i, a_o=a_o, b_o=b_o, p_i=p_i, p_o=p_o, omega_m=st["wm"], omega_R=st["wR"],
             beta=st["beta"], spin_i=si, spin_o=so, roll_i=ri_, roll_o=ro_, Fc=st["Fc"], Mg=st["Mg"],
-            outer_control=outer_ctrl.copy(), residual=resid, iterations=it, X=X.copy())
+            outer_control=np.asarray(outer_ctrl, dtype=bool).copy(), residual=resid, iterations=it, X=X.copy())
 
     def stiffness_matrix(self, res: QuasiStaticResult) -> np.ndarray:
         """5x5 bearing stiffness K_kl = d(load_k)/d(u_l) at the solution, by central differences

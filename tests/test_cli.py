@@ -1,0 +1,42 @@
+"""The `bearing` console script contract (issue 2)."""
+import json
+import subprocess
+import sys
+
+import pytest
+
+from bearing_core.cli import main
+
+
+def test_quasistatic_json_keys(capsys):
+    rc = main(["quasistatic", "--bearing", "wan-105", "--speed-rpm", "15000", "--fz", "889.84", "--json"])
+    assert rc == 0
+    d = json.loads(capsys.readouterr().out)
+    for k in ("alpha_i_deg", "alpha_o_deg", "Q_i_N", "Q_o_N", "omega_m_rpm", "omega_R_rpm",
+              "spin_roll_i", "spin_roll_o"):
+        assert isinstance(d[k], list) and len(d[k]) == 19
+    assert set(d["displacement"]) == {"dx_m", "dy_m", "dz_m", "tx_rad", "ty_rad"}
+    assert len(d["stiffness"]) == 5 and all(len(r) == 5 for r in d["stiffness"])
+    assert 7000 < d["cage_speed_rpm"] < 7500
+    assert abs(d["alpha_i_deg"][0] - 37.7) < 0.4   # seed 003 Table 2
+
+
+def test_human_table(capsys):
+    rc = main(["quasistatic", "--bearing", "7218B", "--speed-rpm", "1000", "--fz", "1000", "--fx", "200"])
+    assert rc == 0
+    out = capsys.readouterr().out
+    assert "cage speed" in out and "stiffness" in out
+
+
+@pytest.mark.parametrize("args", [
+    ["quasistatic", "--bearing", "7218B", "--speed-rpm", "abc"],
+    ["quasistatic", "--bearing", "nope", "--speed-rpm", "100"],
+    ["quasistatic", "--bearing", "7218B", "--speed-rpm", "-5"],
+    ["quasistatic", "--bearing", "7218B", "--speed-rpm", "100", "--fz", "nan"],
+    ["quasistatic", "--bearing", "7218B", "--speed-rpm", "100", "--control", "diagonal"],
+])
+def test_bad_arguments_exit_2_one_line(args):
+    p = subprocess.run([sys.executable, "-m", "bearing_core.cli", *args], capture_output=True, text=True)
+    assert p.returncode == 2
+    assert len(p.stderr.strip().splitlines()) == 1
+    assert p.stdout == ""
