@@ -48,6 +48,17 @@ def build_parser() -> argparse.ArgumentParser:
     q.add_argument("--json", action="store_true", help="print one JSON object")
     q.set_defaults(func=cmd_quasistatic)
 
+    sw = sub.add_parser("sweep", help="quasi-static speed sweep: CSV and plots of contact angles, loads, "
+                                      "ball speeds and the pure-rolling cage speed")
+    sw.add_argument("--bearing", required=True)
+    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
+        sw.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
+    sw.add_argument("--speed-max-rpm", type=_finite("--speed-max-rpm"), default=15000.0)
+    sw.add_argument("--points", type=int, default=16)
+    sw.add_argument("--control", choices=("outer", "inner", "hybrid"), default="outer")
+    sw.add_argument("--out", default="out", help="output folder (created)")
+    sw.set_defaults(func=cmd_sweep)
+
     pr = sub.add_parser("presets", help="list the bearing presets with their sources")
     pr.add_argument("--json", action="store_true")
     pr.set_defaults(func=cmd_presets)
@@ -120,6 +131,40 @@ def cmd_quasistatic(a) -> int:
         print("stiffness matrix (rows Fx,Fy,Fz [N], Mx,My [N m]; cols dx,dy,dz [m], tx,ty [rad]):")
         for row in res.stiffness:
             print("  " + " ".join(f"{v:12.4e}" for v in row))
+    return 0
+
+
+def cmd_sweep(a) -> int:
+    from pathlib import Path
+    from .geometry import load_preset
+    from .quasistatic import QuasiStaticModel
+    from .postprocess import write_csv, plot_quasistatic_sweep
+
+    if not (0 <= a.speed_max_rpm <= 190000):
+        raise _BadArg(f"--speed-max-rpm = {a.speed_max_rpm} is invalid; allowed: 0 <= value <= 190000 rpm")
+    if not (2 <= a.points <= 1000):
+        raise _BadArg(f"--points = {a.points} is invalid; allowed: 2 <= points <= 1000")
+    g = load_preset(a.bearing)
+    model = QuasiStaticModel(g, a.control)
+    loads = (a.fx, a.fy, a.fz, a.mx, a.my)
+    rows, u = [], None
+    for n in np.linspace(0.0, a.speed_max_rpm, a.points):
+        r = model.solve(n * RPM, loads, u0=u, stiffness=False)
+        u = r.u
+        j = int(np.argmax(r.Q_i))  # most loaded ball
+        rows.append({"speed_rpm": n, "cage_speed_rpm": r.cage_speed / RPM,
+                     "cage_shaft_ratio": r.cage_speed / (n * RPM) if n > 0 else float("nan"),
+                     "alpha_i_deg": float(np.degrees(r.alpha_i[j])), "alpha_o_deg": float(np.degrees(r.alpha_o[j])),
+                     "Q_i_N": float(r.Q_i[j]), "Q_o_N": float(r.Q_o[j]),
+                     "omega_R_rpm": float(r.omega_R[j] / RPM), "spin_roll_i": float(r.spin_roll_i[j]),
+                     "spin_roll_o": float(r.spin_roll_o[j]), "p_max_i_Pa": float(r.p_i[j]),
+                     "dz_m": float(r.u[2]), "dx_m": float(r.u[0])})
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    csv = out / f"quasistatic_sweep_{g.name}.csv"
+    write_csv(csv, rows)
+    png = plot_quasistatic_sweep(rows, out / f"quasistatic_sweep_{g.name}.png", title=f"{g.name}, loads {loads}")
+    print(f"wrote {csv} and {png}")
     return 0
 
 

@@ -12,7 +12,8 @@ curvature centre [m]. Per ball j at azimuth psi_j = 2 pi j / Z (from +x towards 
   ball:  -Q_i n_i - Q_o n_o + F_i e_i + F_o e_o + Fc r = 0,   e_k = (n_kz, -n_kr)          (Eq. 17)
   Fc = m dm omega_m^2 / 2,   Mg = J omega_m omega_R sin(beta)  (Eqs. 9-10)
   F_i = lambda_i Mg / D, F_o = lambda_o Mg / D: outer control lambda_o = 2, lambda_i = 0; inner control
-        lambda_i = lambda_o = 1 (Harris & Kotzalas; seed 003 Eq. 12)
+        lambda_i = lambda_o = 1 (Harris & Kotzalas; seed 003 Eq. 12), each bounded by mu_gyro Q (a
+        lightly loaded ball pivots instead: gyroscopic slip)
   ring:  F_ext + sum_j (Q_i n_i - F_i e_i) = 0 (forces), moments about the ring centre with the force
          applied at the inner groove-centre locus of radius Ri plus the friction force's moment
          arm fi D about it (Eqs. 18-19).
@@ -70,6 +71,8 @@ class QuasiStaticResult:
     roll_o: np.ndarray
     Fc: np.ndarray               # centrifugal force [N]
     Mg: np.ndarray               # gyroscopic moment [N m]
+    F_i: np.ndarray              # friction forces resisting Mg at the inner / outer contact [N]
+    F_o: np.ndarray
     outer_control: np.ndarray    # bool, which race controls (hybrid), else all equal
     residual: float              # relative force residual of the ring equilibrium
     iterations: int
@@ -93,10 +96,7 @@ class QuasiStaticResult:
 
     def ring_reaction(self) -> np.ndarray:
         """(Fx, Fy, Fz, Mx, My) that the balls exert on the inner ring [N, N m]."""
-        return _ring_forces(self.geometry, self.psi, self.alpha_i, self.Q_i, self.Mg, self._lam_i())
-
-    def _lam_i(self):
-        return _lambda_i(self.control, self.outer_control)
+        return _ring_forces(self.geometry, self.psi, self.alpha_i, self.Q_i, self.F_i)
 
 
 def _lambda_i(control, outer_control):
@@ -105,10 +105,16 @@ def _lambda_i(control, outer_control):
     return np.where(outer_control, 0.0, 1.0)
 
 
-def _ring_forces(g, psi, alpha_i, Q_i_eff, Mg, lam_i):
-    """Force and moment of the balls on the inner ring; Q_i_eff includes the regularisation."""
+def _coulomb_bound(F, Fmax):
+    """Smooth |F| <= Fmax (F where Fmax = 0 is 0)."""
+    x = np.abs(F) / np.where(Fmax > 0, Fmax, 1.0)
+    return np.where(Fmax > 0, F / (1.0 + x ** 8) ** 0.125, 0.0)
+
+
+def _ring_forces(g, psi, alpha_i, Q_i_eff, Fi):
+    """Force and moment of the balls on the inner ring; Q_i_eff includes the regularisation, Fi is the
+    inner-contact gyroscopic friction force [N]."""
     nir, niz = -np.cos(alpha_i), -np.sin(alpha_i)
-    Fi = lam_i * Mg / g.D
     eir, eiz = niz, -nir
     fr = Q_i_eff * nir - Fi * eir
     fz = Q_i_eff * niz - Fi * eiz
@@ -126,7 +132,10 @@ def _ring_forces(g, psi, alpha_i, Q_i_eff, Mg, lam_i):
 class QuasiStaticModel:
     """Jones-Harris 5-DOF quasi-static model of one bearing (outer ring fixed, inner ring turning)."""
 
-    def __init__(self, geometry: BearingGeometry, control: str = "outer", n_table: int = 721):
+    def __init__(self, geometry: BearingGeometry, control: str = "outer", n_table: int = 361,
+                 mu_gyro: float = 0.1):
+        """mu_gyro: Coulomb limit of the friction that resists the gyroscopic moment [-]."""
+        self.mu_gyro = check_range("mu_gyro", mu_gyro, 0.0, 1.0)
         if control not in kin.CONTROL_MODES:
             raise BearingInputError("control", control, " | ".join(kin.CONTROL_MODES))
         self.g = geometry
@@ -134,6 +143,7 @@ class QuasiStaticModel:
         self.hz = HertzInterp(geometry, n_table)
         Z = geometry.Z
         self.psi = 2.0 * np.pi * np.arange(Z) / Z
+        self._omega = 0.0
 
     # ---- per-ball geometry and forces --------------------------------------------------------
     def _centres(self, u):
@@ -145,7 +155,7 @@ class QuasiStaticModel:
         Cz = g.A * math.sin(g.alpha0) + da
         return Cr, Cz
 
-    def _ball_state(self, X, Cr, Cz, omega, outer_ctrl):
+    def _ball_state(self, X, Cr, Cz, omega, outer_ctrl, kin_frozen=None):
         g = self.g
         Xr, Xz = X[:, 0], X[:, 1]
         lo = np.hypot(Xr, Xz)
@@ -166,20 +176,26 @@ class QuasiStaticModel:
         Ko = self.hz.K(ao, inner=False)
         Qi = np.where(d_i > 0, Ki * np.abs(d_i) ** 1.5, K_REG * d_i)
         Qo = np.where(d_o > 0, Ko * np.abs(d_o) ** 1.5, K_REG * d_o)
-        beta, wm, wR = kin.kinematics(omega, ai, ao, g.D, g.dm, self.control, outer_ctrl)
+        if kin_frozen is None:
+            beta, wm, wR = kin.kinematics(omega, ai, ao, g.D, g.dm, self.control, outer_ctrl)
+        else:  # Jacobians: ball speeds held (fixed point on the weak kinematic coupling)
+            beta, wm, wR = kin_frozen
         Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
         Mg = g.ball_inertia * wm * wR * np.sin(beta) * -1.0  # J omega_m Omega_r, Omega_r = -omega_R sin(beta)
         lam_i = _lambda_i(self.control, outer_ctrl)
         lam_o = 2.0 - lam_i
-        Fi = lam_i * Mg / g.D
-        Fo = lam_o * Mg / g.D
+        # Jones-Harris friction forces resisting the gyroscopic moment, bounded by the Coulomb limit
+        # mu_gyro Q of each contact (beyond it the ball pivots: gyroscopic slip); a smooth bound
+        # F = F_req / (1 + (F_req / mu Q)^8)^(1/8), exact to 1e-5 below 25% of the limit.
+        Fi = _coulomb_bound(lam_i * Mg / g.D, self.mu_gyro * np.maximum(Qi, 0.0))
+        Fo = _coulomb_bound(lam_o * Mg / g.D, self.mu_gyro * np.maximum(Qo, 0.0))
         # ball equilibrium residual (r, z)
         Rr = -Qi * nir - Qo * nor + Fi * niz + Fo * noz + Fc
         Rz = -Qi * niz - Qo * noz - Fi * nir - Fo * nor
         return dict(Rr=Rr, Rz=Rz, Qi=Qi, Qo=Qo, d_i=d_i, d_o=d_o, ai=ai, ao=ao, beta=beta, wm=wm,
-                    wR=wR, Fc=Fc, Mg=Mg, lam_i=lam_i, outer_ctrl=outer_ctrl)
+                    wR=wR, Fc=Fc, Mg=Mg, lam_i=lam_i, outer_ctrl=outer_ctrl, Fi=Fi, Fo=Fo)
 
-    def _solve_balls(self, u, omega, X0, outer_ctrl, tol=1e-12, maxit=60):
+    def _solve_balls(self, u, omega, X0, outer_ctrl, tol=1e-10, maxit=60):
         """Newton per ball (vectorised, 2x2 finite-difference Jacobians) for the ball equilibrium."""
         g = self.g
         Cr, Cz = self._centres(u)
@@ -189,7 +205,7 @@ class QuasiStaticModel:
         for it in range(maxit):
             st = self._ball_state(X, Cr, Cz, omega, outer_ctrl)
             R = np.stack([st["Rr"], st["Rz"]], axis=1)
-            if np.max(np.abs(R)) < tol * scale + 1e-9 * np.max(np.abs([st["Qi"].max(), st["Qo"].max(), 1.0])):
+            if np.max(np.abs(R)) < tol * (scale + max(st["Qi"].max(), st["Qo"].max(), 0.0)):
                 return X, st, True
             J = np.empty((g.Z, 2, 2))
             for k in range(2):
@@ -206,11 +222,22 @@ class QuasiStaticModel:
             bad = ~np.all(np.isfinite(dX), axis=1)
             if bad.any():  # singular 2x2 (e.g. degenerate kinematics): small steepest-descent step
                 dX[bad] = -1e-4 * g.D * np.sign(np.nan_to_num(R[bad]))
-            # limit a step to a fraction of the ball diameter (keeps Newton inside the groove)
-            lim = 0.02 * g.D
+            # limit a step to 1e-3 D (~ contact deflections) and backtrack per ball on |R|
+            lim = 1e-3 * g.D
             mag = np.max(np.abs(dX), axis=1, keepdims=True)
             dX = np.where(mag > lim, dX * lim / np.maximum(mag, 1e-300), dX)
-            X = X + dX
+            n0 = np.hypot(R[:, 0], R[:, 1])
+            lam = np.ones(g.Z)
+            Xn = X + dX
+            for _ in range(12):
+                sn = self._ball_state(Xn, Cr, Cz, omega, outer_ctrl)
+                nn = np.hypot(sn["Rr"], sn["Rz"])
+                worse = ~(nn <= n0 * (1.0 + 1e-9)) & (lam > 1e-3)
+                if not worse.any():
+                    break
+                lam = np.where(worse, 0.5 * lam, lam)
+                Xn = X + lam[:, None] * dX
+            X = Xn
         st = self._ball_state(X, Cr, Cz, omega, outer_ctrl)
         return X, st, False
 
@@ -222,10 +249,24 @@ class QuasiStaticModel:
         ro, ri = (g.fo - 0.5) * g.D, (g.fi - 0.5) * g.D
         d = 0.5 * (L - (ro + ri))           # equal share of the interference (may be negative)
         t = (ro + d) / np.maximum(L, 1e-300)
-        return np.stack([Cr * t, Cz * t], axis=1)
+        X = np.stack([Cr * t, Cz * t], axis=1)
+        if self._omega > 0:
+            # a ball in the clearance is thrown onto the outer race: start it there, pressed by Fc
+            # (the pure-rolling estimate omega_m ~ omega/2 (1 - D/dm))
+            wm = 0.5 * self._omega * (1.0 - g.D / g.dm)
+            Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
+            K0 = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
+            free = d < 0
+            if free.any():
+                ao = np.arctan2(Cz[free], Cr[free])
+                lo = ro + (Fc / K0) ** (2.0 / 3.0)
+                X[free, 0] = lo * np.cos(ao)
+                X[free, 1] = lo * np.sin(ao)
+        return X
 
     def residual(self, u, omega, X0=None, outer_ctrl=None):
-        """Ring equilibrium residual R(u) = F_ext + F_balls (needs self._loads) and the ball solution."""
+        """Force of the balls on the inner ring at displacement u (balls re-equilibrated from X0)."""
+        self._omega = omega
         if X0 is None:
             X0 = self._x_start(u)
         if outer_ctrl is None:
@@ -234,7 +275,7 @@ class QuasiStaticModel:
         if not ok:
             # retry from the geometric start (the warm start may sit in a bad basin)
             X, st, ok = self._solve_balls(u, omega, self._x_start(u), outer_ctrl, maxit=200)
-        Fb = _ring_forces(self.g, self.psi, st["ai"], st["Qi"], st["Mg"], st["lam_i"])
+        Fb = _ring_forces(self.g, self.psi, st["ai"], st["Qi"], st["Fi"])
         return Fb, X, st, ok
 
     # ---- the 5-DOF solve ---------------------------------------------------------------------
@@ -251,7 +292,7 @@ class QuasiStaticModel:
             check_range(nm, v, -1e7, 1e7, unit="N or N m")
         with np.errstate(all="ignore"):
             try:
-                return self._solve(omega, loads, u0, tol, maxit, stiffness)
+                return self._solve(omega, loads, u0, tol, min(maxit, 30), stiffness)
             except ConvergenceError as e:
                 first = e
             # continuation: static solution first, then speed in steps
@@ -295,6 +336,7 @@ class QuasiStaticModel:
         Fscale = max(np.linalg.norm(loads[:3]), np.linalg.norm(loads[3:]) / (0.5 * g.dm), 1.0)
         fs = np.array([Fscale, Fscale, Fscale, Fscale * 0.5 * g.dm, Fscale * 0.5 * g.dm])
         u = self._u_guess(loads) if u0 is None else np.array(u0, dtype=float)
+        self._omega = omega
         outer_ctrl = np.ones(g.Z, dtype=bool)
         X = self._x_start(u)
 
@@ -317,9 +359,9 @@ class QuasiStaticModel:
             J = np.empty((5, 5))
             for k in range(5):
                 up = u.copy()
-                up[k] += 1e-3 * us[k]
+                up[k] += 1e-2 * us[k]
                 rp, _, _, _ = R_of(up, X, outer_ctrl)
-                J[:, k] = (rp - r) / (1e-3)
+                J[:, k] = (rp - r) / (1e-2)
             try:
                 step = -np.linalg.lstsq(J, r, rcond=1e-12)[0]
             except np.linalg.LinAlgError:
@@ -330,7 +372,7 @@ class QuasiStaticModel:
                 step /= smax
             lam = 1.0
             n0 = np.linalg.norm(r)
-            for _ in range(30):
+            for _ in range(16):
                 un = u + lam * step * us
                 rn, Xn, stn, okn = R_of(un, X, outer_ctrl)
                 if okn and np.linalg.norm(rn) < (1 - 1e-4 * lam) * n0:
@@ -364,13 +406,14 @@ class QuasiStaticModel:
         a_i, b_i, p_i, _ = self.hz.ab_E(st["ai"], Qi, inner=True)
         a_o, b_o, p_o, _ = self.hz.ab_E(st["ao"], Qo, inner=False)
         si, ri_, so, ro_ = kin.contact_spin_roll(omega, st["wm"], st["wR"], st["beta"], st["ai"], st["ao"])
-        Fb = _ring_forces(g, self.psi, st["ai"], st["Qi"], st["Mg"], st["lam_i"])
+        Fb = _ring_forces(g, self.psi, st["ai"], st["Qi"], st["Fi"])
         resid = float(np.linalg.norm(loads + Fb) / max(np.linalg.norm(loads), 1e-12))
         return QuasiStaticResult(
             geometry=g, omega=omega, loads=loads.copy(), control=self.control, u=u.copy(), psi=self.psi.copy(),
             alpha_i=st["ai"], alpha_o=st["ao"], Q_i=Qi, Q_o=Qo, delta_i=st["d_i"], delta_o=st["d_o"],
             a_i=a_i, b_i=b_i, a_o=a_o, b_o=b_o, p_i=p_i, p_o=p_o, omega_m=st["wm"], omega_R=st["wR"],
             beta=st["beta"], spin_i=si, spin_o=so, roll_i=ri_, roll_o=ro_, Fc=st["Fc"], Mg=st["Mg"],
+            F_i=st["Fi"], F_o=st["Fo"],
             outer_control=np.asarray(outer_ctrl, dtype=bool).copy(), residual=resid, iterations=it, X=X.copy())
 
     def stiffness_matrix(self, res: QuasiStaticResult) -> np.ndarray:
@@ -390,9 +433,9 @@ class QuasiStaticModel:
 
 
 def solve_quasistatic(geometry: BearingGeometry, omega: float, loads, control: str = "outer",
-                      stiffness: bool = True) -> QuasiStaticResult:
+                      stiffness: bool = True, mu_gyro: float = 0.1) -> QuasiStaticResult:
     """Convenience wrapper: QuasiStaticModel(geometry, control).solve(omega, loads).
 
     omega: inner-ring speed [rad/s] (>= 0); loads: (Fx, Fy, Fz, Mx, My) [N, N m] applied to the inner
     ring; control: 'outer' | 'inner' | 'hybrid'."""
-    return QuasiStaticModel(geometry, control).solve(omega, loads, stiffness=stiffness)
+    return QuasiStaticModel(geometry, control, mu_gyro=mu_gyro).solve(omega, loads, stiffness=stiffness)
