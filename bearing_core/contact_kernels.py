@@ -1,0 +1,340 @@
+"""Per-contact numba kernels for the transient (Gupta-style) ball bearing dynamics: ball-race normal
+contact, contact-point kinematics, traction integrated over the Hertz contact ellipse, ball-pocket
+contact. SI units throughout (m, s, rad, N, Pa, W).
+
+Conventions (same as bearing_core.kinematics / bearing_core.quasistatic)
+-----------------------------------------------------------------------
+* Bearing axis z; inner ring turns at omega > 0 about +z. For a ball at azimuth psi the local
+  orthonormal right-handed frame is (r, t, z): r radially out, t = z x r the orbital direction.
+* Ball-race geometry through the groove curvature centres (quasistatic.py, seed 003 Eqs. 3-6):
+  X = (Xr, Xz) ball centre minus the outer groove centre O_o, C = O_i - O_o,
+  delta_o = |X| - (fo - 1/2) D, n_o = X/|X| = (cos ao, sin ao);
+  delta_i = |X - C| - (fi - 1/2) D, n_i = (X - C)/|X - C| = (-cos ai, -sin ai).
+  n is the unit vector from the ball centre towards the contact (in (r, z)).
+  Q = K(alpha) delta^1.5 for delta > 0, else 0 (Hertz, exact constant from hertz.build_hertz_table
+  interpolated in contact angle by hertz.hertz_lookup; identical to quasistatic.HertzInterp).
+* Contact plane axes: n (normal, ball -> race), t (rolling direction, orbital) and the major-axis
+  direction m = (-n_z, 0, n_r) in (r, t, z) components. (m, n, t) is right handed: m x n = t,
+  n x t = m, t x m = n. The contact ellipse has semi-major axis a along m (across the groove) and
+  semi-minor axis b along t. Contact-plane coordinates: x along m, y along t.
+* "Sliding" = velocity of the ball material minus the race material at the same point (ball
+  relative to race). Traction forces returned are forces ON THE BALL (the race gets the opposite).
+* Contact centre = O_ball + (D/2) n (undeformed ball surface point, Jones / Harris convention; the
+  pure-rolling relations of kinematics.py hold there).
+
+Sources
+-------
+[J60]  A. B. Jones, "A general theory for elastically constrained ball and radial roller bearings
+       under arbitrary load and speed conditions", J. Basic Eng. 82 (1960) 309-320.
+[HK]   T. A. Harris, M. N. Kotzalas, Rolling Bearing Analysis 5th ed. (2007), Vol. 2 Ch. 3 (ball
+       speeds, spin) and Ch. 4 (friction; full-sliding spin moment M_s = 3 mu Q a E(e)/8).
+[G84]  P. K. Gupta, Advanced Dynamics of Rolling Elements, Springer 1984 (contact-based ball / cage
+       dynamics, penalty pocket contact).
+[HC75] K. H. Hunt, F. R. E. Crossley, "Coefficient of restitution interpreted as damping in
+       vibroimpact", J. Appl. Mech. 42 (1975) 440-445.
+[Jo85] K. L. Johnson, Contact Mechanics, CUP 1985 (torsion of a Hertz circular contact in full slip,
+       M = 3 pi mu Q a / 16, the a = b case of M_s above; section number not re-checked).
+seed 002 (Ma et al. 2023) Sec. 2.1-2.2: traction by integrating p(x, y) mu(s(x, y)) over the ellipse,
+       p = p_max sqrt(1 - x^2/a^2 - y^2/b^2), mu(s) = (A + B s) exp(-C s) + D, s = v/u.
+seed 004 Eqs. 1-5: rolling-direction slip on the deformed contact surface, rolling radius
+       rho(x) = sqrt(R^2 - x^2) - sqrt(R^2 - a^2) + sqrt((D/2)^2 - a^2), R = 2 f D / (2 f + 1).
+seed 000 Eq. 6: ball-pocket penalty force K_cb r_p dtheta + C_cb r_p dtheta_dot beyond the clearance
+       angle. Here the penetration (|dtheta| - theta_cl) r_p is used instead of r_p |dtheta| so that
+       the force is continuous at the clearance edge (Gupta's form).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .hertz import ROW_K_LOAD, hertz_lookup
+
+# traction model selectors
+TRACTION_COULOMB = 0      # mu = mu0 tanh(|v| / v_reg)
+TRACTION_LUBRICATED = 1   # mu = (A + B s) exp(-C s) + D,  s = |v| / max(|u_roll|, u_min)
+# layout of the traction parameter array (float64, length N_TRACTION_PARAMS)
+P_MU0, P_VREG, P_A, P_B, P_C, P_D, P_UMIN = range(7)
+N_TRACTION_PARAMS = 7
+
+# normal damping selectors
+DAMP_NONE = 0
+DAMP_HUNT_CROSSLEY = 1    # F = Q (1 + chi delta_dot), chi = 3 (1 - e) / (2 v_in)   [HC75]
+DAMP_LINEAR = 2           # F = Q + c delta_dot
+
+
+def traction_params(mu0=0.1, v_reg=1e-3, A=0.0, B=0.0, C=0.0, D=0.0, u_min=1e-3):
+    """Parameter array for traction_coefficient / ellipse_traction.
+
+    mu0 [-], v_reg [m/s] (Coulomb model); A, B, C, D [-] (lubricated curve mu(s) = (A + B s)
+    exp(-C s) + D; A + D = 0 makes mu(0) = 0); u_min [m/s]: floor of the rolling speed in s."""
+    p = np.zeros(N_TRACTION_PARAMS)
+    p[P_MU0], p[P_VREG], p[P_A], p[P_B], p[P_C], p[P_D], p[P_UMIN] = mu0, v_reg, A, B, C, D, u_min
+    return p
+
+
+def hunt_crossley_chi(e, v_in):
+    """Hunt-Crossley damping factor chi = 3 (1 - e) / (2 v_in) [s/m] for coefficient of restitution
+    e [-] at impact speed v_in [m/s] [HC75]."""
+    return 1.5 * (1.0 - e) / v_in
+
+
+def ellipse_quadrature(n_major, n_minor):
+    """Nodes and weights (xi, w_xi, zeta, w_zeta) for ellipse_traction (not numba; build once).
+
+    The ellipse is mapped to the unit disc, x = a xi, y = b sqrt(1 - xi^2) zeta. xi: Gauss-Legendre
+    on [-1, 1] (n_major strips across the major axis); zeta: Gauss-Chebyshev of the 2nd kind,
+    w_zeta already containing sqrt(1 - zeta^2) (n_minor points along each strip). With this choice
+    the Hertz pressure integrates to Q exactly (to rounding) for any n >= 2."""
+    xi, wxi = np.polynomial.legendre.leggauss(int(n_major))
+    j = np.arange(1, int(n_minor) + 1)
+    th = j * np.pi / (n_minor + 1)
+    zeta = np.cos(th)
+    wz = np.pi / (n_minor + 1) * np.sin(th) ** 2
+    return (np.ascontiguousarray(xi), np.ascontiguousarray(wxi), np.ascontiguousarray(zeta),
+            np.ascontiguousarray(wz))
+
+
+# --------------------------------------------------------------------------------------------------
+# 1. ball-race normal contact
+@njit(cache=True)
+def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
+    L = math.sqrt(dr * dr + dz * dz)
+    nr = dr / L
+    nz = dz / L
+    delta = L - rc
+    if inner:
+        alpha = math.atan2(-nz, -nr)
+    else:
+        alpha = math.atan2(nz, nr)
+    if delta > 0.0:
+        n = table.shape[1]
+        x = (abs(alpha) - alpha0) / dalpha
+        if not x > 0.0:
+            j = 0
+            w = 0.0
+        elif x >= n - 1:
+            j = n - 2
+            w = 1.0
+        else:
+            j = int(x)
+            w = x - j
+        K = (1.0 - w) * table[ROW_K_LOAD, j] + w * table[ROW_K_LOAD, j + 1]
+        Q = K * delta ** 1.5
+        _, a, b, _, p = hertz_lookup(table, alpha0, dalpha, alpha, Q)
+    else:
+        Q = 0.0
+        a = 0.0
+        b = 0.0
+        p = 0.0
+    return delta, nr, nz, alpha, Q, a, b, p
+
+
+@njit(cache=True)
+def ball_race_contact(Xr, Xz, Cr, Cz, ro_c, ri_c, table_i, table_o, alpha0, dalpha):
+    """Hertz normal contact of one ball with both races.
+
+    Xr, Xz [m]: ball centre minus the outer groove curvature centre (local (r, z)); Cr, Cz [m]: inner
+    minus outer groove centre; ro_c = (fo - 1/2) D, ri_c = (fi - 1/2) D [m]; table_i / table_o =
+    HertzTable.inner / .outer, alpha0, dalpha = HertzTable.alpha0, .dalpha [rad].
+    Returns (delta_o [m], nor, noz, alpha_o [rad], Q_o [N], a_o [m], b_o [m], p_o [Pa],
+             delta_i, nir, niz, alpha_i, Q_i, a_i, b_i, p_i); n from the ball centre to the contact;
+    Q = a = b = p = 0 where delta <= 0."""
+    do, nor, noz, ao, Qo, a_o, b_o, p_o = _one_contact(Xr, Xz, ro_c, table_o, alpha0, dalpha, False)
+    di, nir, niz, ai, Qi, a_i, b_i, p_i = _one_contact(Xr - Cr, Xz - Cz, ri_c, table_i, alpha0, dalpha,
+                                                        True)
+    return do, nor, noz, ao, Qo, a_o, b_o, p_o, di, nir, niz, ai, Qi, a_i, b_i, p_i
+
+
+@njit(cache=True)
+def normal_contact_force(Q_el, delta, delta_dot, model, c):
+    """Normal force [N] with damping, from the elastic Hertz force Q_el [N], deflection delta [m] and
+    its rate delta_dot [m/s] (> 0 approaching).
+
+    model DAMP_NONE: Q_el. DAMP_HUNT_CROSSLEY: Q_el (1 + c delta_dot) with c = chi [s/m] from
+    hunt_crossley_chi(e, v_in) [HC75]; the damping vanishes with the contact (no force jump at
+    contact onset), default choice. DAMP_LINEAR: Q_el + c delta_dot, c [N s/m].
+    Zero for delta <= 0; never negative (no adhesive pull on separation)."""
+    if not delta > 0.0:
+        return 0.0
+    if model == DAMP_HUNT_CROSSLEY:
+        F = Q_el * (1.0 + c * delta_dot)
+    elif model == DAMP_LINEAR:
+        F = Q_el + c * delta_dot
+    else:
+        F = Q_el
+    return F if F > 0.0 else 0.0
+
+
+# --------------------------------------------------------------------------------------------------
+# 2. contact-point kinematics
+@njit(cache=True)
+def contact_kinematics(r_b, vr, vt, vz, wr, wt, wz, Omega_race, vrr, vrt, vrz, n_r, n_z, D):
+    """Relative (ball minus race) motion at the contact centre O_ball + (D/2) n.
+
+    r_b [m]: radius of the ball centre from the bearing axis; (vr, vt, vz) [m/s]: ball centre
+    velocity (inertial, components in the local (r, t, z) frame at the ball azimuth); (wr, wt, wz)
+    [rad/s]: ball absolute angular velocity (same components); Omega_race [rad/s]: race angular speed
+    about +z (inner: shaft speed, outer: 0); (vrr, vrt, vrz) [m/s]: race centre velocity (local
+    components; the race surface speed is taken as Omega_race times the contact-point radius from the
+    bearing axis, i.e. race-centre offsets enter only through this velocity); (n_r, n_z): contact
+    normal; D [m]: ball diameter.
+    Returns (vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll):
+      vs_t [m/s] sliding in the rolling direction t, vs_m [m/s] sliding along m = (-n_z, n_r);
+      w_spin = (w_ball - w_race) . n [rad/s] (kinematics.contact_spin_roll's spin);
+      w_roll_m = (w_ball - w_race) . m, w_roll_t = (w_ball - w_race) . t [rad/s];
+      u_roll [m/s]: rolling (entrainment) speed along t, the mean of the ball and race surface
+      speeds relative to the contact point, which moves with the ball's orbital angular speed
+      vt / r_b (signed; < 0 for the usual rolling of the outer race)."""
+    h = 0.5 * D
+    pr = h * n_r
+    pz = h * n_z
+    Rp = r_b + pr
+    # ball material at the contact point: v + w x p
+    vbr = vr + wt * pz
+    vbt = vt + wz * pr - wr * pz
+    vbz = vz - wt * pr
+    # race material at the contact point
+    vct = vrt + Omega_race * Rp
+    dr = vbr - vrr
+    dt = vbt - vct
+    dz = vbz - vrz
+    vs_t = dt
+    vs_m = -n_z * dr + n_r * dz
+    wzr = wz - Omega_race
+    w_spin = wr * n_r + wzr * n_z
+    w_roll_m = -n_z * wr + n_r * wzr
+    w_roll_t = wt
+    v_cp = vt / r_b * Rp
+    u_roll = 0.5 * (vbt + vct) - v_cp
+    return vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll
+
+
+# --------------------------------------------------------------------------------------------------
+# 3. traction over the contact ellipse
+@njit(cache=True)
+def traction_coefficient(v, u_roll, model, params):
+    """Traction coefficient [-] at sliding speed v >= 0 [m/s] and rolling speed u_roll [m/s].
+
+    TRACTION_COULOMB: mu0 tanh(v / v_reg). TRACTION_LUBRICATED (seed 002 Sec. 2.1):
+    (A + B s) exp(-C s) + D, s = v / max(|u_roll|, u_min). params from traction_params()."""
+    if model == TRACTION_LUBRICATED:
+        u = abs(u_roll)
+        um = params[P_UMIN]
+        if u < um:
+            u = um
+        s = v / u
+        return (params[P_A] + params[P_B] * s) * math.exp(-params[P_C] * s) + params[P_D]
+    return params[P_MU0] * math.tanh(v / params[P_VREG])
+
+
+@njit(cache=True)
+def ellipse_traction(a, b, p_max, D, R_def, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll, model,
+                     params, xi, wxi, zeta, wzeta):
+    """Traction on the ball integrated over the Hertz ellipse (seed 002 Sec. 2.2; seed 004 Eqs. 1-5).
+
+    a, b [m] semi-axes (a along m, b along t), p_max [Pa]; D [m] ball diameter; R_def [m] radius of
+    the deformed contact surface across the groove, 2 f D / (2 f + 1) (pass 0 to ignore the
+    curvature: flat contact at the ball radius D/2); the relative motion (vs_t, vs_m, w_spin,
+    w_roll_m, w_roll_t, u_roll) from contact_kinematics; model / params: traction_coefficient;
+    (xi, wxi, zeta, wzeta) from ellipse_quadrature.
+    Local sliding at (x, y) on the deformed surface, rolling radius
+    rho(x) = sqrt(R^2 - x^2) - sqrt(R^2 - a^2) + sqrt((D/2)^2 - a^2) (seed 004), d = rho - D/2:
+        v_t = vs_t - w_spin x + w_roll_m d,    v_m = vs_m + w_spin y - w_roll_t d
+    (rigid relative velocity field about the contact centre). Shear = -mu p v/|v|.
+    Returns (F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W]): force on the ball along t and m; its
+    moment about the ball centre along n (= spin moment about the contact normal), m and t;
+    dissipated power sum(mu p |v| dA) >= 0 for mu >= 0. Identity (tested):
+    P_loss = -[F_t vs_t + F_m vs_m + M_n w_spin + w_roll_m (M_m - D/2 F_t) + w_roll_t (M_t + D/2 F_m)].
+    """
+    Ft = 0.0
+    Fm = 0.0
+    Mn = 0.0
+    Mm = 0.0
+    Mt = 0.0
+    P = 0.0
+    if not (p_max > 0.0 and a > 0.0 and b > 0.0):
+        return Ft, Fm, Mn, Mm, Mt, P
+    h = 0.5 * D
+    curv = R_def > a and h > a
+    c0 = 0.0
+    if curv:
+        c0 = math.sqrt(h * h - a * a) - math.sqrt(R_def * R_def - a * a)
+    pab = p_max * a * b
+    for i in range(xi.shape[0]):
+        x = a * xi[i]
+        w2 = 1.0 - xi[i] * xi[i]
+        w = math.sqrt(w2)
+        if curv:
+            rho = math.sqrt(R_def * R_def - x * x) + c0
+        else:
+            rho = h
+        d = rho - h
+        vt_x = vs_t - w_spin * x + w_roll_m * d
+        vm_x = vs_m - w_roll_t * d
+        wi = pab * w2 * wxi[i]
+        for j in range(zeta.shape[0]):
+            y = b * w * zeta[j]
+            vm = vm_x + w_spin * y
+            v = math.sqrt(vt_x * vt_x + vm * vm)
+            if v > 0.0:
+                mu = traction_coefficient(v, u_roll, model, params)
+                dF = mu * wi * wzeta[j]
+                ft = -dF * vt_x / v
+                fm = -dF * vm / v
+                Ft += ft
+                Fm += fm
+                Mn += y * fm - x * ft
+                Mm += rho * ft
+                Mt -= rho * fm
+                P += dF * v
+    return Ft, Fm, Mn, Mm, Mt, P
+
+
+# --------------------------------------------------------------------------------------------------
+# 4. ball-pocket contact
+@njit(cache=True)
+def ball_pocket_contact(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu_cb, v_reg,
+                        D, vr, vz, wr, wz, vcr, vcz):
+    """Penalty contact of a ball with its cage pocket along the orbital direction t (seed 000 Eq. 6
+    with the penetration form; [G84]).
+
+    theta_b, theta_c [rad]: ball and pocket-centre azimuths; dtheta_b, dtheta_c [rad/s] their rates;
+    r_p [m] pitch radius; c_p [m] pocket clearance (half the diametral pocket clearance);
+    K_cb [N/m], C_cb [N s/m]; mu_cb [-] friction, v_reg [m/s] its tanh regularisation; D [m];
+    (vr, vz) [m/s] ball centre velocity, (wr, wz) [rad/s] ball angular velocity, (vcr, vcz)
+    [m/s] cage centre velocity (local (r, t, z) components). The cage turns at dtheta_c about z.
+    Penetration pen = |dtheta| r_p - c_p (dtheta wrapped to [-pi, pi]); contact when pen > 0:
+    F_n = max(0, K_cb pen + C_cb pen_dot), pen_dot = sign(dtheta) (dtheta_b - dtheta_c) r_p (pushes
+    only; the elastic part is continuous at pen = 0, the linear damper jumps by C_cb pen_dot at
+    impact, as in seed 000).
+    Friction opposes the sliding of the ball surface on the pocket wall at O_ball + sigma (D/2) t:
+    f = -mu_cb F_n tanh(|v_s| / v_reg) v_s/|v_s|, v_s in (r, z).
+    Returns (F_n [N], F_t, F_r, F_z [N] force on the ball, M_r, M_z [N m] its moment about the
+    ball centre); the cage gets the opposite force."""
+    dth = theta_b - theta_c
+    dth = (dth + math.pi) % (2.0 * math.pi) - math.pi
+    sig = 1.0 if dth >= 0.0 else -1.0
+    pen = abs(dth) * r_p - c_p
+    if not pen > 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    pen_dot = sig * (dtheta_b - dtheta_c) * r_p
+    Fn = K_cb * pen + C_cb * pen_dot
+    if not Fn > 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    h = 0.5 * D
+    vsr = vr - vcr - sig * h * (wz - dtheta_c)
+    vsz = vz - vcz + sig * h * wr
+    vs = math.sqrt(vsr * vsr + vsz * vsz)
+    Fr = 0.0
+    Fz = 0.0
+    if vs > 0.0:
+        f = mu_cb * Fn * math.tanh(vs / v_reg) / vs
+        Fr = -f * vsr
+        Fz = -f * vsz
+    Ft = -sig * Fn
+    # moment of the friction force at arm sigma h t: t x r = -z, t x z = r
+    Mr = sig * h * Fz
+    Mz = -sig * h * Fr
+    return Fn, Ft, Fr, Fz, Mr, Mz

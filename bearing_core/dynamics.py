@@ -1,0 +1,318 @@
+"""Transient tribo-dynamic bearing model: Python front end of bearing_core.dynamics_kernels.
+
+    m = DynamicModel(load_preset("7218B"), DynamicsOptions(traction="lubricated"))
+    m.initialize(omega=1000 * pi / 30, loads=(500, 0, 2000, 0, 0))   # quasi-static start
+    rec = m.advance(0.1)                          # constant inputs
+    rec = m.advance(0.2, omega_end=3000 * pi / 30)  # linear speed ramp over the interval
+
+Every ``advance`` runs the whole time integration in compiled code; Python is entered once per call.
+State layout, frames and signs: see the docstring of bearing_core.dynamics_kernels. SI units.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from . import dynamics_kernels as K
+from .errors import BearingInputError, check_range
+from .geometry import BearingGeometry
+from .hertz_tables import HertzInterp
+from .lubricants import get_lubricant
+from .quasistatic import QuasiStaticModel
+
+TRACTION_MODELS = ("lubricated", "coulomb")
+INTEGRATORS = ("rk4", "adaptive")
+COUPLINGS = ("load", "displacement")
+
+
+@dataclass(frozen=True)
+class DynamicsOptions:
+    """Model options (SI). traction: 'lubricated' (seed 002 curve of ``lubricant``) or 'coulomb'
+    (mu, regularised over slide-to-roll s_reg); u_min: floor of the entrainment speed [m/s];
+    zeta: normal contact damping as a fraction of critical for the ball mass [-];
+    integrator: 'rk4' (fixed dt, baseline) or 'adaptive' (Bogacki-Shampine 3(2), rtol);
+    n_major x n_minor: quadrature points over each contact ellipse; reduced: 'auto' | 'full' |
+    'axisymmetric' (one representative ball, pure axial load only); pocket/land: penalty stiffness
+    [N/m], damping ratio, Coulomb friction; oil_fraction: oil volume fraction of the oil-air mixture for
+    ball drag (seed 001 Eq. 10, drag coefficient cd); support_damping_ratio: viscous damping of the
+    load-driven inner ring to ground (the shaft mounting), as a fraction of critical for each of its five
+    modes on the quasi-static bearing stiffness. Without it the free ring is damped only by the contacts
+    and a light ring whirls (self-excited by the traction); its force vanishes in steady state."""
+
+    traction: str = "lubricated"
+    lubricant: str = "generic-mineral-oil"
+    mu: float = 0.1
+    s_reg: float = 0.005
+    u_min: float = 0.5
+    zeta: float = 0.05
+    coupling: str = "load"
+    integrator: str = "adaptive"
+    dt: float = 1e-5
+    rtol: float = 1e-5
+    n_major: int = 6
+    n_minor: int = 2
+    reduced: str = "auto"
+    pocket_stiffness: float = 2e7
+    pocket_damping_ratio: float = 0.2
+    mu_pocket: float = 0.1
+    land_stiffness: float = 2e7
+    land_damping_ratio: float = 0.2
+    mu_land: float = 0.1
+    oil_fraction: float = 0.0
+    cd: float = 0.5
+    support_damping_ratio: float = 0.1
+    record_dt: float = 1e-3
+
+    def validate(self):
+        if self.traction not in TRACTION_MODELS:
+            raise BearingInputError("traction", self.traction, " | ".join(TRACTION_MODELS))
+        if self.integrator not in INTEGRATORS:
+            raise BearingInputError("integrator", self.integrator, " | ".join(INTEGRATORS))
+        if self.coupling not in COUPLINGS:
+            raise BearingInputError("coupling", self.coupling, " | ".join(COUPLINGS))
+        if self.reduced not in ("auto", "full", "axisymmetric"):
+            raise BearingInputError("reduced", self.reduced, "auto | full | axisymmetric")
+        get_lubricant(self.lubricant)
+        check_range("mu", self.mu, 0.0, 1.0)
+        check_range("s_reg", self.s_reg, 1e-5, 1.0)
+        check_range("u_min", self.u_min, 1e-3, 100.0, unit="m/s")
+        check_range("zeta", self.zeta, 0.0, 2.0)
+        check_range("dt", self.dt, 1e-8, 1e-3, unit="s")
+        check_range("rtol", self.rtol, 1e-10, 1e-2)
+        for nm in ("n_major", "n_minor"):
+            v = getattr(self, nm)
+            if not isinstance(v, int) or not 1 <= v <= 8:
+                raise BearingInputError(nm, v, "integer 1..8")
+        check_range("pocket_stiffness", self.pocket_stiffness, 1e3, 1e10, unit="N/m")
+        check_range("land_stiffness", self.land_stiffness, 1e3, 1e10, unit="N/m")
+        for nm in ("pocket_damping_ratio", "land_damping_ratio", "mu_pocket", "mu_land", "oil_fraction",
+                   "support_damping_ratio"):
+            check_range(nm, getattr(self, nm), 0.0, 1.0)
+        check_range("cd", self.cd, 0.0, 5.0)
+        check_range("record_dt", self.record_dt, 1e-6, 10.0, unit="s")
+
+
+class DynamicModel:
+    """One bearing: outer ring fixed, inner ring at prescribed speed, balls (6 DOF each), cage
+    (rotation and whirl), inner ring 5 DOF (load-driven) or prescribed (displacement-driven)."""
+
+    def __init__(self, geometry: BearingGeometry, options: DynamicsOptions = DynamicsOptions()):
+        options.validate()
+        self.g = geometry
+        self.opt = options
+        self.hz = HertzInterp(geometry)
+        tab = self.hz.table
+        self._tab_i = np.ascontiguousarray(tab.inner)
+        self._tab_o = np.ascontiguousarray(tab.outer)
+        self._ta0 = float(tab.alpha0)
+        self._tda = float(tab.dalpha)
+        self.t = 0.0
+        self.y = None
+        self.U = np.zeros(K.NU)
+        self.stats = np.zeros(5)
+        self.qs = None
+
+    # ---- set-up -----------------------------------------------------------------------------
+    def _params(self, axisym: bool) -> np.ndarray:
+        g, o = self.g, self.opt
+        P = np.zeros(K.NPAR)
+        P[K.P_Z] = g.Z
+        P[K.P_NB] = 1 if axisym else g.Z
+        P[K.P_MULT] = g.Z if axisym else 1.0
+        P[K.P_AXISYM] = 1.0 if axisym else 0.0
+        P[K.P_D] = g.D
+        P[K.P_DM] = g.dm
+        P[K.P_FI] = g.fi
+        P[K.P_FO] = g.fo
+        P[K.P_A0] = g.alpha0
+        P[K.P_MB] = g.ball_mass
+        P[K.P_JB] = g.ball_inertia
+        P[K.P_MI] = g.inner_ring_mass
+        P[K.P_IT] = g.inner_ring_tilt_inertia
+        P[K.P_IP] = g.inner_ring_inertia
+        P[K.P_MC] = g.cage.mass
+        P[K.P_IC] = g.cage.inertia
+        P[K.P_CPOCKET] = 0.5 * g.cage.pocket_clearance
+        P[K.P_KPOCKET] = o.pocket_stiffness
+        P[K.P_CPOCKETD] = 2.0 * o.pocket_damping_ratio * math.sqrt(o.pocket_stiffness * g.ball_mass)
+        P[K.P_MUPOCKET] = o.mu_pocket
+        P[K.P_CLAND] = 0.5 * g.cage.land_clearance
+        P[K.P_KLAND] = o.land_stiffness
+        P[K.P_CLANDD] = 2.0 * o.land_damping_ratio * math.sqrt(o.land_stiffness * g.cage.mass)
+        P[K.P_MULAND] = o.mu_land
+        # guiding land radius: outer land ~ dm/2 + D/2 * 0.7, inner land ~ dm/2 - D/2 * 0.7
+        guide = {"outer": 0.0, "inner": 1.0, "ball": 2.0}[g.cage.guidance]
+        P[K.P_GUIDE] = guide
+        P[K.P_RLAND] = 0.5 * g.dm + (0.35 * g.D if guide == 0.0 else -0.35 * g.D)
+        lub = get_lubricant(o.lubricant)
+        P[K.P_TRACTION] = 0.0 if o.traction == "lubricated" else 1.0
+        P[K.P_TA], P[K.P_TB], P[K.P_TC], P[K.P_TD] = lub.A, lub.B, lub.C, lub.D
+        P[K.P_MU0] = o.mu
+        P[K.P_SREG] = o.s_reg
+        P[K.P_UMIN] = o.u_min
+        P[K.P_ZETA] = o.zeta
+        P[K.P_RHO_EFF] = 1.2 + o.oil_fraction * (lub.density - 1.2)
+        P[K.P_CD] = o.cd
+        P[K.P_NX] = o.n_major
+        P[K.P_NY] = o.n_minor
+        P[K.P_COUPLING] = 1.0 if o.coupling == "displacement" else 0.0
+        return P
+
+    def initialize(self, omega: float, loads=(0.0, 0.0, 0.0, 0.0, 0.0), displacement=None, t0: float = 0.0):
+        """Start at (near) equilibrium from the quasi-static solution (outer raceway control) at shaft
+        speed omega [rad/s] and loads (Fx, Fy, Fz, Mx, My) [N, N m]. Displacement-driven coupling takes
+        ``displacement`` = (dx, dy, dz, tx, ty, vx, vy, vz, wx, wy) [m, rad, m/s, rad/s] instead; the
+        quasi-static start then uses the load that this displacement needs (found by the QS solve of the
+        loads returned by a static pass)."""
+        omega = check_range("omega", omega, 0.0, 2.0e4, unit="rad/s")
+        loads = np.asarray(loads, dtype=float).reshape(-1)
+        if loads.size != 5 or not np.all(np.isfinite(loads)):
+            raise BearingInputError("loads", loads.tolist(), "5 finite values (Fx, Fy, Fz, Mx, My)")
+        g, o = self.g, self.opt
+        axisym = (o.reduced == "axisymmetric") or (
+            o.reduced == "auto" and o.coupling == "load" and np.all(loads[[0, 1, 3, 4]] == 0.0))
+        if o.reduced == "axisymmetric" and np.any(loads[[0, 1, 3, 4]] != 0.0):
+            raise BearingInputError("reduced", "axisymmetric", "full or auto when Fx, Fy, Mx or My is non-zero")
+        self.axisym = bool(axisym)
+        self.P = self._params(self.axisym)
+        qsm = QuasiStaticModel(g, "outer")
+        if o.coupling == "displacement":
+            if displacement is None:
+                raise BearingInputError("displacement", None, "10 values for displacement-driven coupling")
+            d = np.asarray(displacement, dtype=float).reshape(-1)
+            if d.size != 10 or not np.all(np.isfinite(d)):
+                raise BearingInputError("displacement", d.tolist(), "10 finite values")
+            Fb, X, st, ok = qsm.residual(d[:5], omega)
+            loads = -Fb
+            self.U[K.U_DX:K.U_WY + 1] = d
+        qs = qsm.solve(omega, loads, stiffness=(o.coupling == "load"))
+        self.qs = qs
+        if o.coupling == "load":
+            kd = np.clip(np.diag(qs.stiffness), 0.0, None)
+            mass = np.array([g.inner_ring_mass] * 3 + [g.inner_ring_tilt_inertia] * 2)
+            self.P[K.P_CRX:K.P_CRTY + 1] = 2.0 * o.support_damping_ratio * np.sqrt(kd * mass)
+        nb = 1 if self.axisym else g.Z
+        y = np.zeros(K.NSTATE_FIXED + K.NSB * nb)
+        y[0:5] = qs.u if o.coupling == "load" else 0.0
+        Roo = 0.5 * g.dm - (g.fo - 0.5) * g.D * math.cos(g.alpha0)
+        Zoo = -(g.fo - 0.5) * g.D * math.sin(g.alpha0)
+        y[11] = qs.cage_speed
+        for j in range(nb):
+            b = K.NSTATE_FIXED + K.NSB * j
+            y[b] = qs.psi[j]
+            y[b + 1] = Roo + qs.X[j, 0]
+            y[b + 2] = Zoo + qs.X[j, 1]
+            y[b + 3] = qs.omega_m[j]
+            y[b + 6] = -qs.omega_R[j] * math.sin(qs.beta[j])
+            y[b + 7] = 0.0
+            y[b + 8] = qs.omega_R[j] * math.cos(qs.beta[j]) + qs.omega_m[j]
+        self.y = y
+        self.t = float(t0)
+        self.U[K.U_W0] = self.U[K.U_W1] = omega
+        self.U[K.U_T0] = self.U[K.U_T1] = self.t
+        self.U[K.U_FX:K.U_MY + 1] = loads
+        self.stats[:] = 0.0
+        self._atol = self._atol_scale(nb)
+        return self
+
+    def _atol_scale(self, nb):
+        g = self.g
+        a = np.empty(K.NSTATE_FIXED + K.NSB * nb)
+        pos, ang, vel, angv = 1e-9, 1e-8, 1e-5, 1e-2
+        a[0:3] = pos; a[3:5] = ang * 0.01; a[5:8] = vel; a[8:10] = 1e-4
+        a[10] = 1e-6; a[11] = angv; a[12:14] = pos; a[14:16] = vel
+        for j in range(nb):
+            b = K.NSTATE_FIXED + K.NSB * j
+            a[b] = 1e-6
+            a[b + 1:b + 3] = pos
+            a[b + 3] = angv * 0.1
+            a[b + 4:b + 6] = vel
+            a[b + 6:b + 9] = angv
+        return a
+
+    # ---- time integration ---------------------------------------------------------------------
+    def set_inputs(self, loads=None, displacement=None):
+        """Hold new loads (Fx, Fy, Fz, Mx, My) or displacement inputs (10 values) from now on."""
+        if loads is not None:
+            loads = np.asarray(loads, dtype=float).reshape(-1)
+            if loads.size != 5 or not np.all(np.isfinite(loads)):
+                raise BearingInputError("loads", loads.tolist(), "5 finite values (Fx, Fy, Fz, Mx, My)")
+            if self.axisym and np.any(loads[[0, 1, 3, 4]] != 0.0):
+                raise BearingInputError("loads", loads.tolist(),
+                                        "pure axial load for the reduced (axisymmetric) model; "
+                                        "initialise with reduced='full'")
+            self.U[K.U_FX:K.U_MY + 1] = loads
+        if displacement is not None:
+            d = np.asarray(displacement, dtype=float).reshape(-1)
+            if d.size != 10 or not np.all(np.isfinite(d)):
+                raise BearingInputError("displacement", d.tolist(), "10 finite values")
+            self.U[K.U_DX:K.U_WY + 1] = d
+
+    def advance(self, t_end: float, omega_end: float | None = None, record_dt: float | None = None):
+        """Integrate from the current time to t_end [s]; the shaft speed ramps linearly from its current
+        value to omega_end [rad/s] over the interval (held if None). Returns the records (n x NOUT
+        array, columns dynamics_kernels.OUT_NAMES) taken every record_dt (default options.record_dt)."""
+        if self.y is None:
+            raise RuntimeError("call initialize() first")
+        t_end = float(t_end)
+        if not math.isfinite(t_end) or t_end <= self.t:
+            raise BearingInputError("t_end", t_end, f"finite and > current time {self.t}")
+        w0 = self.U[K.U_W1] if self.t >= self.U[K.U_T1] else self._shaft_speed(self.t)
+        w1 = w0 if omega_end is None else check_range("omega_end", omega_end, 0.0, 2.0e4, unit="rad/s")
+        self.U[K.U_W0], self.U[K.U_W1] = w0, w1
+        self.U[K.U_T0], self.U[K.U_T1] = self.t, t_end
+        rdt = self.opt.record_dt if record_dt is None else float(record_dt)
+        nmax = int((t_end - self.t) / rdt) + 2
+        rec = np.zeros((nmax, K.NOUT))
+        method = 0 if self.opt.integrator == "rk4" else 1
+        dt0 = self.opt.dt if method == 0 else max(self.stats[3], self.opt.dt) if self.stats[3] > 0 else self.opt.dt
+        self.stats[4] = 0.0
+        n = K.integrate(self.y, self.t, t_end, dt0, method, self.opt.rtol, self._atol, self.P, self.U,
+                        self._tab_i, self._tab_o, self._ta0, self._tda, rdt, rec, nmax, self.stats)
+        if self.stats[4] != 0.0 or not np.all(np.isfinite(self.y)):
+            raise FloatingPointError(
+                f"integration failed at t in [{self.t:.6g}, {t_end:.6g}] s "
+                f"({'non-finite state' if self.stats[4] == 1 else 'step size underflow'}); "
+                "reduce dt / rtol or check the inputs")
+        self.t = t_end
+        return rec[:n]
+
+    def _shaft_speed(self, t):
+        w, _ = K._shaft(self.U, t)
+        return w
+
+    def outputs(self) -> dict:
+        """Output channels at the current instant (names: dynamics_kernels.OUT_NAMES)."""
+        diag = np.zeros(K.NOUT)
+        bd = np.zeros((int(self.P[K.P_NB]), K.NBD))
+        K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, diag, bd)
+        return dict(zip(K.OUT_NAMES, diag.tolist()))
+
+    def ball_details(self) -> dict:
+        """Per-ball contact angles [rad], loads [N], semi-axes [m], pressures [Pa], traction forces
+        [N], centre slips [m/s], entrainment speeds [m/s], spins [rad/s] at the current instant."""
+        diag = np.zeros(K.NOUT)
+        nb = int(self.P[K.P_NB])
+        bd = np.zeros((nb, K.NBD))
+        K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, diag, bd)
+        names = ("alpha_i", "alpha_o", "Q_i", "Q_o", "delta_i", "delta_o", "a_i", "b_i", "a_o", "b_o",
+                 "p_i", "p_o", "Ft_i", "Fm_i", "Ft_o", "Fm_o", "slip_i", "slip_o", "u_i", "u_o",
+                 "spin_i", "spin_o", "slip_m_i", "slip_m_o", "F_pocket")
+        d = {n: bd[:, k].copy() for k, n in enumerate(names)}
+        b = K.NSTATE_FIXED + K.NSB * np.arange(nb)
+        d["theta"] = self.y[b].copy()
+        d["orbit_speed"] = self.y[b + 3].copy()
+        d["omega"] = self.y[np.stack([b + 6, b + 7, b + 8], axis=1)].copy()
+        W = d["omega"]
+        # attitude angle (from the bearing axis, Harris's beta sign) and yaw angle of the spin axis
+        Wrel_z = W[:, 2] - d["orbit_speed"]
+        d["attitude"] = np.arctan2(-W[:, 0], np.abs(Wrel_z)) * np.sign(-Wrel_z + 1e-300) * -1.0
+        d["yaw"] = np.arctan2(W[:, 1], np.hypot(W[:, 0], Wrel_z))
+        return d
+
+
+def records_to_dict(rec: np.ndarray) -> dict:
+    """Columns of an advance() record array by name."""
+    return {n: rec[:, k] for k, n in enumerate(K.OUT_NAMES)}

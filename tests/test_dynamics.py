@@ -1,0 +1,131 @@
+"""Transient tribo-dynamic model (issue 3): steady state against the quasi-static model, reactions,
+power balance, reduced vs full model, integrators, bad input."""
+import math
+
+import numpy as np
+import pytest
+
+from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.errors import BearingInputError
+from bearing_core.geometry import load_preset
+from bearing_core.quasistatic import solve_quasistatic
+
+RPM = math.pi / 30
+
+
+def _run(loads, rpm=1000.0, T=0.15, **opt):
+    g = load_preset("7218B")
+    m = DynamicModel(g, DynamicsOptions(**opt))
+    m.initialize(rpm * RPM, loads)
+    rec = records_to_dict(m.advance(T, record_dt=5e-4))
+    return m, rec
+
+
+def _late(rec, frac=0.5):
+    n = len(rec["t"])
+    return {k: v[int(n * frac):] for k, v in rec.items()}
+
+
+@pytest.mark.parametrize("control", ["outer", "inner"])
+@pytest.mark.parametrize("traction", ["coulomb", "lubricated"])
+def test_steady_state_matches_quasistatic_axial(traction, control):
+    """Constant speed and thrust (7218B, 1000 rpm, Fz = 5000 N, full 16-ball model): the dynamic steady
+    state against the Jones-Harris quasi-static model. The dynamics has no raceway-control hypothesis (the
+    traction shares the gyroscopic moment); at 1000 rpm the gyroscopic moment is small and both QS
+    hypotheses are comparable, so the dynamics must match either. Tolerances (issue 3): contact angles
+    0.5 deg, contact loads 2%, mean cage speed 1%, mean reactions 0.5% of the applied load."""
+    loads = (0.0, 0.0, 5000.0, 0.0, 0.0)
+    m, rec = _run(loads, traction=traction, mu=0.05, reduced="full", integrator="rk4")
+    late = _late(rec)
+    qs = solve_quasistatic(m.g, 1000 * RPM, loads, control=control, stiffness=False)
+    assert abs(-late["Fz"].mean() / 5000.0 - 1) < 0.005
+    assert abs(late["Fx"].mean()) < 0.005 * 5000 and abs(late["Fy"].mean()) < 0.005 * 5000
+    assert abs(math.degrees(late["alpha_i_mean"].mean() - qs.alpha_i[0])) < 0.5
+    assert abs(math.degrees(late["alpha_o_mean"].mean() - qs.alpha_o[0])) < 0.5
+    assert abs(late["Q_i_max"].mean() / qs.Q_i[0] - 1) < 0.02
+    assert abs(late["Q_o_max"].mean() / qs.Q_o[0] - 1) < 0.02
+    assert abs(late["cage_speed"].mean() / qs.cage_speed - 1) < 0.01
+
+
+@pytest.mark.parametrize("traction", ["coulomb", "lubricated"])
+def test_combined_load_reactions_and_cage(traction):
+    """Combined load (1000 rpm, Fx = 1000 N, Fz = 5000 N, moments free): mean reactions equal the
+    applied loads within 0.5% and the mean cage speed is within 1% of the QS pure-rolling value.
+    Measured, not asserted here: the spin-induced lateral traction (absent from Jones-Harris) tilts the
+    soft free-moment inner ring about x by ~50 urad per 0.01 of friction coefficient and turns the load
+    zone by up to half a ball spacing, so per-ball loads at an azimuth differ from the QS distribution."""
+    loads = (1000.0, 0.0, 5000.0, 0.0, 0.0)
+    m, rec = _run(loads, traction=traction, mu=0.05, reduced="full", integrator="rk4")
+    late = _late(rec)
+    qs = solve_quasistatic(m.g, 1000 * RPM, loads, control="outer", stiffness=False)
+    for k, F in zip(("Fx", "Fz"), (1000.0, 5000.0)):
+        assert abs(-late[k].mean() / F - 1) < 0.005, (k, late[k].mean())
+    assert abs(late["Fy"].mean()) < 0.005 * 1000.0
+    assert abs(late["cage_speed"].mean() / qs.cage_speed - 1) < 0.01
+
+
+def test_power_balance():
+    """Energy conservation (issue 3 acceptance): drive power + external-load power = dissipated power
+    + d(kinetic + elastic energy)/dt, averaged over 0.05 s windows, within 1%."""
+    m, rec = _run((1000.0, 0.0, 5000.0, 0.0, 0.0), T=0.2, reduced="full", integrator="rk4")
+    t = rec["t"]
+    E = rec["KE"] + rec["U_elastic"]
+    diss = sum(rec[k] for k in ("P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_damping"))
+    src = rec["P_drive"] + rec["P_ext"]
+    for a, b in ((0.05, 0.1), (0.1, 0.15), (0.15, 0.1995)):
+        s = (t >= a) & (t <= b)
+        W_in = np.trapezoid(src[s], t[s])
+        W_out = np.trapezoid(diss[s], t[s]) + (E[s][-1] - E[s][0])
+        assert abs(W_out / W_in - 1) < 0.01, (a, W_in, W_out)
+
+
+def test_reduced_model_matches_full_pure_axial():
+    """Seed 002's adaptive equation numbers: under pure axial load all balls are identical, so one
+    representative ball (reduced model) must reproduce the full 16-ball model within 0.5% (issue 3)."""
+    loads = (0.0, 0.0, 3000.0, 0.0, 0.0)
+    mf, rf = _run(loads, T=0.1, reduced="full", integrator="rk4")
+    mr, rr = _run(loads, T=0.1, reduced="auto", integrator="rk4")
+    assert mr.axisym and not mf.axisym
+    lf, lr = _late(rf), _late(rr)
+    for k in ("cage_speed", "Fz", "Q_i_max", "Q_o_max", "friction_torque", "alpha_i_mean"):
+        assert abs(lr[k].mean() / lf[k].mean() - 1) < 0.005, (k, lr[k].mean(), lf[k].mean())
+
+
+def test_adaptive_integrator_agrees_with_rk4():
+    """The production integrator (adaptive Bogacki-Shampine) against the papers' fixed-step RK4
+    (dt = 1e-5 s, seed 000): mean cage speed within 0.1% and mean friction torque within 1%."""
+    loads = (1000.0, 0.0, 5000.0, 0.0, 0.0)
+    _, r1 = _run(loads, T=0.1, reduced="full", integrator="rk4")
+    _, r2 = _run(loads, T=0.1, reduced="full", integrator="adaptive", rtol=1e-4)
+    l1, l2 = _late(r1), _late(r2)
+    assert abs(l2["cage_speed"].mean() / l1["cage_speed"].mean() - 1) < 1e-3
+    assert abs(l2["friction_torque"].mean() / l1["friction_torque"].mean() - 1) < 0.01
+
+
+def test_outputs_finite_and_ball_details():
+    m, rec = _run((0.0, 500.0, 2000.0, 0.0, 0.0), T=0.02, reduced="full")
+    for k, v in rec.items():
+        assert np.all(np.isfinite(v)), k
+    d = m.ball_details()
+    assert d["Q_i"].shape == (16,) and np.all(d["Q_o"] > 0)
+    assert np.all(np.abs(d["alpha_i"]) < math.pi / 2)
+
+
+@pytest.mark.parametrize("kw", [dict(traction="oily"), dict(integrator="euler"), dict(dt=0.0),
+                                dict(n_major=0), dict(mu=float("nan")), dict(coupling="rope")])
+def test_bad_options(kw):
+    with pytest.raises(BearingInputError):
+        DynamicModel(load_preset("7218B"), DynamicsOptions(**kw))
+
+
+def test_bad_inputs():
+    m = DynamicModel(load_preset("7218B"))
+    with pytest.raises(BearingInputError, match="omega"):
+        m.initialize(float("nan"), (0, 0, 100, 0, 0))
+    with pytest.raises(BearingInputError, match="loads"):
+        m.initialize(100.0, (0, 0, float("inf"), 0, 0))
+    m.initialize(100.0, (0, 0, 1000, 0, 0))
+    with pytest.raises(BearingInputError, match="t_end"):
+        m.advance(-1.0)
+    with pytest.raises(BearingInputError, match="loads"):
+        m.set_inputs(loads=(100.0, 0, 1000, 0, 0))   # reduced axisymmetric model refuses radial load
