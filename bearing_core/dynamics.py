@@ -15,6 +15,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from . import contact_kernels as CK
 from . import dynamics_kernels as K
 from .errors import BearingInputError, check_range
 from .geometry import BearingGeometry
@@ -30,7 +31,7 @@ COUPLINGS = ("load", "displacement")
 @dataclass(frozen=True)
 class DynamicsOptions:
     """Model options (SI). traction: 'lubricated' (seed 002 curve of ``lubricant``) or 'coulomb'
-    (mu, regularised over slide-to-roll s_reg); u_min: floor of the entrainment speed [m/s];
+    (mu, regularised as mu tanh(|v| / v_reg), v_reg [m/s]); u_min: floor of the entrainment speed [m/s];
     zeta: normal contact damping as a fraction of critical for the ball mass [-];
     integrator: 'rk4' (fixed dt, baseline) or 'adaptive' (Bogacki-Shampine 3(2), rtol);
     n_major x n_minor: quadrature points over each contact ellipse; reduced: 'auto' | 'full' |
@@ -44,7 +45,7 @@ class DynamicsOptions:
     traction: str = "lubricated"
     lubricant: str = "generic-mineral-oil"
     mu: float = 0.1
-    s_reg: float = 0.005
+    v_reg: float = 0.02
     u_min: float = 0.5
     zeta: float = 0.05
     coupling: str = "load"
@@ -76,15 +77,15 @@ class DynamicsOptions:
             raise BearingInputError("reduced", self.reduced, "auto | full | axisymmetric")
         get_lubricant(self.lubricant)
         check_range("mu", self.mu, 0.0, 1.0)
-        check_range("s_reg", self.s_reg, 1e-5, 1.0)
+        check_range("v_reg", self.v_reg, 1e-5, 1.0, unit="m/s")
         check_range("u_min", self.u_min, 1e-3, 100.0, unit="m/s")
         check_range("zeta", self.zeta, 0.0, 2.0)
         check_range("dt", self.dt, 1e-8, 1e-3, unit="s")
         check_range("rtol", self.rtol, 1e-10, 1e-2)
         for nm in ("n_major", "n_minor"):
             v = getattr(self, nm)
-            if not isinstance(v, int) or not 1 <= v <= 8:
-                raise BearingInputError(nm, v, "integer 1..8")
+            if not isinstance(v, int) or not 1 <= v <= 32:
+                raise BearingInputError(nm, v, "integer 1..32")
         check_range("pocket_stiffness", self.pocket_stiffness, 1e3, 1e10, unit="N/m")
         check_range("land_stiffness", self.land_stiffness, 1e3, 1e10, unit="N/m")
         for nm in ("pocket_damping_ratio", "land_damping_ratio", "mu_pocket", "mu_land", "oil_fraction",
@@ -148,15 +149,11 @@ class DynamicModel:
         P[K.P_RLAND] = 0.5 * g.dm + (0.35 * g.D if guide == 0.0 else -0.35 * g.D)
         lub = get_lubricant(o.lubricant)
         P[K.P_TRACTION] = 0.0 if o.traction == "lubricated" else 1.0
-        P[K.P_TA], P[K.P_TB], P[K.P_TC], P[K.P_TD] = lub.A, lub.B, lub.C, lub.D
-        P[K.P_MU0] = o.mu
-        P[K.P_SREG] = o.s_reg
-        P[K.P_UMIN] = o.u_min
         P[K.P_ZETA] = o.zeta
         P[K.P_RHO_EFF] = 1.2 + o.oil_fraction * (lub.density - 1.2)
         P[K.P_CD] = o.cd
-        P[K.P_NX] = o.n_major
-        P[K.P_NY] = o.n_minor
+        self._tp = CK.traction_params(o.mu, o.v_reg, lub.A, lub.B, lub.C, lub.D, o.u_min)
+        self._quad = CK.ellipse_quadrature(o.n_major, o.n_minor)
         P[K.P_COUPLING] = 1.0 if o.coupling == "displacement" else 0.0
         return P
 
@@ -270,7 +267,8 @@ class DynamicModel:
         dt0 = self.opt.dt if method == 0 else max(self.stats[3], self.opt.dt) if self.stats[3] > 0 else self.opt.dt
         self.stats[4] = 0.0
         n = K.integrate(self.y, self.t, t_end, dt0, method, self.opt.rtol, self._atol, self.P, self.U,
-                        self._tab_i, self._tab_o, self._ta0, self._tda, rdt, rec, nmax, self.stats)
+                        self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
+                        rdt, rec, nmax, self.stats)
         if self.stats[4] != 0.0 or not np.all(np.isfinite(self.y)):
             raise FloatingPointError(
                 f"integration failed at t in [{self.t:.6g}, {t_end:.6g}] s "
@@ -287,7 +285,8 @@ class DynamicModel:
         """Output channels at the current instant (names: dynamics_kernels.OUT_NAMES)."""
         diag = np.zeros(K.NOUT)
         bd = np.zeros((int(self.P[K.P_NB]), K.NBD))
-        K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, diag, bd)
+        K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, self._tp,
+                   *self._quad, diag, bd)
         return dict(zip(K.OUT_NAMES, diag.tolist()))
 
     def ball_details(self) -> dict:
@@ -296,7 +295,8 @@ class DynamicModel:
         diag = np.zeros(K.NOUT)
         nb = int(self.P[K.P_NB])
         bd = np.zeros((nb, K.NBD))
-        K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, diag, bd)
+        K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, self._tp,
+                   *self._quad, diag, bd)
         names = ("alpha_i", "alpha_o", "Q_i", "Q_o", "delta_i", "delta_o", "a_i", "b_i", "a_o", "b_o",
                  "p_i", "p_o", "Ft_i", "Fm_i", "Ft_o", "Fm_o", "slip_i", "slip_o", "u_i", "u_o",
                  "spin_i", "spin_o", "slip_m_i", "slip_m_o", "F_pocket")

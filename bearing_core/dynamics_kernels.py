@@ -25,13 +25,10 @@ frame turning with each ball's azimuth):
   inner ring (load-driven): m_i x_dd = F_ext + sum F_ball, I_t t_dd = M_ext + sum M_ball - gyro terms
   cage: I_c thc_dd = torque of pocket forces and land friction; m_c x_c_dd = pocket + land forces.
 
-Traction on each ball-race contact is integrated over the Hertz ellipse (seed 002 section 2.2) with the
-local sliding velocity of the deformed contact surface (rigid-body velocities of ball and race at the
-point rho(x) n + x m + y t, rho(x) from seed 004 Eq. 1 with R = 2 f D / (2 f + 1), Eq. 5), local
-pressure p0 sqrt(1 - x^2/a^2 - y^2/b^2), and a traction law:
-  model 0 (lubricated, seed 002): mu(s) = (A + B s) exp(-C s) + D, s = |v_slide| / u_entrain
-  model 1 (regularised Coulomb, dry/boundary): mu = mu0 tanh(s / s_reg)
-Entrainment speed u is floored at u_min so that the traction stiffness stays finite at standstill.
+Contact geometry, contact kinematics, traction integrated over the Hertz ellipse and the ball-pocket
+contact come from bearing_core.contact_kernels (seed 002 section 2.2, seed 004 Eqs. 1-5, seed 000 Eq. 6):
+lubricated traction mu(s) = (A + B s) exp(-C s) + D with s = |v| / max(u, u_min), or regularised Coulomb
+mu0 tanh(|v| / v_reg).
 """
 from __future__ import annotations
 
@@ -40,7 +37,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .hertz import hertz_lookup_alpha, ROW_K_LOAD, ROW_A_COEF, ROW_B_COEF
+from .contact_kernels import (ball_race_contact, contact_kinematics, ellipse_traction, ball_pocket_contact,
+                              normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_LUBRICATED)
 
 NSTATE_FIXED = 16
 NSB = 9  # states per ball
@@ -48,9 +46,8 @@ NSB = 9  # states per ball
 # ---- parameter vector indices (float64 array P) ------------------------------------------------
 (P_Z, P_NB, P_D, P_DM, P_FI, P_FO, P_A0, P_MB, P_JB, P_MI, P_IT, P_IP, P_MC, P_IC,
  P_RPOCKET, P_CPOCKET, P_KPOCKET, P_CPOCKETD, P_MUPOCKET, P_CLAND, P_KLAND, P_CLANDD, P_MULAND,
- P_RLAND, P_GUIDE, P_TRACTION, P_TA, P_TB, P_TC, P_TD, P_MU0, P_SREG, P_UMIN, P_ZETA, P_RHO_EFF,
- P_CD, P_NX, P_NY, P_COUPLING, P_AXISYM, P_MULT, P_CDRAG_SPIN,
- P_CRX, P_CRY, P_CRZ, P_CRTX, P_CRTY, NPAR) = range(48)
+ P_RLAND, P_GUIDE, P_TRACTION, P_ZETA, P_RHO_EFF, P_CD, P_COUPLING, P_AXISYM, P_MULT,
+ P_CRX, P_CRY, P_CRZ, P_CRTX, P_CRTY, NPAR) = range(38)
 
 # ---- input vector indices (float64 array U, held over an advance call) --------------------------
 (U_W0, U_W1, U_T0, U_T1, U_FX, U_FY, U_FZ, U_MX, U_MY,
@@ -78,170 +75,10 @@ OUT_INDEX = {n: i for i, n in enumerate(OUT_NAMES)}
 for _i, _n in enumerate(OUT_NAMES):   # O_<NAME> integer constants, compile-time globals for numba
     globals()["O_" + _n.upper()] = _i
 
-# Gauss-Legendre nodes/weights on [-1, 1] for 1..8 points (rows), padded with zeros.
-_GL_X = np.zeros((9, 8))
-_GL_W = np.zeros((9, 8))
-for _n in range(1, 9):
-    _x, _w = np.polynomial.legendre.leggauss(_n)
-    _GL_X[_n, :_n] = _x
-    _GL_W[_n, :_n] = _w
-
 # per-ball diagnostics columns (ball_details)
 (BD_AI, BD_AO, BD_QI, BD_QO, BD_DI, BD_DO, BD_AI_SEMI, BD_BI, BD_AO_SEMI, BD_BO, BD_PI, BD_PO,
  BD_FTI, BD_FMI, BD_FTO, BD_FMO, BD_VSI, BD_VSO, BD_UI, BD_UO, BD_SPI, BD_SPO, BD_WSI, BD_WSO,
  BD_FPOCKET, NBD) = range(26)
-
-
-@njit(cache=True)
-def traction_mu(s, model, A, B, C, Dd, mu0, sreg):
-    """Traction coefficient at slide-to-roll ratio s >= 0 (see module docstring)."""
-    if model == 0:
-        return (A + B * s) * math.exp(-C * s) + Dd
-    return mu0 * math.tanh(s / sreg)
-
-
-@njit(cache=True)
-def _race_contact(Xr, Xz, Cr, Cz, off, inner, tab, ta0, tda):
-    """Normal, deflection, contact angle, Hertz load and semi-axes of one ball-race contact.
-    Inner: n from O_i to the ball centre (ball -> inner contact direction), outer: from O_o."""
-    if inner:
-        vr = Xr - Cr
-        vz = Xz - Cz
-    else:
-        vr = Xr
-        vz = Xz
-    L = math.sqrt(vr * vr + vz * vz)
-    nr = vr / L
-    nz = vz / L
-    d = L - off
-    if inner:
-        alpha = math.atan2(-nz, -nr)
-    else:
-        alpha = math.atan2(nz, nr)
-    if d <= 0.0:
-        return nr, nz, d, alpha, 0.0, 0.0, 0.0, 0.0
-    K = hertz_lookup_alpha(tab, ta0, tda, alpha, ROW_K_LOAD)
-    Q = K * d * math.sqrt(d)
-    q3 = Q ** (1.0 / 3.0)
-    a = hertz_lookup_alpha(tab, ta0, tda, alpha, ROW_A_COEF) * q3
-    b = hertz_lookup_alpha(tab, ta0, tda, alpha, ROW_B_COEF) * q3
-    return nr, nz, d, alpha, Q, a, b, K
-
-
-@njit(cache=True)
-def _traction(P, Q, a, b, nr, nz, Rdef, rb, thd, vBr, vBz, Wr, Wt, Wz, wrace, vrr, vrt, vrz, out):
-    """Traction of one contact integrated over the Hertz ellipse.
-
-    Ball centre at radius rb turning at thd, centre velocity (vBr, rb thd, vBz), absolute angular
-    velocity (Wr, Wt, Wz); race turning at wrace about z with translation velocity (vrr, vrt, vrz).
-    Writes into out: [0..2] force on the ball (r, t, z) [N], [3..5] moment on the ball about its centre
-    [N m], [6] dissipated power [W] (>= 0), [7] centre slip in t [m/s], [8] centre slip along m [m/s],
-    [9] entrainment speed u [m/s], [10] spin relative to the race about n [rad/s], [11] torque of the
-    traction on the race about z [N m] (reaction), [12..14] force on the race (r, t, z)."""
-    for k in range(15):
-        out[k] = 0.0
-    R2 = 0.5 * P[P_D]
-    mr = -nz
-    mz = nr
-    nx = int(P[P_NX])
-    ny = int(P[P_NY])
-    spin = (Wr * nr + (Wz - wrace) * nz)
-    # centre values (x = y = 0)
-    rho0 = R2
-    pr0 = rho0 * nr
-    pz0 = rho0 * nz
-    vb_t0 = rb * thd + Wz * pr0 - Wr * pz0
-    vr_t0 = wrace * (rb + pr0) + vrt
-    out[7] = vb_t0 - vr_t0
-    vs_r0 = vBr + Wt * pz0 - vrr
-    vs_z0 = vBz - Wt * pr0 - vrz
-    out[8] = vs_r0 * mr + vs_z0 * mz
-    cpt = thd * (rb + pr0)
-    u = 0.5 * abs((vb_t0 - cpt) + (vr_t0 - cpt))
-    out[9] = u
-    out[10] = spin
-    if Q <= 0.0:
-        return
-    ue = max(u, P[P_UMIN])
-    model = int(P[P_TRACTION])
-    A = P[P_TA]
-    B = P[P_TB]
-    C = P[P_TC]
-    Dd = P[P_TD]
-    mu0 = P[P_MU0]
-    sreg = P[P_SREG]
-    # weights: sum of p dA normalised to Q
-    sw = 0.0
-    for i in range(nx):
-        xi = _GL_X[nx, i]
-        bx = math.sqrt(max(1.0 - xi * xi, 0.0))
-        for k in range(ny):
-            yk = _GL_X[ny, k]
-            sw += _GL_W[nx, i] * _GL_W[ny, k] * bx * math.sqrt(max(1.0 - yk * yk, 0.0)) * bx
-    if sw <= 0.0:
-        return
-    hR = math.sqrt(max(Rdef * Rdef - a * a, 0.0))
-    hD = math.sqrt(max(R2 * R2 - a * a, 0.0))
-    Fr = 0.0
-    Ft = 0.0
-    Fz = 0.0
-    Mr = 0.0
-    Mt = 0.0
-    Mz = 0.0
-    Pw = 0.0
-    Tz = 0.0
-    for i in range(nx):
-        xi = _GL_X[nx, i]
-        x = a * xi
-        bx = math.sqrt(max(1.0 - xi * xi, 0.0))
-        rho = math.sqrt(max(Rdef * Rdef - x * x, 0.0)) - hR + hD
-        pr = rho * nr + x * mr
-        pz = rho * nz + x * mz
-        # rigid-body slip at (x, 0): ball minus race
-        vb_t = rb * thd + Wz * pr - Wr * pz
-        vr_t = wrace * (rb + pr) + vrt
-        st0 = vb_t - vr_t
-        vsr = vBr + Wt * pz - vrr
-        vsz = vBz - Wt * pr - vrz
-        sm0 = vsr * mr + vsz * mz
-        for k in range(ny):
-            yk = _GL_X[ny, k]
-            y = b * bx * yk
-            w = _GL_W[nx, i] * _GL_W[ny, k] * bx * math.sqrt(max(1.0 - yk * yk, 0.0)) * bx
-            dQ = Q * w / sw
-            # spin about n moves the point y t along m: slip_m += spin * y (n x t = m)
-            st = st0
-            sm = sm0 + spin * y
-            vs = math.sqrt(st * st + sm * sm)
-            if vs <= 0.0:
-                continue
-            mu = traction_mu(vs / ue, model, A, B, C, Dd, mu0, sreg)
-            f = -mu * dQ / vs
-            ft = f * st
-            fm = f * sm
-            fr = fm * mr
-            fz = fm * mz
-            Fr += fr
-            Ft += ft
-            Fz += fz
-            # moment about the ball centre of a force at p = (pr, y, pz)
-            Mr += y * fz - pz * ft
-            Mt += pz * fr - pr * fz
-            Mz += pr * ft - y * fr
-            Pw -= ft * st + fm * sm
-            # race gets -f at radius rb + pr: torque about z
-            Tz -= (rb + pr) * ft
-    out[0] = Fr
-    out[1] = Ft
-    out[2] = Fz
-    out[3] = Mr
-    out[4] = Mt
-    out[5] = Mz
-    out[6] = Pw
-    out[11] = Tz
-    out[12] = -Fr
-    out[13] = -Ft
-    out[14] = -Fz
 
 
 @njit(cache=True)
@@ -260,10 +97,12 @@ def _shaft(U, t):
 
 
 @njit(cache=True)
-def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, diag, bd, want_bd):
+def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, want_bd):
     """dy/dt of the bearing model. diag (len NOUT) receives the output channels at (t, y); bd (nb x NBD)
-    receives per-ball details when want_bd is True."""
+    receives per-ball details when want_bd is True. tp: contact_kernels traction parameters; (qx, qwx,
+    qy, qwy): contact_kernels.ellipse_quadrature."""
     Z = P[P_Z]
+    tmodel = TRACTION_LUBRICATED if P[P_TRACTION] < 0.5 else TRACTION_COULOMB
     nb = int(P[P_NB])
     D = P[P_D]
     dm = P[P_DM]
@@ -305,7 +144,6 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, diag, bd, want_bd):
     KE = 0.0; Uel = 0.0
     sai = 0.0; sao = 0.0; nai = 0.0; nao = 0.0
     Qimax = 0.0; Qomax = 0.0; Qimin = 1e300; pmax = 0.0
-    tr = np.empty(15)
     rp = 0.5 * dm
     cpk = P[P_CPOCKET]
     kpk = P[P_KPOCKET]
@@ -328,96 +166,95 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, diag, bd, want_bd):
         vrz = vzi + Ri * (wxi * s - wyi * c)
         Xr = rb - Roo
         Xz = zb - Zoo
-        nir, niz, dli, ai, Qi, ai_s, bi_s, Ki = _race_contact(Xr, Xz, Cr, Cz, offi, True, tab_i, ta0, tda)
-        nor, noz, dlo, ao, Qo, ao_s, bo_s, Ko = _race_contact(Xr, Xz, Cr, Cz, offo, False, tab_o, ta0, tda)
-        # normal damping (linear in the rate, scaled with the local Hertz stiffness: zeta of critical
-        # for the ball mass; acts only while in contact and never pulls)
+        (dlo, nor, noz, ao, Qo, ao_s, bo_s, po,
+         dli, nir, niz, ai, Qi, ai_s, bi_s, pi_) = ball_race_contact(Xr, Xz, Cr, Cz, offo, offi,
+                                                                     tab_i, tab_o, ta0, tda)
+        # normal damping: linear in the deflection rate, zeta of critical for the ball mass on the local
+        # Hertz stiffness 1.5 Q / delta; acts only in contact and never pulls (contact_kernels)
         Fni = Qi
         Fno = Qo
         if Qi > 0.0:
             ddi = (rd - vrr) * nir + (zd - vrz) * niz
-            ci = 2.0 * zeta * math.sqrt(1.5 * Ki * math.sqrt(dli) * mb)
-            Fni = max(Qi + ci * ddi, 0.0)
+            Fni = normal_contact_force(Qi, dli, ddi, DAMP_LINEAR, 2.0 * zeta * math.sqrt(1.5 * Qi / dli * mb))
             P_dp += (Fni - Qi) * ddi
-            Uel += 0.4 * Ki * dli * dli * math.sqrt(dli)
+            Uel += 0.4 * Qi * dli
         if Qo > 0.0:
             ddo = rd * nor + zd * noz
-            co = 2.0 * zeta * math.sqrt(1.5 * Ko * math.sqrt(dlo) * mb)
-            Fno = max(Qo + co * ddo, 0.0)
+            Fno = normal_contact_force(Qo, dlo, ddo, DAMP_LINEAR, 2.0 * zeta * math.sqrt(1.5 * Qo / dlo * mb))
             P_dp += (Fno - Qo) * ddo
-            Uel += 0.4 * Ko * dlo * dlo * math.sqrt(dlo)
+            Uel += 0.4 * Qo * dlo
         # forces on the ball (local r, t, z) and moments about its centre
         Fr = -Fni * nir - Fno * nor
         Ft = 0.0
         Fz = -Fni * niz - Fno * noz
         Mr = 0.0; Mt = 0.0; Mz = 0.0
-        # traction, inner race
-        _traction(P, Qi, ai_s, bi_s, nir, niz, Rdi, rb, thd, rd, zd, Wr, Wt, Wz, w, vrr, vrt, vrz, tr)
-        Fr += tr[0]; Ft += tr[1]; Fz += tr[2]; Mr += tr[3]; Mt += tr[4]; Mz += tr[5]
-        P_ri += tr[6]
-        tri_t = tr[1]; tri_m = tr[0] * (-niz) + tr[2] * nir
-        sl_i = tr[7]; u_i = tr[9]; sp_i = tr[10]; sm_i = tr[8]
-        # ring receives the normal force + traction reaction (local r, t, z), at the groove centre
-        fr_ring = Fni * nir + tr[12]
-        ft_ring = tr[13]
-        fz_ring = Fni * niz + tr[14]
-        TRz += tr[11]
+        # traction, inner race (contact_kernels: force on the ball along t and m = (-n_z, n_r), moments
+        # along n, m, t about the ball centre)
+        vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, w, vrr, vrt, vrz,
+                                                           nir, niz, D)
+        ft, fm, mn, mm, mt, pl = ellipse_traction(ai_s, bi_s, pi_, D, Rdi, vs_t, vs_m, wsp, wrm, wrt, ur,
+                                                  tmodel, tp, qx, qwx, qy, qwy)
+        Fr += -fm * niz; Ft += ft; Fz += fm * nir
+        Mr += mn * nir - mm * niz; Mt += mt; Mz += mn * niz + mm * nir
+        P_ri += pl
+        tri_t = ft; tri_m = fm
+        sl_i = vs_t; u_i = abs(ur); sp_i = wsp; sm_i = vs_m
+        # the ring receives the normal force and the opposite traction; torque about z at the contact
+        fr_ring = Fni * nir + fm * niz
+        ft_ring = -ft
+        fz_ring = Fni * niz - fm * nir
+        # torque of the traction about the bearing axis, exact for the distributed shear: on the ball it is
+        # rb F_t + (M about the ball centre) . z = rb F_t + n_z M_n + n_r M_m; the ring gets the opposite
+        TRz -= rb * ft + niz * mn + nir * mm
         # traction, outer race (fixed)
-        _traction(P, Qo, ao_s, bo_s, nor, noz, Rdo, rb, thd, rd, zd, Wr, Wt, Wz, 0.0, 0.0, 0.0, 0.0, tr)
-        Fr += tr[0]; Ft += tr[1]; Fz += tr[2]; Mr += tr[3]; Mt += tr[4]; Mz += tr[5]
-        P_ro += tr[6]
-        tro_t = tr[1]; tro_m = tr[0] * (-noz) + tr[2] * nor
-        sl_o = tr[7]; u_o = tr[9]; sp_o = tr[10]; sm_o = tr[8]
-        # ball-pocket contact (seed 000 Eq. 6): pocket centre of ball j on the cage
+        vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, 0.0, 0.0, 0.0, 0.0,
+                                                           nor, noz, D)
+        ft, fm, mn, mm, mt, pl = ellipse_traction(ao_s, bo_s, po, D, Rdo, vs_t, vs_m, wsp, wrm, wrt, ur,
+                                                  tmodel, tp, qx, qwx, qy, qwy)
+        Fr += -fm * noz; Ft += ft; Fz += fm * nor
+        Mr += mn * nor - mm * noz; Mt += mt; Mz += mn * noz + mm * nor
+        P_ro += pl
+        tro_t = ft; tro_m = fm
+        sl_o = vs_t; u_o = abs(ur); sp_o = wsp; sm_o = vs_m
+        # ball-pocket contact (seed 000 Eq. 6, contact_kernels.ball_pocket_contact) in the frame of the
+        # (possibly whirling) cage: ball azimuth about the cage centre against the pocket azimuth
         phi = thc + 2.0 * math.pi * j / Z
-        # ball centre minus pocket centre, resolved along the pocket's tangential direction
-        pcx = xc + rp * math.cos(phi)
-        pcy = yc + rp * math.sin(phi)
-        bx_ = rb * c
-        by_ = rb * s
-        tpx = -math.sin(phi)
-        tpy = math.cos(phi)
-        dt_ = (bx_ - pcx) * tpx + (by_ - pcy) * tpy
-        # relative tangential velocity ball centre - pocket point
-        vbx = rd * c - rb * thd * s
-        vby = rd * s + rb * thd * c
-        vpx = vxc - wc * rp * math.sin(phi)
-        vpy = vyc + wc * rp * math.cos(phi)
-        vt_rel = (vbx - vpx) * tpx + (vby - vpy) * tpy
-        Fpk = 0.0
-        if dt_ > cpk or dt_ < -cpk:
-            sg = 1.0 if dt_ > 0.0 else -1.0
-            pen = abs(dt_) - cpk
-            Fpk = max(kpk * pen + cpkd * vt_rel * sg, 0.0)   # magnitude, pushes the ball back
-            P_dp += (Fpk - kpk * pen) * vt_rel * sg
-            Uel += 0.5 * kpk * pen * pen
-            # force on ball along -sg * t_p (expressed in the ball's local frame)
-            fx = -sg * Fpk * tpx
-            fy = -sg * Fpk * tpy
+        bx_ = rb * c - xc
+        by_ = rb * s - yc
+        rr2 = bx_ * bx_ + by_ * by_
+        thb = math.atan2(by_, bx_)
+        vbx = rd * c - rb * thd * s - vxc
+        vby = rd * s + rb * thd * c - vyc
+        thb_d = (bx_ * vby - by_ * vbx) / rr2
+        vcr_ = vxc * c + vyc * s
+        rbc = math.sqrt(rr2)   # ball radius about the cage centre: the arm of the pocket force
+        Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact(thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, mupk, 0.01,
+                                                           D, rd, zd, Wr, Wz, vcr_, 0.0)
+        if Fpk > 0.0:
+            # pocket force along the cage-frame tangential direction at the ball
+            tpx = -math.sin(thb)
+            tpy = math.cos(thb)
+            fx = fpt * tpx + fpr * c
+            fy = fpt * tpy + fpr * s
             Fr += fx * c + fy * s
             Ft += -fx * s + fy * c
+            Fz += fpz
+            Mr += mpr
+            Mz += mpz
             FCx -= fx
             FCy -= fy
-            TC -= (pcx - xc) * fy - (pcy - yc) * fx
-            # friction at the contact point (ball surface at -sg*D/2 along t): slip of the ball surface
-            # along r and z on the pocket wall; Coulomb, regularised
-            pt = -sg * 0.5 * D
-            # surface velocity of the ball at p = (0, pt, 0): Omega x p = (-Wz pt, 0, Wr pt)
-            vsr = rd - Wz * pt - (vxc * c + vyc * s)
-            vsz = zd + Wr * pt
-            vsm = math.sqrt(vsr * vsr + vsz * vsz)
-            if vsm > 0.0:
-                muf = mupk * math.tanh(vsm / 0.01)
-                ffr = -muf * Fpk * vsr / vsm
-                ffz = -muf * Fpk * vsz / vsm
-                Fr += ffr
-                Fz += ffz
-                # moment about centre of force (ffr, 0, ffz) at (0, pt, 0)
-                Mr += pt * ffz
-                Mz += -pt * ffr
-                P_pk -= ffr * vsr + ffz * vsz
-                FCx -= ffr * c
-                FCy -= ffr * s
+            TC += by_ * fx - bx_ * fy      # the cage gets (-fx, -fy) at the ball centre (about its centre)
+            sg = 1.0 if fpt < 0.0 else -1.0                         # side of the pocket wall (+t or -t)
+            TC += sg * 0.5 * D * fpr       # the wall friction acts at the offset sg D/2 t: torque on the cage
+            pen = rbc * abs(((thb - phi + math.pi) % (2.0 * math.pi)) - math.pi) - cpk
+            Uel += 0.5 * kpk * pen * pen
+            # dissipation: friction and damping of the pocket contact = -(power of its forces on the
+            # relative motion) - d(elastic energy)/dt, evaluated from the relative velocities
+            vrel_t = (thb_d - wc) * rbc
+            P_dp += (Fpk - kpk * pen) * vrel_t * sg
+            vsr = rd - vcr_ - sg * 0.5 * D * (Wz - wc)
+            vsz = zd + sg * 0.5 * D * Wr
+            P_pk -= fpr * vsr + fpz * vsz
         # ball drag in the oil-air mixture (seed 001 Eq. 10): opposes the orbital motion
         vorb = rb * thd - wc * rp * 0.0
         Fd = 0.5 * rho_eff * cd * (math.pi * D * D / 4.0) * vorb * abs(vorb)
@@ -595,7 +432,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, diag, bd, want_bd):
 
 
 @njit(cache=True)
-def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda,
+def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
               rec_dt, rec, nrec_max, stats):
     """Advance y (in place) from t0 to exactly t1 inside compiled code.
 
@@ -617,7 +454,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
     if method == 0:
         while t < t1 - 1e-15:
             h = min(dt, t1 - t)
-            rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, diag, bd, False)
+            rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             if t >= next_rec - 1e-12 and nrec < nrec_max:
                 for k in range(NOUT):
                     rec[nrec, k] = diag[k]
@@ -625,13 +462,13 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 next_rec += rec_dt
             for i in range(n):
                 yt[i] = y[i] + 0.5 * h * k1[i]
-            rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, diag, bd, False)
+            rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             for i in range(n):
                 yt[i] = y[i] + 0.5 * h * k2[i]
-            rhs(t + 0.5 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, diag, bd, False)
+            rhs(t + 0.5 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             for i in range(n):
                 yt[i] = y[i] + h * k3[i]
-            rhs(t + h, yt, k4, P, U, tab_i, tab_o, ta0, tda, diag, bd, False)
+            rhs(t + h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             for i in range(n):
                 y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
                 if not math.isfinite(y[i]):
@@ -644,12 +481,12 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
     else:
         # Bogacki-Shampine 3(2): c = (0, 1/2, 3/4, 1), FSAL
         y3 = np.empty(n)
-        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, diag, bd, False)
+        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
         stats[2] += 1
         err_prev = 1.0
         while t < t1 - 1e-15:
             if t >= next_rec - 1e-12 and nrec < nrec_max:
-                rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, diag, bd, False)
+                rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
                 for k in range(NOUT):
                     rec[nrec, k] = diag[k]
                 nrec += 1
@@ -660,13 +497,13 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             h = min(h, hmax)
             for i in range(n):
                 yt[i] = y[i] + 0.5 * h * k1[i]
-            rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, diag, bd, False)
+            rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             for i in range(n):
                 yt[i] = y[i] + 0.75 * h * k2[i]
-            rhs(t + 0.75 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, diag, bd, False)
+            rhs(t + 0.75 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             for i in range(n):
                 y3[i] = y[i] + h * (2.0 / 9.0 * k1[i] + 1.0 / 3.0 * k2[i] + 4.0 / 9.0 * k3[i])
-            rhs(t + h, y3, k4, P, U, tab_i, tab_o, ta0, tda, diag, bd, False)
+            rhs(t + h, y3, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             stats[2] += 3
             err = 0.0
             ok = True
@@ -703,8 +540,8 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
 
 
 @njit(cache=True)
-def evaluate(t, y, P, U, tab_i, tab_o, ta0, tda, diag, bd):
+def evaluate(t, y, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd):
     """Output channels and per-ball details at (t, y) without integrating."""
     dy = np.empty(y.size)
-    rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, diag, bd, True)
+    rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
     return dy
