@@ -437,8 +437,8 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
     """Advance y (in place) from t0 to exactly t1 inside compiled code.
 
     method 0: classical fixed-step RK4 with step dt (the papers' baseline, seed 000: dt = 1e-5 s);
-    method 1: adaptive Bogacki-Shampine 3(2) with FSAL and PI step control (rtol, absolute tolerances
-              atol_scale[k] per state), initial step dt.
+    method 1: adaptive Dormand-Prince 5(4), FSAL, PI step control, RMS error norm (rtol, absolute
+              tolerances atol_scale[k] per state; a negative entry means absolute-only), initial step dt.
     Records the output channels every rec_dt into rec (nrec_max x NOUT); returns the number of
     records written. stats: [0] accepted steps, [1] rejected steps, [2] rhs calls, [3] last dt."""
     n = y.size
@@ -479,11 +479,13 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             stats[2] += 4
         stats[3] = h
     else:
-        # Bogacki-Shampine 3(2): c = (0, 1/2, 3/4, 1), FSAL
-        y3 = np.empty(n)
+        # Dormand-Prince 5(4) (Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.5), FSAL, RMS error norm
+        # with per-state scales atol_scale[i] + rtol |y_i| (rtol is not applied to the unbounded angles:
+        # their atol_scale entries are negative, flagging an absolute-only tolerance), PI step control.
+        k5 = np.empty(n); k6 = np.empty(n); k7 = np.empty(n); y5 = np.empty(n)
         rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
         stats[2] += 1
-        err_prev = 1.0
+        err_prev = 1e-4
         while t < t1 - 1e-15:
             if t >= next_rec - 1e-12 and nrec < nrec_max:
                 rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
@@ -496,34 +498,51 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 hmax = min(hmax, max(next_rec - t, 1e-12))
             h = min(h, hmax)
             for i in range(n):
-                yt[i] = y[i] + 0.5 * h * k1[i]
-            rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+                yt[i] = y[i] + h * (0.2 * k1[i])
+            rhs(t + 0.2 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             for i in range(n):
-                yt[i] = y[i] + 0.75 * h * k2[i]
-            rhs(t + 0.75 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+                yt[i] = y[i] + h * (3.0 / 40.0 * k1[i] + 9.0 / 40.0 * k2[i])
+            rhs(t + 0.3 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             for i in range(n):
-                y3[i] = y[i] + h * (2.0 / 9.0 * k1[i] + 1.0 / 3.0 * k2[i] + 4.0 / 9.0 * k3[i])
-            rhs(t + h, y3, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            stats[2] += 3
-            err = 0.0
+                yt[i] = y[i] + h * (44.0 / 45.0 * k1[i] - 56.0 / 15.0 * k2[i] + 32.0 / 9.0 * k3[i])
+            rhs(t + 0.8 * h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            for i in range(n):
+                yt[i] = y[i] + h * (19372.0 / 6561.0 * k1[i] - 25360.0 / 2187.0 * k2[i]
+                                    + 64448.0 / 6561.0 * k3[i] - 212.0 / 729.0 * k4[i])
+            rhs(t + 8.0 / 9.0 * h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            for i in range(n):
+                yt[i] = y[i] + h * (9017.0 / 3168.0 * k1[i] - 355.0 / 33.0 * k2[i] + 46732.0 / 5247.0 * k3[i]
+                                    + 49.0 / 176.0 * k4[i] - 5103.0 / 18656.0 * k5[i])
+            rhs(t + h, yt, k6, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            for i in range(n):
+                y5[i] = y[i] + h * (35.0 / 384.0 * k1[i] + 500.0 / 1113.0 * k3[i] + 125.0 / 192.0 * k4[i]
+                                    - 2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i])
+            rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            stats[2] += 6
+            acc = 0.0
             ok = True
             for i in range(n):
-                e2 = h * (-5.0 / 72.0 * k1[i] + 1.0 / 12.0 * k2[i] + 1.0 / 9.0 * k3[i] - 1.0 / 8.0 * k4[i])
-                sc = atol_scale[i] + rtol * max(abs(y[i]), abs(y3[i]))
-                q = e2 / sc
+                e = h * (71.0 / 57600.0 * k1[i] - 71.0 / 16695.0 * k3[i] + 71.0 / 1920.0 * k4[i]
+                         - 17253.0 / 339200.0 * k5[i] + 22.0 / 525.0 * k6[i] - 1.0 / 40.0 * k7[i])
+                at = atol_scale[i]
+                if at < 0.0:
+                    sc = -at
+                else:
+                    sc = at + rtol * max(abs(y[i]), abs(y5[i]))
+                q = e / sc
                 if not math.isfinite(q):
                     ok = False
                     break
-                err = max(err, abs(q))
+                acc += q * q
+            err = math.sqrt(acc / n) if ok else 1e300
             if ok and err <= 1.0:
                 t += h
                 for i in range(n):
-                    y[i] = y3[i]
-                    k1[i] = k4[i]
+                    y[i] = y5[i]
+                    k1[i] = k7[i]
                 stats[0] += 1
-                # PI controller (Gustafsson), order 3
-                fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 3.0)) * (max(err_prev, 1e-10) ** (0.4 / 3.0))
-                fac = min(4.0, max(0.2, fac))
+                fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 5.0)) * (max(err_prev, 1e-10) ** (0.4 / 5.0))
+                fac = min(5.0, max(0.2, fac))
                 err_prev = max(err, 1e-4)
                 h = h * fac
             else:
@@ -531,7 +550,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 if not ok:
                     h *= 0.25
                 else:
-                    h *= max(0.2, 0.9 * err ** (-1.0 / 3.0))
+                    h *= max(0.2, 0.9 * err ** (-0.2))
                 if h < 1e-12:
                     stats[4] = 2.0
                     return nrec

@@ -92,14 +92,17 @@ def test_reduced_model_matches_full_pure_axial():
 
 
 def test_adaptive_integrator_agrees_with_rk4():
-    """The production integrator (adaptive Bogacki-Shampine) against the papers' fixed-step RK4
-    (dt = 1e-5 s, seed 000): mean cage speed within 0.1% and mean friction torque within 1%."""
+    """The production integrator (adaptive Dormand-Prince 5(4)) against the papers' fixed-step RK4
+    (dt = 1e-5 s, seed 000), 1000 rpm, Fx = 1000 N, Fz = 5000 N, means over 0.1 s: cage speed within
+    0.1%; friction torque within 2% (it is dominated by chaotic pocket and land contacts of the cage,
+    whose 0.1 s means scatter by about 1% between any two trajectories)."""
     loads = (1000.0, 0.0, 5000.0, 0.0, 0.0)
-    _, r1 = _run(loads, T=0.1, reduced="full", integrator="rk4")
-    _, r2 = _run(loads, T=0.1, reduced="full", integrator="adaptive", rtol=1e-4)
+    _, r1 = _run(loads, T=0.2, reduced="full", integrator="rk4")
+    m2, r2 = _run(loads, T=0.2, reduced="full", integrator="adaptive")
     l1, l2 = _late(r1), _late(r2)
     assert abs(l2["cage_speed"].mean() / l1["cage_speed"].mean() - 1) < 1e-3
-    assert abs(l2["friction_torque"].mean() / l1["friction_torque"].mean() - 1) < 0.01
+    assert abs(l2["friction_torque"].mean() / l1["friction_torque"].mean() - 1) < 0.02
+    assert m2.stats[2] < 0.7 * 0.2 / 1e-5 * 4   # fewer right-hand-side calls than RK4
 
 
 def test_outputs_finite_and_ball_details():
