@@ -64,7 +64,7 @@ OUT_NAMES = (
     "P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_damping",
     "KE", "U_elastic",
     "alpha_i_mean", "alpha_o_mean", "Q_i_max", "Q_o_max", "Q_i_min",
-    "pure_rolling_cage_speed",
+    "pure_rolling_cage_speed", "pure_rolling_cage_speed_jh",
     "ball0_wr", "ball0_wt", "ball0_wz", "ball0_orbit_speed",
     "ball0_slide_roll_i", "ball0_slide_roll_o", "ball0_spin_roll_i", "ball0_spin_roll_o",
     "ball0_alpha_i", "ball0_alpha_o", "ball0_Q_i", "ball0_Q_o", "ball0_Ft_i", "ball0_Ft_o",
@@ -421,13 +421,16 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     diag[O_Q_I_MIN] = Qimin
     ami = sai / nai if nai > 0 else a0
     amo = sao / nao if nao > 0 else a0
-    # pure-rolling cage speed (seed 000 Eq. 26 generalised to unequal angles: Jones-Harris outer control)
+    # theoretical cage speed, spin neglected (seed 000 Eq. 26): both rolling radii D/2, so
+    # (w - wc) (1 - D cos ai / dm) = wc (1 + D cos ao / dm); equal angles give the classical w (1 - g) / 2
     gi = D * math.cos(ami) / dm
     go = D * math.cos(amo) / dm
+    diag[O_PURE_ROLLING_CAGE_SPEED] = w * (1.0 - gi) / (2.0 - gi + go)
+    # Jones-Harris pure rolling at both contact centres with outer raceway control (kinematics.py)
     bet = math.atan2(math.sin(amo), math.cos(amo) + D / dm)
     ci_ = math.cos(ami - bet)
     co_ = math.cos(amo - bet)
-    diag[O_PURE_ROLLING_CAGE_SPEED] = w * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci_ / co_)
+    diag[O_PURE_ROLLING_CAGE_SPEED_JH] = w * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci_ / co_)
     diag[O_P_MAX] = pmax
 
 

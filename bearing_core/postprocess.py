@@ -43,3 +43,80 @@ def plot_quasistatic_sweep(rows: list[dict], path, title: str = ""):
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return Path(path)
+
+
+UNITS = {"t": "s", "shaft_speed": "rad/s", "shaft_accel": "rad/s2", "cage_speed": "rad/s", "cage_x": "m",
+         "cage_y": "m", "Fx": "N", "Fy": "N", "Fz": "N", "Mx": "Nm", "My": "Nm", "ir_x": "m", "ir_y": "m",
+         "ir_z": "m", "ir_tx": "rad", "ir_ty": "rad", "ir_vx": "m/s", "ir_vy": "m/s", "ir_vz": "m/s",
+         "ir_ax": "m/s2", "ir_ay": "m/s2", "ir_az": "m/s2", "friction_torque": "Nm", "KE": "J",
+         "U_elastic": "J", "alpha_i_mean": "rad", "alpha_o_mean": "rad", "Q_i_max": "N", "Q_o_max": "N",
+         "Q_i_min": "N", "pure_rolling_cage_speed": "rad/s", "pure_rolling_cage_speed_jh": "rad/s",
+         "ball0_wr": "rad/s", "ball0_wt": "rad/s", "ball0_wz": "rad/s", "ball0_orbit_speed": "rad/s",
+         "ball0_alpha_i": "rad", "ball0_alpha_o": "rad", "ball0_Q_i": "N", "ball0_Q_o": "N",
+         "ball0_Ft_i": "N", "ball0_Ft_o": "N", "p_max": "Pa"}
+
+
+def unit_of(name: str) -> str:
+    if name.startswith("P_"):
+        return "W"
+    return UNITS.get(name, "-")
+
+
+def write_records_csv(path, rec, names):
+    """Record array (rows = instants) to CSV with 'name [unit]' headers."""
+    import numpy as np
+    path = Path(path)
+    header = ",".join(f"{n} [{unit_of(n)}]" for n in names)
+    np.savetxt(path, rec, delimiter=",", header=header, comments="", fmt="%.9g")
+    return path
+
+
+def plot_dynamics(d: dict, path, title: str = ""):
+    """Six panels over time: cage speed with its theoretical value, cage-shaft speed ratio, friction
+    torque, dissipated power by source, reaction forces, ball 0 angular velocity (seed 000 Figs. 7-10)."""
+    import math
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    t = d["t"]
+    rpm = 30.0 / math.pi
+    fig, ax = plt.subplots(3, 2, figsize=(12, 10), constrained_layout=True)
+    a = ax[0, 0]
+    a.plot(t, d["shaft_speed"] * rpm, label="shaft")
+    a.plot(t, d["cage_speed"] * rpm, label="cage")
+    a.plot(t, d["pure_rolling_cage_speed"] * rpm, "--", label="cage, theoretical (seed 000 Eq. 26)")
+    a.set_ylabel("speed [rpm]")
+    a = ax[0, 1]
+    w = np.where(d["shaft_speed"] > 0, d["shaft_speed"], np.nan)
+    a.plot(t, d["cage_speed"] / w, label="CSR")
+    a.plot(t, d["pure_rolling_cage_speed"] / w, "--", label="theoretical CSR")
+    a.set_ylabel("cage / shaft speed [-]")
+    a = ax[1, 0]
+    a.plot(t, d["friction_torque"])
+    a.set_ylabel("friction torque [N m]")
+    a = ax[1, 1]
+    for k, lab in (("P_race_inner", "ball-inner race"), ("P_race_outer", "ball-outer race"),
+                   ("P_pocket", "ball-pocket"), ("P_land", "cage-land"), ("P_drag", "drag"),
+                   ("P_damping", "contact damping")):
+        a.plot(t, d[k], label=lab)
+    a.plot(t, d["P_drive"], "k:", label="drive power")
+    a.set_ylabel("heat flux by source [W]")
+    a = ax[2, 0]
+    for k in ("Fx", "Fy", "Fz"):
+        a.plot(t, -d[k], label=f"-{k} (balls on ring)")
+    a.set_ylabel("bearing reaction [N]")
+    a = ax[2, 1]
+    for k, lab in (("ball0_wr", "omega_r"), ("ball0_wt", "omega_t"), ("ball0_wz", "omega_z")):
+        a.plot(t, d[k] * rpm, label=lab)
+    a.set_ylabel("ball 0 angular velocity [rpm]")
+    for a in ax.flat:
+        a.set_xlabel("time [s]")
+        a.grid(True, alpha=0.3)
+        if a.get_legend_handles_labels()[0]:
+            a.legend(fontsize=8)
+    fig.suptitle(title)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return Path(path)

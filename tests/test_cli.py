@@ -40,3 +40,28 @@ def test_bad_arguments_exit_2_one_line(args):
     assert p.returncode == 2
     assert len(p.stderr.strip().splitlines()) == 1
     assert p.stdout == ""
+
+
+def test_dynamics_subcommand_writes_outputs(tmp_path, capsys):
+    prof = tmp_path / "prof.csv"
+    prof.write_text("time_s,speed_rpm\n0,1000\n0.01,1200\n0.02,1200\n")
+    rc = main(["dynamics", "--bearing", "7218B", "--profile", str(prof), "--fz", "2000", "--fx", "300",
+               "--out", str(tmp_path / "o"), "--record-dt", "1e-3"])
+    assert rc == 0
+    d = json.loads((tmp_path / "o" / "dynamics_7218B_summary.json").read_text())
+    assert abs(d["final_speed_rpm"] - 1200) < 1e-6
+    assert abs(d["final_reaction_N"]["Fz"] + 2000) < 0.05 * 2000
+    head = (tmp_path / "o" / "dynamics_7218B.csv").read_text().splitlines()[0]
+    assert "cage_speed [rad/s]" in head and "friction_torque [Nm]" in head
+    assert (tmp_path / "o" / "dynamics_7218B.png").stat().st_size > 10000
+
+
+@pytest.mark.parametrize("args", [
+    ["dynamics", "--bearing", "7218B", "--profile", "/no/such.csv"],
+    ["dynamics", "--bearing", "7218B", "--mu", "nan"],
+    ["dynamics", "--bearing", "7218B", "--mu", "3"],
+])
+def test_dynamics_bad_arguments(args):
+    p = subprocess.run([sys.executable, "-m", "bearing_core.cli", *args], capture_output=True, text=True)
+    assert p.returncode == 2, p.stderr
+    assert len(p.stderr.strip().splitlines()) == 1
