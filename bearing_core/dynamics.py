@@ -40,7 +40,9 @@ class DynamicsOptions:
     ball drag (seed 001 Eq. 10, drag coefficient cd); support_damping_ratio: viscous damping of the
     load-driven inner ring to ground (the shaft mounting), as a fraction of critical for each of its five
     modes on the quasi-static bearing stiffness. Without it the free ring is damped only by the contacts
-    and a light ring whirls (self-excited by the traction); its force vanishes in steady state."""
+    and a light ring whirls (self-excited by the traction); its force vanishes in steady state.
+    fixed_tilt: the inner ring translates but cannot tilt (a stiff shaft held by other bearings); the
+    moments are then reactions (outputs Mx, My), not loads."""
 
     traction: str = "lubricated"
     lubricant: str = "generic-mineral-oil"
@@ -65,6 +67,7 @@ class DynamicsOptions:
     oil_fraction: float = 0.0
     cd: float = 0.5
     support_damping_ratio: float = 0.1
+    fixed_tilt: bool = False
     record_dt: float = 1e-3
 
     def validate(self):
@@ -157,6 +160,7 @@ class DynamicModel:
         self._tp = CK.traction_params(o.mu, o.v_reg, lub.A, lub.B, lub.C, lub.D, o.u_min)
         self._quad = CK.ellipse_quadrature(o.n_major, o.n_minor)
         P[K.P_COUPLING] = 1.0 if o.coupling == "displacement" else 0.0
+        P[K.P_FIXTILT] = 1.0 if o.fixed_tilt else 0.0
         return P
 
     def initialize(self, omega: float, loads=(0.0, 0.0, 0.0, 0.0, 0.0), displacement=None, t0: float = 0.0):
@@ -176,7 +180,7 @@ class DynamicModel:
             raise BearingInputError("reduced", "axisymmetric", "full or auto when Fx, Fy, Mx or My is non-zero")
         self.axisym = bool(axisym)
         self.P = self._params(self.axisym)
-        qsm = QuasiStaticModel(g, "outer")
+        qsm = QuasiStaticModel(g, "outer", fixed_tilt=o.fixed_tilt)
         if o.coupling == "displacement":
             if displacement is None:
                 raise BearingInputError("displacement", None, "10 values for displacement-driven coupling")

@@ -47,7 +47,7 @@ NSB = 9  # states per ball
 (P_Z, P_NB, P_D, P_DM, P_FI, P_FO, P_A0, P_MB, P_JB, P_MI, P_IT, P_IP, P_MC, P_IC,
  P_RPOCKET, P_CPOCKET, P_KPOCKET, P_CPOCKETD, P_MUPOCKET, P_CLAND, P_KLAND, P_CLANDD, P_MULAND,
  P_RLAND, P_GUIDE, P_TRACTION, P_ZETA, P_RHO_EFF, P_CD, P_COUPLING, P_AXISYM, P_MULT,
- P_CRX, P_CRY, P_CRZ, P_CRTX, P_CRTY, NPAR) = range(38)
+ P_CRX, P_CRY, P_CRZ, P_CRTX, P_CRTY, P_FIXTILT, NPAR) = range(39)
 
 # ---- input vector indices (float64 array U, held over an advance call) --------------------------
 (U_W0, U_W1, U_T0, U_T1, U_FX, U_FY, U_FZ, U_MX, U_MY,
@@ -380,6 +380,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # tilt with the spinning ring's gyroscopic coupling (Ip w)
         dy[8] = (U[U_MX] + MRx + dmx - Ip * w * wyi) / It
         dy[9] = (U[U_MY] + MRy + dmy + Ip * w * wxi) / It
+        if P[P_FIXTILT] > 0.5:   # rigid shaft held by other bearings: no tilt, Mx, My are reactions
+            dy[3] = 0.0; dy[4] = 0.0; dy[8] = 0.0; dy[9] = 0.0
         if axisym:
             dy[0] = 0.0; dy[1] = 0.0; dy[3] = 0.0; dy[4] = 0.0
             dy[5] = 0.0; dy[6] = 0.0; dy[8] = 0.0; dy[9] = 0.0

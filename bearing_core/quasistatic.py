@@ -133,9 +133,12 @@ class QuasiStaticModel:
     """Jones-Harris 5-DOF quasi-static model of one bearing (outer ring fixed, inner ring turning)."""
 
     def __init__(self, geometry: BearingGeometry, control: str = "outer", n_table: int = 361,
-                 mu_gyro: float = 0.1):
-        """mu_gyro: Coulomb limit of the friction that resists the gyroscopic moment [-]."""
+                 mu_gyro: float = 0.1, fixed_tilt: bool = False):
+        """mu_gyro: Coulomb limit of the friction that resists the gyroscopic moment [-]; fixed_tilt: the
+        inner ring cannot tilt (a rigid shaft held by other bearings): tx = ty = 0 and Mx, My are
+        reactions, not loads."""
         self.mu_gyro = check_range("mu_gyro", mu_gyro, 0.0, 1.0)
+        self.fixed_tilt = bool(fixed_tilt)
         if control not in kin.CONTROL_MODES:
             raise BearingInputError("control", control, " | ".join(kin.CONTROL_MODES))
         self.g = geometry
@@ -336,13 +339,18 @@ class QuasiStaticModel:
         Fscale = max(np.linalg.norm(loads[:3]), np.linalg.norm(loads[3:]) / (0.5 * g.dm), 1.0)
         fs = np.array([Fscale, Fscale, Fscale, Fscale * 0.5 * g.dm, Fscale * 0.5 * g.dm])
         u = self._u_guess(loads) if u0 is None else np.array(u0, dtype=float)
+        if self.fixed_tilt:
+            u[3:5] = 0.0
         self._omega = omega
         outer_ctrl = np.ones(g.Z, dtype=bool)
         X = self._x_start(u)
 
         def R_of(uu, Xw, oc):
             Fb, Xn, st, ok = self.residual(uu, omega, Xw, oc)
-            return (loads + Fb) / fs, Xn, st, ok
+            r = (loads + Fb) / fs
+            if self.fixed_tilt:
+                r[3:5] = uu[3:5] / us[3:5]
+            return r, Xn, st, ok
 
         r, X, st, ok = R_of(u, X, outer_ctrl)
         it = 0
@@ -407,7 +415,8 @@ class QuasiStaticModel:
         a_o, b_o, p_o, _ = self.hz.ab_E(st["ao"], Qo, inner=False)
         si, ri_, so, ro_ = kin.contact_spin_roll(omega, st["wm"], st["wR"], st["beta"], st["ai"], st["ao"])
         Fb = _ring_forces(g, self.psi, st["ai"], st["Qi"], st["Fi"])
-        resid = float(np.linalg.norm(loads + Fb) / max(np.linalg.norm(loads), 1e-12))
+        act = slice(0, 3) if self.fixed_tilt else slice(0, 5)
+        resid = float(np.linalg.norm((loads + Fb)[act]) / max(np.linalg.norm(loads[act]), 1e-12))
         return QuasiStaticResult(
             geometry=g, omega=omega, loads=loads.copy(), control=self.control, u=u.copy(), psi=self.psi.copy(),
             alpha_i=st["ai"], alpha_o=st["ao"], Q_i=Qi, Q_o=Qo, delta_i=st["d_i"], delta_o=st["d_o"],

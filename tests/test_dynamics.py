@@ -132,3 +132,22 @@ def test_bad_inputs():
         m.advance(-1.0)
     with pytest.raises(BearingInputError, match="loads"):
         m.set_inputs(loads=(100.0, 0, 1000, 0, 0))   # reduced axisymmetric model refuses radial load
+
+
+@pytest.mark.parametrize("fr,unloaded", [(100.0, False), (400.0, True)])
+def test_combined_load_unloaded_zone_7008(fr, unloaded):
+    """Seed 002 section 4.3: 7008-ma2023 at 5000 rpm, Fa = 100 N with a radial load: a large enough radial
+    load opens an unloaded zone where the inner contact carries nothing (traction factor 0 in seed 002
+    Fig. 16), while a light one keeps every ball loaded. Ring tilt held (shaft supported by other bearings,
+    as in seed 002's 3-DOF inner ring); the QS model with the same constraint predicts the same zone."""
+    g = load_preset("7008-ma2023")
+    m = DynamicModel(g, DynamicsOptions(traction="lubricated", fixed_tilt=True))
+    m.initialize(5000 * RPM, (fr, 0.0, 100.0, 0.0, 0.0))
+    d = _late(records_to_dict(m.advance(0.05, record_dt=1e-4)))
+    assert abs(-d["Fx"].mean() / fr - 1) < 0.005 and abs(-d["Fz"].mean() / 100.0 - 1) < 0.005
+    assert np.all(np.isfinite(d["Q_i_min"]))
+    if unloaded:
+        assert np.all(d["Q_i_min"] == 0.0) and d["Q_i_max"].min() > 50.0
+        assert np.any(m.qs.Q_i == 0.0)
+    else:
+        assert d["Q_i_min"].min() > 1.0 and np.all(m.qs.Q_i > 0)

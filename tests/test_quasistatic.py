@@ -140,3 +140,18 @@ def test_bad_input(kw, param):
         m.solve(**kw)
     with pytest.raises(BearingInputError, match="control"):
         QuasiStaticModel(load_preset("7218B"), control="sideways")
+
+
+def test_fixed_tilt_moments_are_reactions():
+    """Rigid shaft option: with the tilts held at zero the forces still balance (1e-6) and the ring's
+    moments become reactions; a radial load on a single ACBB then needs a restraining moment, which
+    is what a free ring avoids by tilting."""
+    g = load_preset("7218B")
+    m = QuasiStaticModel(g, fixed_tilt=True)
+    r = m.solve(3000 * RPM, (2000.0, 0.0, 3000.0, 0.0, 0.0))
+    assert abs(r.u[3]) < 1e-15 and abs(r.u[4]) < 1e-15
+    R = r.ring_reaction()
+    assert np.linalg.norm(R[:3] + r.loads[:3]) < 1e-6 * np.linalg.norm(r.loads[:3])
+    assert abs(R[4]) > 1.0     # a moment reaction appears
+    free = QuasiStaticModel(g).solve(3000 * RPM, (2000.0, 0.0, 3000.0, 0.0, 0.0), stiffness=False)
+    assert abs(free.u[4]) > 1e-4
