@@ -42,7 +42,10 @@ class DynamicsOptions:
     modes on the quasi-static bearing stiffness. Without it the free ring is damped only by the contacts
     and a light ring whirls (self-excited by the traction); its force vanishes in steady state.
     fixed_tilt: the inner ring translates but cannot tilt (a stiff shaft held by other bearings); the
-    moments are then reactions (outputs Mx, My), not loads."""
+    moments are then reactions (outputs Mx, My), not loads. outer_mount: 'fixed' or 'elastic' (outer
+    ring on a radial housing spring housing_stiffness [N/m] with damping ratio housing_damping_ratio on the
+    outer-ring mass). land_viscosity [Pa s]: > 0 makes the guiding land oil-flooded (short journal bearing
+    force and Petroff drag of seed 001 Eqs. 4-5 besides the contact penalty)."""
 
     traction: str = "lubricated"
     lubricant: str = "generic-mineral-oil"
@@ -68,6 +71,10 @@ class DynamicsOptions:
     cd: float = 0.5
     support_damping_ratio: float = 0.1
     fixed_tilt: bool = False
+    outer_mount: str = "fixed"
+    housing_stiffness: float = 1e8
+    housing_damping_ratio: float = 0.05
+    land_viscosity: float = 0.0
     record_dt: float = 1e-3
 
     def validate(self):
@@ -77,6 +84,11 @@ class DynamicsOptions:
             raise BearingInputError("integrator", self.integrator, " | ".join(INTEGRATORS))
         if self.coupling not in COUPLINGS:
             raise BearingInputError("coupling", self.coupling, " | ".join(COUPLINGS))
+        if self.outer_mount not in ("fixed", "elastic"):
+            raise BearingInputError("outer_mount", self.outer_mount, "fixed | elastic")
+        check_range("housing_stiffness", self.housing_stiffness, 1e4, 1e12, unit="N/m")
+        check_range("housing_damping_ratio", self.housing_damping_ratio, 0.0, 2.0)
+        check_range("land_viscosity", self.land_viscosity, 0.0, 10.0, unit="Pa s")
         if self.reduced not in ("auto", "full", "axisymmetric"):
             raise BearingInputError("reduced", self.reduced, "auto | full | axisymmetric")
         get_lubricant(self.lubricant)
@@ -161,6 +173,13 @@ class DynamicModel:
         self._quad = CK.ellipse_quadrature(o.n_major, o.n_minor)
         P[K.P_COUPLING] = 1.0 if o.coupling == "displacement" else 0.0
         P[K.P_FIXTILT] = 1.0 if o.fixed_tilt else 0.0
+        P[K.P_MO] = g.outer_ring_mass
+        P[K.P_OUTER_ELASTIC] = 1.0 if o.outer_mount == "elastic" else 0.0
+        P[K.P_KH] = o.housing_stiffness if o.outer_mount == "elastic" else 0.0
+        P[K.P_CH] = (2.0 * o.housing_damping_ratio * math.sqrt(o.housing_stiffness * g.outer_ring_mass)
+                     if o.outer_mount == "elastic" else 0.0)
+        P[K.P_ETA_LAND] = o.land_viscosity
+        P[K.P_WLAND] = g.cage.land_width
         return P
 
     def initialize(self, omega: float, loads=(0.0, 0.0, 0.0, 0.0, 0.0), displacement=None, t0: float = 0.0):
@@ -202,6 +221,11 @@ class DynamicModel:
         Roo = 0.5 * g.dm - (g.fo - 0.5) * g.D * math.cos(g.alpha0)
         Zoo = -(g.fo - 0.5) * g.D * math.sin(g.alpha0)
         y[11] = qs.cage_speed
+        if o.outer_mount == "elastic" and not self.axisym:
+            # the housing spring carries the radial load; the inner ring moves with the outer ring
+            y[16:18] = loads[:2] / o.housing_stiffness
+            if o.coupling == "load":
+                y[0:2] += y[16:18]
         for j in range(nb):
             b = K.NSTATE_FIXED + K.NSB * j
             y[b] = qs.psi[j]
@@ -228,6 +252,7 @@ class DynamicModel:
         sp, sv, sw = self.opt.atol_pos, self.opt.atol_pos * 1e4, self.opt.atol_pos * 1e6
         a[0:3] = sp; a[3:5] = 10 * sp; a[5:8] = sv; a[8:10] = 10 * sv
         a[10] = -1e-5; a[11] = sw; a[12:14] = 10 * sp; a[14:16] = 10 * sv
+        a[16:18] = sp; a[18:20] = sv
         for j in range(nb):
             b = K.NSTATE_FIXED + K.NSB * j
             a[b] = -1e-6

@@ -6,7 +6,8 @@ State layout (one float64 vector y; all SI), documented here once:
   y[5:10]   their rates [m/s, rad/s]                                       (IR_VEL)
   y[10]     cage angle theta_c [rad]        y[11] cage speed [rad/s]
   y[12:14]  cage centre x_c, y_c [m]        y[14:16] their rates [m/s]
-  y[16 + 9 j + k], ball j (j = 0..nb-1):
+  y[16:18]  outer ring centre x_o, y_o [m] (elastic housing; 0 when fixed)   y[18:20] their rates [m/s]
+  y[20 + 9 j + k], ball j (j = 0..nb-1):
             k = 0 orbital angle theta [rad], 1 radial position r of the centre [m], 2 axial position z [m],
                 3 theta_dot [rad/s], 4 r_dot, 5 z_dot [m/s],
                 6..8 absolute angular velocity (Omega_r, Omega_t, Omega_z) [rad/s] in the ball's local frame
@@ -40,14 +41,15 @@ from numba import njit
 from .contact_kernels import (ball_race_contact, contact_kinematics, ellipse_traction, ball_pocket_contact,
                               normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_LUBRICATED)
 
-NSTATE_FIXED = 16
+NSTATE_FIXED = 20
 NSB = 9  # states per ball
 
 # ---- parameter vector indices (float64 array P) ------------------------------------------------
 (P_Z, P_NB, P_D, P_DM, P_FI, P_FO, P_A0, P_MB, P_JB, P_MI, P_IT, P_IP, P_MC, P_IC,
  P_RPOCKET, P_CPOCKET, P_KPOCKET, P_CPOCKETD, P_MUPOCKET, P_CLAND, P_KLAND, P_CLANDD, P_MULAND,
  P_RLAND, P_GUIDE, P_TRACTION, P_ZETA, P_RHO_EFF, P_CD, P_COUPLING, P_AXISYM, P_MULT,
- P_CRX, P_CRY, P_CRZ, P_CRTX, P_CRTY, P_FIXTILT, NPAR) = range(39)
+ P_CRX, P_CRY, P_CRZ, P_CRTX, P_CRTY, P_FIXTILT, P_MO, P_KH, P_CH, P_OUTER_ELASTIC,
+ P_ETA_LAND, P_WLAND, NPAR) = range(45)
 
 # ---- input vector indices (float64 array U, held over an advance call) --------------------------
 (U_W0, U_W1, U_T0, U_T1, U_FX, U_FY, U_FZ, U_MX, U_MY,
@@ -68,7 +70,7 @@ OUT_NAMES = (
     "ball0_wr", "ball0_wt", "ball0_wz", "ball0_orbit_speed",
     "ball0_slide_roll_i", "ball0_slide_roll_o", "ball0_spin_roll_i", "ball0_spin_roll_o",
     "ball0_alpha_i", "ball0_alpha_o", "ball0_Q_i", "ball0_Q_o", "ball0_Ft_i", "ball0_Ft_o",
-    "p_max",
+    "p_max", "outer_x", "outer_y", "housing_Fx", "housing_Fy",
 )
 NOUT = len(OUT_NAMES)
 OUT_INDEX = {n: i for i, n in enumerate(OUT_NAMES)}
@@ -137,6 +139,11 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     yc = y[13]
     vxc = y[14]
     vyc = y[15]
+    xo = y[16]
+    yo = y[17]
+    vxo = y[18]
+    vyo = y[19]
+    FOx = 0.0; FOy = 0.0                                             # balls -> outer ring
     # accumulators
     FRx = 0.0; FRy = 0.0; FRz = 0.0; MRx = 0.0; MRy = 0.0; TRz = 0.0   # balls -> inner ring
     FCx = 0.0; FCy = 0.0; TC = 0.0                                   # balls -> cage
@@ -164,8 +171,10 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         vrr = vxi * c + vyi * s                    # ring translation velocity at the ball, local frame
         vrt = -vxi * s + vyi * c
         vrz = vzi + Ri * (wxi * s - wyi * c)
-        Xr = rb - Roo
+        Xr = rb - Roo - (xo * c + yo * s)      # outer groove centre moves with the outer ring
         Xz = zb - Zoo
+        vor = vxo * c + vyo * s                # outer ring translation velocity, local frame
+        vot = -vxo * s + vyo * c
         (dlo, nor, noz, ao, Qo, ao_s, bo_s, po,
          dli, nir, niz, ai, Qi, ai_s, bi_s, pi_) = ball_race_contact(Xr, Xz, Cr, Cz, offo, offi,
                                                                      tab_i, tab_o, ta0, tda)
@@ -179,7 +188,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             P_dp += (Fni - Qi) * ddi
             Uel += 0.4 * Qi * dli
         if Qo > 0.0:
-            ddo = rd * nor + zd * noz
+            ddo = (rd - vor) * nor + zd * noz
             Fno = normal_contact_force(Qo, dlo, ddo, DAMP_LINEAR, 2.0 * zeta * math.sqrt(1.5 * Qo / dlo * mb))
             P_dp += (Fno - Qo) * ddo
             Uel += 0.4 * Qo * dlo
@@ -207,7 +216,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # rb F_t + (M about the ball centre) . z = rb F_t + n_z M_n + n_r M_m; the ring gets the opposite
         TRz -= rb * ft + niz * mn + nir * mm
         # traction, outer race (fixed)
-        vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, 0.0, 0.0, 0.0, 0.0,
+        vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, 0.0, vor, vot, 0.0,
                                                            nor, noz, D)
         ft, fm, mn, mm, mt, pl = ellipse_traction(ao_s, bo_s, po, D, Rdo, vs_t, vs_m, wsp, wrm, wrt, ur,
                                                   tmodel, tp, qx, qwx, qy, qwy)
@@ -215,6 +224,11 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         Mr += mn * nor - mm * noz; Mt += mt; Mz += mn * noz + mm * nor
         P_ro += pl
         tro_t = ft; tro_m = fm
+        # the outer ring receives the normal force and the opposite traction (radial / tangential parts)
+        for_r = Fno * nor + fm * noz
+        for_t = -ft
+        FOx += for_r * c - for_t * s
+        FOy += for_r * s + for_t * c
         sl_o = vs_t; u_o = abs(ur); sp_o = wsp; sm_o = vs_m
         # ball-pocket contact (seed 000 Eq. 6, contact_kernels.ball_pocket_contact) in the frame of the
         # (possibly whirling) cage: ball azimuth about the cage centre against the pocket azimuth
@@ -335,6 +349,12 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         Uel += 0.5 * P[P_KLAND] * pen * pen
         FCx -= Fl * ex
         FCy -= Fl * ey
+        if P[P_GUIDE] > 0.5:        # the guiding land takes the opposite force: inner ring or outer ring
+            FRx += Fl * ex
+            FRy += Fl * ey
+        else:
+            FOx += Fl * ex
+            FOy += Fl * ey
         vsl = wc * P[P_RLAND]    # land fixed (outer) or turning with the shaft (inner)
         if P[P_GUIDE] > 0.5:
             vsl = (wc - w) * P[P_RLAND]
@@ -342,7 +362,40 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         TC -= muf * Fl * P[P_RLAND]
         P_ld += muf * Fl * vsl
         if P[P_GUIDE] > 0.5:
-            TRz -= muf * Fl * P[P_RLAND]   # inner-land guided: friction acts on the shaft too
+            TRz += muf * Fl * P[P_RLAND]   # inner-land guided: the ring gets the opposite friction torque
+    eta = P[P_ETA_LAND]
+    if eta > 0.0 and P[P_GUIDE] < 1.5:
+        # oil-flooded guiding land: short journal bearing (seed 001 Eq. 4; Ocvirk, Hamrock 'Fundamentals of
+        # Fluid Film Lubrication' Ch. 12) and Petroff drag torque with eccentricity (seed 001 Eq. 5)
+        cg = cl
+        R = P[P_RLAND]
+        B = P[P_WLAND]
+        wg = w if P[P_GUIDE] > 0.5 else 0.0
+        eps = min(e / cg, 0.95)
+        Us = R * (wg + wc)
+        if e > 1e-15:
+            ex = xc / e
+            ey = yc / e
+        else:
+            ex = 1.0
+            ey = 0.0
+        Fr_h = eta * abs(Us) * B ** 3 * eps * eps / (cg * cg * (1.0 - eps * eps) ** 2)
+        Ft_h = math.pi * eta * Us * B ** 3 * eps / (4.0 * cg * cg * (1.0 - eps * eps) ** 1.5)
+        fhx = -Fr_h * ex - Ft_h * ey
+        fhy = -Fr_h * ey + Ft_h * ex
+        FCx += fhx
+        FCy += fhy
+        if P[P_GUIDE] > 0.5:
+            FRx -= fhx
+            FRy -= fhy
+        else:
+            FOx -= fhx
+            FOy -= fhy
+        Th = 2.0 * math.pi * eta * R ** 3 * B * (wg - wc) / (cg * math.sqrt(1.0 - eps * eps))
+        TC += Th
+        if P[P_GUIDE] > 0.5:
+            TRz -= Th
+        P_ld += Th * (wg - wc) - (fhx * vxc + fhy * vyc)
     # cage equations
     dy[10] = wc
     dy[11] = TC / P[P_IC]
@@ -352,6 +405,25 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     dy[15] = FCy / P[P_MC]
     if axisym:  # one representative ball: the cage cannot whirl
         dy[12] = 0.0; dy[13] = 0.0; dy[14] = 0.0; dy[15] = 0.0
+    # outer ring: fixed, or elastically mounted in the housing (2 DOF, stiffness kh, damping ch)
+    hx = P[P_KH] * xo + P[P_CH] * vxo
+    hy = P[P_KH] * yo + P[P_CH] * vyo
+    if P[P_OUTER_ELASTIC] > 0.5 and not axisym:
+        dy[16] = vxo
+        dy[17] = vyo
+        dy[18] = (FOx - hx) / P[P_MO]
+        dy[19] = (FOy - hy) / P[P_MO]
+        KE += 0.5 * P[P_MO] * (vxo * vxo + vyo * vyo)
+        Uel += 0.5 * P[P_KH] * (xo * xo + yo * yo)
+        P_dp += P[P_CH] * (vxo * vxo + vyo * vyo)
+    else:
+        dy[16] = 0.0; dy[17] = 0.0; dy[18] = 0.0; dy[19] = 0.0
+        hx = FOx * mult if not axisym else 0.0
+        hy = FOy * mult if not axisym else 0.0
+    diag[O_OUTER_X] = xo
+    diag[O_OUTER_Y] = yo
+    diag[O_HOUSING_FX] = hx
+    diag[O_HOUSING_FY] = hy
     KE += 0.5 * P[P_IC] * wc * wc + 0.5 * P[P_MC] * (vxc * vxc + vyc * vyc)
     # inner ring
     Ip = P[P_IP]
