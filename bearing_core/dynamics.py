@@ -280,6 +280,12 @@ class DynamicModel:
                 raise BearingInputError("displacement", d.tolist(), "10 finite values")
             self.U[K.U_DX:K.U_WY + 1] = d
 
+    def set_speed(self, omega: float):
+        """Hold the shaft speed at omega [rad/s] from now on (a step change, no ramp)."""
+        omega = check_range("shaft_speed", omega, 0.0, 2.0e4, unit="rad/s")
+        self.U[K.U_W0] = self.U[K.U_W1] = omega
+        self.U[K.U_T0] = self.U[K.U_T1] = self.t
+
     def advance(self, t_end: float, omega_end: float | None = None, record_dt: float | None = None):
         """Integrate from the current time to t_end [s]; the shaft speed ramps linearly from its current
         value to omega_end [rad/s] over the interval (held if None). Returns the records (n x NOUT

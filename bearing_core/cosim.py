@@ -1,0 +1,181 @@
+"""Co-simulation session of one bearing: the FMI-free core of the FMU (fmu_src/ only maps variables).
+
+    s = CoSimSession(CoSimParameters(bearing="7218B", traction_model="lubricated"))
+    s.initialize(t0=0.0, inputs={"shaft_speed": 104.7, "Fz": 3000.0})
+    out = s.step(t=0.0, h=1e-3, inputs={...})       # advances exactly to t + h, inputs held
+
+Inputs are held constant over a step (shaft speed included: a speed step is applied at the start of
+the step). Outputs are the instantaneous values at the end of the step. Every problem is reported as a
+StepRejected (recoverable: the state is left as before the step) or BearingInputError (configuration);
+numbers that are not finite never leave this module. SI units: rad/s, N, N m, m, rad, W, Pa.
+"""
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .dynamics import DynamicModel, DynamicsOptions
+from .errors import BearingInputError, ConvergenceError, check_range
+from .geometry import load_preset
+
+from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # noqa: F401 (re-export)
+P_LIMIT = 4.2e9   # Pa: ISO 76 static-capacity contact stress of ball bearings; beyond it the model refuses
+
+
+class StepRejected(RuntimeError):
+    """The step could not be taken (bad input or solver failure); the session state is unchanged."""
+
+
+@dataclass
+class CoSimParameters:
+    """Fixed parameters of a session (validated by CoSimSession)."""
+
+    bearing: str = "7218B"
+    traction_model: str = "lubricated"     # lubricated | coulomb
+    friction_coefficient: float = 0.1
+    cage_friction_coefficient: float = 0.1
+    lubricant: str = "generic-mineral-oil"
+    coupling: str = "load"                 # load | displacement
+    outer_mounting: str = "fixed"          # fixed | elastic
+    housing_stiffness: float = 1e8
+    fixed_tilt: bool = False
+    integrator_tolerance: float = 1e-4
+    integrator: str = "adaptive"           # adaptive | rk4
+
+
+class CoSimSession:
+    """One bearing in a co-simulation (several sessions are independent: no shared state)."""
+
+    def __init__(self, params: CoSimParameters):
+        self.p = params
+        self.model: DynamicModel | None = None
+        self.t = 0.0
+        self.outputs = {n: 0.0 for n in OUTPUT_NAMES}
+
+    def _options(self) -> DynamicsOptions:
+        p = self.p
+        if p.traction_model not in ("lubricated", "coulomb"):
+            raise BearingInputError("traction_model", p.traction_model, "lubricated | coulomb")
+        return DynamicsOptions(
+            traction=p.traction_model, lubricant=p.lubricant, mu=p.friction_coefficient,
+            mu_pocket=p.cage_friction_coefficient, mu_land=p.cage_friction_coefficient, coupling=p.coupling,
+            outer_mount=p.outer_mounting, housing_stiffness=p.housing_stiffness, fixed_tilt=bool(p.fixed_tilt),
+            rtol=p.integrator_tolerance, integrator=p.integrator, reduced="full")
+
+    @staticmethod
+    def _inputs(inputs: dict) -> dict:
+        u = {n: 0.0 for n in INPUT_NAMES}
+        for k, v in inputs.items():
+            if k not in u:
+                raise BearingInputError("input", k, ", ".join(INPUT_NAMES))
+            try:
+                v = float(v)
+            except (TypeError, ValueError):
+                raise BearingInputError(k, v, "a finite number")
+            if not math.isfinite(v):
+                raise BearingInputError(k, v, "a finite number")
+            u[k] = v
+        check_range("shaft_speed", u["shaft_speed"], 0.0, 2.0e4, unit="rad/s")
+        for k in ("Fx", "Fy", "Fz"):
+            check_range(k, u[k], -1e7, 1e7, unit="N")
+        return u
+
+    def initialize(self, t0: float, inputs: dict):
+        """Build the model and start it from the quasi-static state at the given inputs."""
+        u = self._inputs(inputs)
+        g = load_preset(self.p.bearing)
+        self.model = DynamicModel(g, self._options())
+        loads = (u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"])
+        disp = None
+        if self.p.coupling == "displacement":
+            disp = [u[k] for k in ("dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")]
+        try:
+            self.model.initialize(u["shaft_speed"], loads, displacement=disp, t0=float(t0))
+        except ConvergenceError as e:
+            raise BearingInputError("inputs", dict(u), "a load case with a quasi-static equilibrium", str(e))
+        self.t = float(t0)
+        self._update_outputs()
+        self._check_limits()
+
+    def step(self, t: float, h: float, inputs: dict) -> dict:
+        """Advance from t to t + h with the inputs held; returns the outputs at t + h."""
+        if self.model is None:
+            raise StepRejected("step before initialize")
+        if not (math.isfinite(h) and h > 0.0):
+            raise StepRejected(f"communication step h = {h!r} is invalid; allowed: h > 0")
+        if abs(t - self.t) > 1e-9 * max(1.0, abs(t)):
+            raise StepRejected(f"step starts at t = {t!r} but the bearing is at t = {self.t!r}")
+        try:
+            u = self._inputs(inputs)
+        except BearingInputError as e:
+            raise StepRejected(str(e))
+        m = self.model
+        saved = (m.y.copy(), m.t, m.U.copy(), m.stats.copy())
+        try:
+            m.set_inputs(loads=(u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"]),
+                         displacement=None if self.p.coupling != "displacement" else
+                         [u[k] for k in ("dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")])
+            # input held over the step: the speed takes its new value at the start of the step
+            m.set_speed(u["shaft_speed"])
+            m.advance(t + h, record_dt=max(h, 1e-6))
+            self.t = m.t
+            self._update_outputs()
+            self._check_limits()
+        except (BearingInputError, FloatingPointError, StepRejected) as e:
+            m.y, m.t, m.U, m.stats = saved
+            self.t = m.t
+            self._update_outputs()
+            raise StepRejected(str(e))
+        return dict(self.outputs)
+
+    def _update_outputs(self):
+        o = self.model.outputs()
+        w = o["shaft_speed"]
+        csr = o["cage_speed"] / w if w > 0 else 0.0
+        csr_t = o["pure_rolling_cage_speed"] / w if w > 0 else 0.0
+        heat = {k: o[f"P_{k}"] for k in ("race_inner", "race_outer", "pocket", "land", "drag", "damping")}
+        out = {
+            "reaction_Fx": o["Fx"], "reaction_Fy": o["Fy"], "reaction_Fz": o["Fz"],
+            "reaction_Mx": o["Mx"], "reaction_My": o["My"],
+            "cage_speed": o["cage_speed"], "cage_shaft_ratio": csr, "cage_shaft_ratio_theory": csr_t,
+            "skid_ratio": 1.0 - csr / csr_t if csr_t > 0 else 0.0,
+            "friction_torque": o["friction_torque"],
+            "heat_flux_total": sum(heat.values()),
+            **{f"heat_flux_{k}": v for k, v in heat.items()},
+            "ir_x": o["ir_x"], "ir_y": o["ir_y"], "ir_z": o["ir_z"], "ir_tx": o["ir_tx"], "ir_ty": o["ir_ty"],
+            "ir_ax": o["ir_ax"],
+            "max_contact_pressure": o["p_max"], "alpha_i_mean": o["alpha_i_mean"],
+            "alpha_o_mean": o["alpha_o_mean"], "Q_i_max": o["Q_i_max"], "Q_o_max": o["Q_o_max"],
+            "ball0_omega_r": o["ball0_wr"], "ball0_omega_t": o["ball0_wt"], "ball0_omega_z": o["ball0_wz"],
+            "ball0_slide_roll_i": o["ball0_slide_roll_i"], "ball0_slide_roll_o": o["ball0_slide_roll_o"],
+            "ball0_spin_roll_i": o["ball0_spin_roll_i"], "ball0_spin_roll_o": o["ball0_spin_roll_o"],
+        }
+        bad = [k for k, v in out.items() if not math.isfinite(v)]
+        if bad:
+            raise StepRejected(f"non-finite outputs {bad} (solver failure)")
+        self.outputs = out
+
+    def _check_limits(self):
+        p = self.outputs["max_contact_pressure"]
+        if p > P_LIMIT:
+            raise StepRejected(f"maximum contact pressure {p / 1e9:.2f} GPa exceeds the {P_LIMIT / 1e9:.1f} GPa "
+                               "static limit of ball bearings (ISO 76): the loads are beyond what the bearing carries")
+
+    # ---- state for rollback (FMI get/set FMU state) --------------------------------------------
+    def get_state(self):
+        m = self.model
+        return None if m is None else (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), dict(self.outputs))
+
+    def set_state(self, state):
+        if state is None:
+            return
+        y, t, U, stats, outs = state
+        self.model.y[:] = y
+        self.model.t = t
+        self.model.U[:] = U
+        self.model.stats[:] = stats
+        self.t = t
+        self.outputs = dict(outs)

@@ -1,0 +1,46 @@
+"""Interface of a bearing co-simulation session: input and output names, units, descriptions.
+Pure data (no numba import), shared by bearing_core.cosim and the FMU slave in fmu_src/."""
+
+INPUT_NAMES = ("shaft_speed", "Fx", "Fy", "Fz", "Mx", "My",
+               "dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")
+INPUT_UNITS = ("rad/s", "N", "N", "N", "N.m", "N.m", "m", "m", "m", "rad", "rad", "m/s", "m/s", "m/s",
+               "rad/s", "rad/s")
+OUTPUT_SPEC = (
+    # name, unit, description
+    ("reaction_Fx", "N", "force of the bearing on the shaft, x"),
+    ("reaction_Fy", "N", "force of the bearing on the shaft, y"),
+    ("reaction_Fz", "N", "force of the bearing on the shaft, z (axial)"),
+    ("reaction_Mx", "N.m", "moment of the bearing on the shaft about x"),
+    ("reaction_My", "N.m", "moment of the bearing on the shaft about y"),
+    ("cage_speed", "rad/s", "cage angular speed"),
+    ("cage_shaft_ratio", "1", "cage speed / shaft speed (CSR)"),
+    ("cage_shaft_ratio_theory", "1", "spin-free pure-rolling CSR (seed 000 Eq. 26)"),
+    ("skid_ratio", "1", "1 - CSR / theoretical CSR (> 0 skidding, < 0 over-skidding)"),
+    ("friction_torque", "N.m", "torque needed to drive the inner ring"),
+    ("heat_flux_total", "W", "total dissipated power"),
+    ("heat_flux_race_inner", "W", "ball-inner race traction (rolling, sliding, spin)"),
+    ("heat_flux_race_outer", "W", "ball-outer race traction (rolling, sliding, spin)"),
+    ("heat_flux_pocket", "W", "ball-pocket friction"),
+    ("heat_flux_land", "W", "cage-land friction and hydrodynamic drag"),
+    ("heat_flux_drag", "W", "ball drag in the oil-air mixture"),
+    ("heat_flux_damping", "W", "contact and support damping"),
+    ("ir_x", "m", "inner-ring displacement x"),
+    ("ir_y", "m", "inner-ring displacement y"),
+    ("ir_z", "m", "inner-ring displacement z"),
+    ("ir_tx", "rad", "inner-ring tilt about x"),
+    ("ir_ty", "rad", "inner-ring tilt about y"),
+    ("ir_ax", "m/s2", "inner-ring acceleration x"),
+    ("max_contact_pressure", "Pa", "largest Hertz pressure of all contacts"),
+    ("alpha_i_mean", "rad", "mean inner contact angle of loaded balls"),
+    ("alpha_o_mean", "rad", "mean outer contact angle of loaded balls"),
+    ("Q_i_max", "N", "largest inner contact load"),
+    ("Q_o_max", "N", "largest outer contact load"),
+    ("ball0_omega_r", "rad/s", "ball 0 angular velocity, radial component"),
+    ("ball0_omega_t", "rad/s", "ball 0 angular velocity, tangential component"),
+    ("ball0_omega_z", "rad/s", "ball 0 angular velocity, axial component"),
+    ("ball0_slide_roll_i", "1", "ball 0 slide-to-roll ratio, inner contact"),
+    ("ball0_slide_roll_o", "1", "ball 0 slide-to-roll ratio, outer contact"),
+    ("ball0_spin_roll_i", "1", "ball 0 spin-to-roll ratio, inner contact"),
+    ("ball0_spin_roll_o", "1", "ball 0 spin-to-roll ratio, outer contact"),
+)
+OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUT_SPEC)

@@ -1,0 +1,207 @@
+"""FMI 2.0 co-simulation slave of the angular-contact ball bearing (pythonfmu). It only translates
+between FMI variables and bearing_core.cosim.CoSimSession; all physics lives in bearing_core.
+
+numba cache: the FMU is unpacked to a new temporary folder at each instantiation, so numba's cache next
+to the unpacked source would never be reused. The bundled bearing_core is therefore copied once to a
+stable per-user folder keyed by a hash of its content (``$BEARING_FMU_CACHE`` or
+``~/.cache/bearing_fmu/<hash>``) and imported from there; its compiled kernels are cached beside it and
+reused by every later instantiation in any process.
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+from xml.etree.ElementTree import Element, SubElement
+
+from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Real, String
+from pythonfmu.enums import Fmi2Status
+from pythonfmu.enums import Fmi2Initial
+from pythonfmu.default_experiment import DefaultExperiment
+
+_HERE = Path(__file__).resolve().parent
+
+
+def _stable_bearing_core():
+    """Put a content-addressed copy of the bundled bearing_core on sys.path (see module docstring)."""
+    src = _HERE / "bearing_core"
+    if not src.is_dir():          # running from the source tree: the installed package is used
+        return
+    h = hashlib.sha256()
+    for f in sorted(src.rglob("*")):
+        if f.is_file() and "__pycache__" not in f.parts:
+            h.update(str(f.relative_to(src)).encode())
+            h.update(f.read_bytes())
+    base = Path(os.environ.get("BEARING_FMU_CACHE") or (Path.home() / ".cache" / "bearing_fmu"))
+    dst = base / h.hexdigest()[:20]
+    if not (dst / "bearing_core" / "__init__.py").is_file():
+        base.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix="tmp_", dir=base))
+        shutil.copytree(src, tmp / "bearing_core", ignore=shutil.ignore_patterns("__pycache__"))
+        try:
+            os.replace(tmp, dst)
+        except OSError:           # another process won the race: use its copy
+            shutil.rmtree(tmp, ignore_errors=True)
+    if str(dst) not in sys.path:
+        sys.path.insert(0, str(dst))
+
+
+# Load order matters (measured, docs/fmu.md): when scipy's Fortran runtime (scipy.linalg, libgfortran) is
+# loaded AFTER numba/llvmlite inside an FMU-hosted interpreter, 11-16 of 40 host processes aborted at exit
+# with heap corruption in libgfortran's exit handler; loading scipy.linalg first: 0 of 40.
+import scipy.linalg  # noqa: E402,F401
+
+_stable_bearing_core()
+from bearing_core.cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_SPEC  # noqa: E402  (light, no numba)
+
+# FMI 2.0 unit definitions: exponents of kg, m, s, rad
+_UNITS = {
+    "m": dict(m=1), "m/s": dict(m=1, s=-1), "m/s2": dict(m=1, s=-2), "rad": dict(rad=1),
+    "rad/s": dict(rad=1, s=-1), "N": dict(kg=1, m=1, s=-2), "N.m": dict(kg=1, m=2, s=-2),
+    "W": dict(kg=1, m=2, s=-3), "Pa": dict(kg=1, m=-1, s=-2), "N/m": dict(kg=1, s=-2), "Pa.s": dict(kg=1, m=-1, s=-1),
+    "1": dict(),
+}
+_INPUT_DESC = {
+    "shaft_speed": "inner-ring (shaft) speed, held over a step", "Fx": "load on the inner ring, x",
+    "Fy": "load on the inner ring, y", "Fz": "load on the inner ring, z (axial)", "Mx": "moment on the inner ring about x",
+    "My": "moment on the inner ring about y", "dx": "displacement-driven: inner-ring x", "dy": "displacement-driven: inner-ring y",
+    "dz": "displacement-driven: inner-ring z", "tx": "displacement-driven: tilt about x", "ty": "displacement-driven: tilt about y",
+    "vx": "displacement-driven: dx/dt", "vy": "displacement-driven: dy/dt", "vz": "displacement-driven: dz/dt",
+    "wx": "displacement-driven: d(tx)/dt", "wy": "displacement-driven: d(ty)/dt",
+}
+_PARAMS = (
+    # name, type, start, unit, description, (min, max)
+    ("bearing", str, "7218B", None, "bearing preset name (bearing presets: 7218B, 7008-ma2023, 7008-rivera2021, wan-105)", None),
+    ("traction_model", str, "lubricated", None, "ball-race traction: lubricated | coulomb", None),
+    ("friction_coefficient", float, 0.1, "1", "Coulomb friction coefficient of the ball-race contacts", (0.0, 1.0)),
+    ("cage_friction_coefficient", float, 0.1, "1", "ball-pocket and cage-land friction coefficient", (0.0, 1.0)),
+    ("lubricant", str, "generic-mineral-oil", None, "lubricant of the traction curve", None),
+    ("coupling", str, "load", None, "load (loads are inputs) | displacement (ring pose is an input)", None),
+    ("outer_mounting", str, "fixed", None, "outer ring: fixed | elastic (housing spring)", None),
+    ("housing_stiffness", float, 1e8, "N/m", "radial housing stiffness for outer_mounting = elastic", (1e4, 1e12)),
+    ("fixed_tilt", bool, False, None, "inner ring cannot tilt (shaft held by other bearings)", None),
+    ("integrator", str, "adaptive", None, "adaptive (Dormand-Prince 5(4)) | rk4 (fixed 1e-5 s)", None),
+    ("integrator_tolerance", float, 1e-4, "1", "relative tolerance of the adaptive integrator", (1e-10, 1e-2)),
+)
+
+
+class BearingFMU(Fmi2Slave):
+    author = "bearing-tribodynamics"
+    description = ("Angular-contact ball bearing tribo-dynamic model (Gupta-style dynamics, Hertz contact, "
+                   "traction over the contact ellipse, skidding, cage dynamics)")
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=1.0, step_size=1e-3)
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)   # light: no numba import here (the builder instantiates this class)
+        self._session = None
+        self._units = {}
+        self._ranges = {}
+        for name, typ, start, unit, desc, rng in _PARAMS:
+            setattr(self, name, start)
+            cls = {str: String, float: Real, bool: Boolean}[typ]
+            self.register_variable(cls(name, causality=Fmi2Causality.parameter, variability=Fmi2Variability.fixed,
+                                       initial=Fmi2Initial.exact, description=desc))
+            if unit:
+                self._units[name] = unit
+            if rng:
+                self._ranges[name] = rng
+        for name, unit in zip(INPUT_NAMES, INPUT_UNITS):
+            setattr(self, name, 0.0)
+            self.register_variable(Real(name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
+                                        description=_INPUT_DESC[name]))
+            self._units[name] = unit
+        self._ranges["shaft_speed"] = (0.0, 2.0e4)
+        for name, unit, desc in OUTPUT_SPEC:
+            setattr(self, name, 0.0)
+            self.register_variable(Real(name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
+                                        initial=Fmi2Initial.calculated, description=desc))
+            self._units[name] = unit
+
+    # ---- model description: units, ranges and InitialUnknowns (plain pythonfmu writes neither) ----
+    def to_xml(self, model_options=dict()) -> Element:
+        root = super().to_xml(model_options)
+        children = list(root)
+        pos = next(i for i, c in enumerate(children) if c.tag == "CoSimulation") + 1
+        units = Element("UnitDefinitions")
+        for u in sorted(set(self._units.values())):
+            ue = SubElement(units, "Unit", name=u)
+            SubElement(ue, "BaseUnit", {k: str(v) for k, v in _UNITS[u].items()})
+        root.insert(pos, units)
+        for sv in root.find("ModelVariables"):
+            name = sv.get("name")
+            real = sv.find("Real")
+            if real is not None:
+                if name in self._units:
+                    real.set("unit", self._units[name])
+                if name in self._ranges:
+                    real.set("min", repr(float(self._ranges[name][0])))
+                    real.set("max", repr(float(self._ranges[name][1])))
+        ms = root.find("ModelStructure")
+        outs = ms.find("Outputs")
+        if outs is not None:
+            init = SubElement(ms, "InitialUnknowns")
+            for u in outs:
+                SubElement(init, "Unknown", index=u.get("index"))
+        return root
+
+    # ---- FMI calls -----------------------------------------------------------------------------
+    def _inputs(self):
+        return {n: getattr(self, n) for n in INPUT_NAMES}
+
+    def exit_initialization_mode(self):
+        from bearing_core.cosim import CoSimParameters, CoSimSession
+        from bearing_core.errors import BearingInputError
+        params = CoSimParameters(**{name: getattr(self, name) for name, *_ in _PARAMS})
+        try:
+            self._session = CoSimSession(params)
+            self._session.initialize(self._t0, self._inputs())
+        except (BearingInputError, ValueError) as e:
+            self._session = None
+            self.log(f"initialisation failed: {e}", Fmi2Status.error)
+            raise
+        self._publish()
+
+    def setup_experiment(self, start_time, stop_time=None, tolerance=None):
+        self._t0 = float(start_time)
+
+    _t0 = 0.0
+
+    def _publish(self):
+        for k, v in self._session.outputs.items():
+            setattr(self, k, v)
+
+    def do_step(self, current_time, step_size):
+        from bearing_core.cosim import StepRejected
+        if self._session is None:
+            self.log("do_step without a successful initialisation", Fmi2Status.error)
+            return False
+        try:
+            self._session.step(current_time, step_size, self._inputs())
+        except StepRejected as e:
+            self.log(f"step at t = {current_time:.9g} s rejected: {e}", Fmi2Status.discard)
+            return False
+        except Exception as e:  # never let an exception reach the host (it would be fmi2Fatal)
+            self.log(f"step at t = {current_time:.9g} s failed: {type(e).__name__}: {e}", Fmi2Status.error)
+            return False
+        self._publish()
+        return True
+
+    def terminate(self):
+        self._session = None
+
+    # ---- FMU state (rollback for iterative masters) ----------------------------------------------
+    def _get_fmu_state(self):
+        state = super()._get_fmu_state()
+        state["_session_state"] = None if self._session is None else self._session.get_state()
+        return state
+
+    def _set_fmu_state(self, state):
+        st = dict(state)
+        sess = st.pop("_session_state", None)
+        super()._set_fmu_state(st)
+        if self._session is not None and sess is not None:
+            self._session.set_state(sess)
+            self._publish()

@@ -1,0 +1,280 @@
+"""Tests of bearing_core.fastsim (Kalker creep coefficients, FASTSIM rolling-contact traction).
+
+Each test names its reference and tolerance. Units SI."""
+import math
+import time
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from bearing_core import contact_kernels as ck
+from bearing_core import fastsim as fs
+
+G, NU = fs.combined_elastic(206e9, 0.3, 206e9, 0.3)   # steel-steel, Pa / -
+Q = 1000.0
+MU = 0.1
+PAR = fs.PRESSURE_PARABOLIC
+HZ = fs.PRESSURE_HERTZ
+# contact_kernels frame: a along m (major, lateral), b along t (minor, rolling direction)
+ELLIPSES = [(0.5e-3, 0.5e-3), (1.0e-3, 0.15e-3)]       # circle, ball-bearing-like b/a = 0.15
+IDS = ["circle", "b/a=0.15"]
+
+
+def ft(a, b, vs_t, vs_m, w, u, n=40, pressure=PAR, mu=MU, q=Q):
+    return fs.fastsim_traction(a, b, q, mu, G, NU, vs_t, vs_m, w, u, n, n, pressure)
+
+
+# --------------------------------------------------------------------------------------------------
+# creep coefficients
+def test_table_nodes_reproduced():
+    """Kalker 1990 Table E.3 (as in CONTACT m_hertz.f90 linrol): nodes reproduced to 1e-12."""
+    for k, (A, B) in enumerate(((fs._C11_A, fs._C11_B), (fs._C22_A, fs._C22_B),
+                                (fs._C23_A, fs._C23_B))):
+        for row in range(10):
+            g = 0.1 * (row + 1)
+            for inu, nu in enumerate((0.0, 0.25, 0.5)):
+                assert fs.kalker_coefficients(g, nu)[k] == pytest.approx(A[row][inu], abs=1e-12)
+                assert fs.kalker_coefficients(1.0 / g, nu)[k] == pytest.approx(B[row][inu], abs=1e-12)
+
+
+def test_table_spot_values_and_smoothness():
+    """Spot values of Kalker's table (circle nu = 0.25: 4.12, 3.67, 1.47; a/b = 0.1, nu = 0:
+    C23 = 0.334); continuity at r = 1 and at the asymptotic extension r = 0.1 / 10 (rel 1e-9);
+    C11, C22, C23 non-decreasing in r on [0.05, 20] for nu = 0.3 (strictly for r >= 0.1; C11, C22
+    are constant below r = 0.1 by Kalker's asymptotes)."""
+    assert fs.kalker_coefficients(1.0, 0.25) == pytest.approx((4.12, 3.67, 1.47), abs=1e-12)
+    assert fs.kalker_coefficients(0.1, 0.0)[2] == pytest.approx(0.334, abs=1e-12)
+    for r0 in (1.0, 0.1, 10.0):
+        lo = np.array(fs.kalker_coefficients(r0 * (1 - 1e-11), 0.3))
+        hi = np.array(fs.kalker_coefficients(r0 * (1 + 1e-11), 0.3))
+        assert np.allclose(lo, hi, rtol=1e-9)
+    r = np.geomspace(0.05, 20.0, 300)
+    C = np.array([fs.kalker_coefficients(x, 0.3) for x in r])
+    assert np.all(np.diff(C, axis=0) >= 0)
+    assert np.all(np.diff(C[r >= 0.1], axis=0) > 0)
+    # linear in nu between the nodes
+    c0, c1 = np.array(fs.kalker_coefficients(0.15, 0.25)), np.array(fs.kalker_coefficients(0.15, 0.5))
+    assert np.allclose(fs.kalker_coefficients(0.15, 0.3), c0 + 0.2 * (c1 - c0), rtol=1e-12)
+
+
+# --------------------------------------------------------------------------------------------------
+# FASTSIM
+@pytest.mark.parametrize("a,b", ELLIPSES, ids=IDS)
+@pytest.mark.parametrize("u", [10.0, -10.0])
+def test_linear_limit_kalker(a, b, u):
+    """Small creepage -> Kalker's linear theory (Kalker 1990; FASTSIM flexibilities of Kalker 1982
+    are defined so that this holds): F_t = -G c^2 C11 xi, F_m = -G c^2 C22 eta
+    + sign(u) G c^3 C23 phi (c^2 = a b; creepages per |u|). Tolerance 2 % on a 40 x 40 grid
+    (measured 0.04 %)."""
+    C11, C22, C23 = fs.kalker_coefficients(b / a, NU)
+    c = math.sqrt(a * b)
+    xi = 1e-8
+    Ft, Fm, _, _ = ft(a, b, xi * abs(u), 0.0, 0.0, u)
+    assert Ft == pytest.approx(-G * c * c * C11 * xi, rel=0.02)
+    assert abs(Fm) < 1e-9 * abs(Ft)
+    Ft, Fm, _, _ = ft(a, b, 0.0, xi * abs(u), 0.0, u)
+    assert Fm == pytest.approx(-G * c * c * C22 * xi, rel=0.02)
+    phi = xi / c
+    Ft, Fm, _, _ = ft(a, b, 0.0, 0.0, phi * abs(u), u)
+    assert Fm == pytest.approx(math.copysign(1.0, u) * G * c ** 3 * C23 * phi, rel=0.02)
+    # combined: superposition in the linear range
+    F1 = np.array(ft(a, b, xi * abs(u), 0.5 * xi * abs(u), -2 * phi * abs(u), u)[:3])
+    Fs = (np.array(ft(a, b, xi * abs(u), 0, 0, u)[:3]) + np.array(ft(a, b, 0, 0.5 * xi * abs(u), 0, u)[:3])
+          + np.array(ft(a, b, 0, 0, -2 * phi * abs(u), u)[:3]))
+    assert np.allclose(F1, Fs, rtol=1e-9, atol=1e-12 * np.abs(Fs).max())
+
+
+@pytest.mark.parametrize("a,b", ELLIPSES, ids=IDS)
+def test_linear_limit_spin_moment_simplified_theory(a, b):
+    """Spin moment of the simplified theory in the linear range (derived analytically from Kalker
+    1982's FASTSIM stick solution, Kalker frame a' = b, b' = a):
+    M = (3 pi/32) G C22 a'^2 b' eta_K - 32/(15 pi) G c C23 b'^3 phi, eta_K = -vs_m/u.
+    Tolerance 1 % on 40 x 40 (measured < 0.2 %). (The simplified theory does not reproduce
+    Kalker's exact C23/C33 moment coefficients; this checks the implementation only.)"""
+    C11, C22, C23 = fs.kalker_coefficients(b / a, NU)
+    c = math.sqrt(a * b)
+    ap, bp = b, a
+    u = 7.0
+    eta = 1e-8
+    Mn = ft(a, b, 0.0, eta * u, 0.0, u)[2]
+    assert Mn == pytest.approx(3 * math.pi / 32 * G * C22 * ap ** 2 * bp * (-eta), rel=0.01)
+    phi = 1e-8 / c
+    Mn = ft(a, b, 0.0, 0.0, phi * u, u)[2]
+    assert Mn == pytest.approx(-32 / (15 * math.pi) * G * c * C23 * bp ** 3 * phi, rel=0.01)
+
+
+@pytest.mark.parametrize("a,b", ELLIPSES, ids=IDS)
+@pytest.mark.parametrize("pressure", [PAR, HZ], ids=["parabolic", "hertz"])
+def test_large_creepage_saturates(a, b, pressure):
+    """Large creepage: |F| -> mu Q (Coulomb bound integrated over the patch). Tolerance 1 % on
+    40 x 40 (measured 0.04 % parabolic, 0.15 % Hertz); also for u_roll = 0 (full sliding branch).
+    Direction: exact (force anti-parallel to the slip, P = mu Q |v|) at u_roll = 0 and for slip along
+    an axis; with Kalker's three flexibilities (L1 != L2 for an ellipse) the saturated force of an
+    oblique large creepage is tilted (known FASTSIM defect, cf. Vollebregt's blending to one
+    flexibility in CONTACT): P >= 0.95 mu Q |v| there (measured 0.987 for b/a = 0.15)."""
+    for vs_t, vs_m in ((1.0, 0.0), (0.6, -0.8), (0.0, 1.0)):
+        for u in (1e-3, -1e-3, 0.0):
+            Ft, Fm, _, P = ft(a, b, vs_t, vs_m, 0.0, u, pressure=pressure)
+            assert math.hypot(Ft, Fm) == pytest.approx(MU * Q, rel=0.01)
+            # force opposes the sliding of the ball
+            assert Ft * vs_t + Fm * vs_m < 0
+            if u == 0.0 or vs_t * vs_m == 0.0 or a == b:
+                assert P == pytest.approx(MU * Q * math.hypot(vs_t, vs_m), rel=0.01)
+            else:
+                assert MU * Q * math.hypot(vs_t, vs_m) * 1.01 > P > 0.95 * MU * Q * math.hypot(vs_t, vs_m)
+
+
+def test_full_sliding_matches_ellipse_traction():
+    """u_roll = 0 with spin: FASTSIM's full-sliding branch (Hertz pressure) equals the Coulomb
+    ellipse integration of contact_kernels.ellipse_traction (independent quadrature, flat contact,
+    v_reg -> 0). Tolerance 1 % of mu Q on forces, 1 % of mu Q a on the moment (60 x 60 grid)."""
+    a, b = 1.0e-3, 0.15e-3
+    pm = 1.5 * Q / (math.pi * a * b)
+    quad_nodes = ck.ellipse_quadrature(80, 80)
+    prm = ck.traction_params(mu0=MU, v_reg=1e-12)
+    for vs_t, vs_m, w in ((0.01, 0.0, 20.0), (0.003, -0.002, -5.0), (0.0, 0.0, 3.0)):
+        Ft, Fm, Mn, P = fs.fastsim_traction(a, b, Q, MU, G, NU, vs_t, vs_m, w, 0.0, 60, 60, HZ)
+        r = ck.ellipse_traction(a, b, pm, 0.01, 0.0, vs_t, vs_m, w, 0.0, 0.0, 0.0,
+                                ck.TRACTION_COULOMB, prm, *quad_nodes)
+        assert abs(Ft - r[0]) < 0.01 * MU * Q and abs(Fm - r[1]) < 0.01 * MU * Q
+        assert abs(Mn - r[2]) < 0.01 * MU * Q * a
+        assert P == pytest.approx(r[5], rel=0.01)
+
+
+@pytest.mark.parametrize("a,b", ELLIPSES, ids=IDS)
+def test_symmetry_and_signs(a, b):
+    """Exact (to rounding) symmetries of the formulation: reversing all slips flips F and M;
+    reversing the rolling direction and the spin flips M_n (and the lateral force of spin alone is
+    unchanged); lateral creepage gives a lateral force opposing it; longitudinal creepage alone
+    gives no lateral force and no moment."""
+    u = 5.0
+    s = (2e-4 * u, 1e-4 * u, 0.3 * u / math.sqrt(a * b) * 1e-3)
+    F = np.array(ft(a, b, *s, u)[:3])
+    Fr = np.array(ft(a, b, -s[0], -s[1], -s[2], u)[:3])
+    assert np.allclose(Fr, -F, rtol=1e-12, atol=1e-12 * np.abs(F).max())
+    # spin only
+    w = 0.3e-3 * u / math.sqrt(a * b)
+    Fa = np.array(ft(a, b, 0.0, 0.0, w, u)[:3])
+    Fb = np.array(ft(a, b, 0.0, 0.0, -w, -u)[:3])
+    assert Fb[2] == pytest.approx(-Fa[2], rel=1e-12)
+    assert Fb[1] == pytest.approx(Fa[1], rel=1e-12)
+    assert Fa[2] * w < 0                      # spin moment opposes the spin
+    # reversing u together with vs_t, vs_m (spin kept) = the same contact seen from a frame turned by
+    # pi about n: F_t, F_m flip, M_n unchanged
+    Fc = np.array(ft(a, b, -s[0], -s[1], s[2], -u)[:3])
+    assert np.allclose(Fc[:2], -F[:2], rtol=1e-12, atol=1e-12 * np.abs(F).max())
+    assert Fc[2] == pytest.approx(F[2], rel=1e-12)
+    # lateral creepage sign
+    Ft, Fm, Mn, _ = ft(a, b, 0.0, 1e-4 * u, 0.0, u)
+    assert Fm < 0 and abs(Ft) < 1e-12 * abs(Fm)
+    Ft, Fm, Mn, _ = ft(a, b, 1e-4 * u, 0.0, 0.0, u)
+    assert Ft < 0 and abs(Fm) < 1e-12 * abs(Ft) and abs(Mn) < 1e-12 * abs(Ft) * a
+
+
+@pytest.mark.parametrize("a,b", ELLIPSES, ids=IDS)
+def test_grid_convergence(a, b):
+    """Grid refinement 10, 20, 40, 80 (reference 160) at a mixed, partly sliding state: errors
+    decrease monotonically, at least by 2x per doubling (midpoint march: O(h^2) in the stick zone,
+    slower where the slip boundary cuts cells); 40 x 40 within 0.5 % of mu Q."""
+    c = math.sqrt(a * b)
+    C11 = fs.kalker_coefficients(b / a, NU)[0]
+    u = 3.0
+    xi = 0.5 * 3 * MU * Q / (G * c * c * C11)
+    args = (a, b, Q, MU, G, NU, xi * u, -0.4 * xi * u, 0.3 * xi / c * u, u)
+    ref = np.array(fs.fastsim_traction(*args, 160, 160, PAR)[:3])
+    errs = []
+    for n in (10, 20, 40, 80):
+        r = np.array(fs.fastsim_traction(*args, n, n, PAR)[:3])
+        errs.append(max(abs(r[0] - ref[0]), abs(r[1] - ref[1])) / (MU * Q))
+    assert all(e1 < e0 for e0, e1 in zip(errs, errs[1:]))
+    assert all(e0 / e1 > 2.0 for e0, e1 in zip(errs, errs[1:]))
+    assert errs[2] < 0.005
+
+
+def _simplified_theory_closed_form(xs):
+    """Kalker's simplified theory, pure longitudinal creepage, parabolic traction bound, integrated
+    strip by strip analytically: strip of half-length a(y) = a' sqrt(1 - y^2) carries the fraction
+    1 - (1 - d / (2 a(y)))^3 of its sliding force (stick zone at the leading edge, as in the 2D
+    Carter / Vermeulen-Johnson solution), d / a' = 9 pi xi* / 16. Derived here from [K82]."""
+    f = lambda y: (1 - y * y) ** 1.5 * (1 - (1 - min(9 * math.pi / 32 * xs / math.sqrt(1 - y * y),
+                                                       1.0)) ** 3)
+    return quad(f, -1, 1, limit=200)[0] / (3 * math.pi / 8)
+
+
+@pytest.mark.parametrize("a,b", ELLIPSES, ids=IDS)
+def test_creep_force_curve(a, b):
+    """Pure longitudinal creepage, xi* = G a b C11 xi / (3 mu Q) in 0.05 ... 1.3.
+    (1) Against the exact strip-integrated simplified-theory solution (_simplified_theory_closed_
+        form): within 0.1 % of mu Q on 40 x 40 (measured 0.04 %).
+    (2) Against the Vermeulen-Johnson / Carter form F/(mu Q) = 1 - (1 - xi*)^3 (Johnson, Contact
+        Mechanics 1985 Sec. 8.4; Kalker 1982 compares FASTSIM with it): the simplified theory of an
+        elliptic patch differs from it slightly (second-order term pi/2 vs 128/(27 pi) = 1.51);
+        measured max deviation 1.1 % of mu Q, tolerance 1.5 %."""
+    c = math.sqrt(a * b)
+    C11 = fs.kalker_coefficients(b / a, NU)[0]
+    u = 2.0
+    for xs in np.linspace(0.05, 1.3, 26):
+        xi = xs * 3 * MU * Q / (G * c * c * C11)
+        Ft = ft(a, b, xi * u, 0.0, 0.0, u)[0]
+        f = -Ft / (MU * Q)
+        assert abs(f - _simplified_theory_closed_form(xs)) < 0.001
+        assert abs(f - (1 - (1 - min(xs, 1.0)) ** 3)) < 0.015
+
+
+def test_power_identity_and_positivity():
+    """P_loss = -(F_t vs_t + F_m vs_m + M_n w_spin) >= 0 for random slips (frictional dissipation)."""
+    rng = np.random.default_rng(1)
+    a, b = 1.0e-3, 0.15e-3
+    for _ in range(200):
+        u = rng.uniform(-20, 20)
+        vs_t, vs_m = rng.normal(0, 1e-3 * abs(u), 2)
+        w = rng.normal(0, 0.3 * abs(u) / math.sqrt(a * b) * 1e-3)
+        Ft, Fm, Mn, P = ft(a, b, vs_t, vs_m, w, u, n=20)
+        assert P == pytest.approx(-(Ft * vs_t + Fm * vs_m + Mn * w), rel=1e-12, abs=1e-300)
+        assert P >= 0.0
+
+
+def test_slip_map():
+    """Adhesion/slip map: forces equal fastsim_traction's; the leading edge (material enters at
+    t = -sign(u) b) adheres; the slip zone grows with creepage and covers the patch when the
+    creepage saturates; map tractions respect the bound |tau| <= mu p (parabolic)."""
+    a, b = 1.0e-3, 0.15e-3
+    c = math.sqrt(a * b)
+    C11 = fs.kalker_coefficients(b / a, NU)[0]
+    xi1 = 3 * MU * Q / (G * c * c * C11)
+    frac = []
+    for u in (4.0, -4.0):
+        for xs in (0.2, 0.6, 1.5):
+            m = fs.fastsim_map(a, b, Q, MU, G, NU, xs * xi1 * abs(u), 0.0, 0.0, u, 30, 30)
+            r = ft(a, b, xs * xi1 * abs(u), 0.0, 0.0, u, n=30)
+            assert m["F_t"] == pytest.approx(r[0], rel=1e-12)
+            assert np.all(np.sign(m["T"][:, 0]) == -np.sign(u))     # column 0 = leading edge
+            if xs < 1:
+                assert not m["slip"][5:25, 0].any()
+            else:
+                assert m["slip"].all()
+            p = 2 * Q / (math.pi * a * b) * np.clip(1 - (m["T"] / b) ** 2 - (m["M"] / a) ** 2, 0, None)
+            assert np.all(np.hypot(m["Tt"], m["Tm"]) <= MU * p * (1 + 1e-12) + 1e-9)
+            frac.append(m["slip"].mean())
+    assert frac[0] < frac[1] < frac[2] == 1.0
+
+
+def test_timing_print():
+    """Prints the cost per contact evaluation at the default 20 x 20 grid (not asserted)."""
+    from numba import njit
+
+    @njit
+    def loop(n, a):
+        s = 0.0
+        for _ in range(n):
+            s += fs.fastsim_traction(a, 0.15e-3, 1000.0, 0.1, 8e10, 0.3, 1e-3, 2e-4, 5.0, 10.0,
+                                     20, 20, 0)[0]
+        return s
+
+    loop(2, 1e-3)
+    n = 20000
+    t0 = time.perf_counter()
+    loop(n, 1e-3)
+    dt = (time.perf_counter() - t0) / n
+    print(f"\nFASTSIM 20x20 contact evaluation: {dt * 1e6:.2f} us per call (from numba)")
