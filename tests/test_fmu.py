@@ -197,3 +197,25 @@ def test_runs_in_libcosim_like_in_fmpy(fmu, tmp_path):
         a = np.mean(res["series"][k][-100:])
         b = _vals(ref, k).mean()
         assert abs(a / b - 1) < tol, (k, a, b)
+
+
+def test_bearing_simulate_command(fmu, tmp_path):
+    """`bearing simulate` drives the FMU with fmpy through a user's profile CSV (speed and load columns)
+    and writes CSV (units in the header), plot and summary; bad arguments exit 2 with one line."""
+    prof = tmp_path / "p.csv"
+    prof.write_text("time_s,speed_rpm,Fz_N\n0,1000,2000\n0.02,1500,2000\n0.04,1500,2500\n")
+    env = dict(os.environ, BEARING_FMU_CACHE=fmu["cache"])
+    cmd = [sys.executable, "-m", "bearing_cosim.cli", "simulate", "--fmu", fmu["path"], "--profile", str(prof),
+           "--fx", "300", "--out", str(tmp_path / "o")]
+    r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600)
+    assert r.returncode == 0, r.stderr[-2000:]
+    s = json.loads((tmp_path / "o" / "fmu_simulation_summary.json").read_text())
+    assert s["simulated_s"] == pytest.approx(0.04)
+    head = (tmp_path / "o" / "fmu_simulation.csv").read_text().splitlines()
+    assert "cage_speed [rad/s]" in head[0] and "heat_flux_total [W]" in head[0]
+    last = head[-1].split(",")
+    assert abs(float(last[head[0].split(",").index("reaction_Fz [N]")]) + 2500) < 0.05 * 2500
+    for bad in (["--profile", "/no/file.csv"], ["--step", "0"], ["--fmu", "/no.fmu"]):
+        r = subprocess.run([sys.executable, "-m", "bearing_cosim.cli", "simulate", "--fmu", fmu["path"], *bad],
+                           capture_output=True, text=True, env=env, timeout=120)
+        assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, (bad, r.stderr)

@@ -1,0 +1,67 @@
+"""The `bearing` console script: bearing_core's subcommands plus `simulate` (drive the FMU with fmpy)."""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+from bearing_core import cli as core_cli
+
+
+def build_parser():
+    p = core_cli.build_parser()
+    sub = next(a for a in p._actions if a.dest == "cmd")
+    s = sub.add_parser("simulate", help="drive the bearing FMU with fmpy through a speed profile "
+                                        "(CSV time_s, speed_rpm [, Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm]) or 'seed000'")
+    s.add_argument("--fmu", default="dist/BearingFMU.fmu", help="FMU file (python build_fmu.py builds it)")
+    s.add_argument("--profile", default="seed000")
+    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
+        s.add_argument(f"--{nm}", type=core_cli._finite(f"--{nm}"), default=0.0,
+                       help=f"load held on the inner ring [{unit}] (unless the profile has the column)")
+    s.add_argument("--step", type=core_cli._finite("--step"), default=1e-3, help="communication step [s]")
+    s.add_argument("--bearing", default="7218B")
+    s.add_argument("--traction", choices=("lubricated", "coulomb"), default="lubricated")
+    s.add_argument("--mu", type=core_cli._finite("--mu"), default=0.1)
+    s.add_argument("--mu-cage", type=core_cli._finite("--mu-cage"), default=0.1)
+    s.add_argument("--out", default="out")
+    s.set_defaults(func=cmd_simulate)
+    return p
+
+
+def cmd_simulate(a) -> int:
+    from .simulate import ProfileError, simulate
+    if not Path(a.fmu).is_file():
+        raise core_cli._BadArg(f"--fmu = {a.fmu!r} is not a file; build it with: python build_fmu.py")
+    if not (1e-5 <= a.step <= 0.1):
+        raise core_cli._BadArg(f"--step = {a.step} is invalid; allowed: 1e-5 <= step <= 0.1 s")
+    if not (0.0 <= a.mu <= 1.0) or not (0.0 <= a.mu_cage <= 1.0):
+        raise core_cli._BadArg(f"--mu = {a.mu}, --mu-cage = {a.mu_cage}: allowed 0 <= value <= 1")
+    params = {"bearing": a.bearing, "traction_model": a.traction, "friction_coefficient": a.mu,
+              "cage_friction_coefficient": a.mu_cage}
+    try:
+        s = simulate(a.fmu, a.profile, (a.fx, a.fy, a.fz, a.mx, a.my), a.step, params, a.out)
+    except ProfileError as e:
+        raise core_cli._BadArg(str(e))
+    print(f"wrote {s['csv']}, {s['plot']} and {Path(a.out) / 'fmu_simulation_summary.json'}")
+    print(json.dumps({k: v for k, v in s.items() if k.startswith("final") or k in ("simulated_s", "wall_s")}))
+    return 0
+
+
+def main(argv=None) -> int:
+    from bearing_core.errors import BearingInputError, ConvergenceError
+    a = build_parser().parse_args(argv)
+    try:
+        return a.func(a)
+    except (BearingInputError, core_cli._BadArg) as e:
+        sys.stderr.write(f"bearing {a.cmd}: error: {e}\n")
+        return 2
+    except ConvergenceError as e:
+        sys.stderr.write(f"bearing {a.cmd}: solver failed: {e}\n")
+        return 3
+    except Exception as e:  # an FMU error status surfaces here as fmpy's exception
+        sys.stderr.write(f"bearing {a.cmd}: simulation failed: {type(e).__name__}: {e}\n")
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
