@@ -63,5 +63,17 @@ def main(argv=None) -> int:
         return 1
 
 
+def console_main() -> None:
+    """Console-script entry: run, flush, and leave without the C exit handlers when an FMU was run in this
+    process (a numba FMU can make the host abort in libgfortran's exit handler; docs/fmu.md)."""
+    import os
+    rc = main()
+    if "fmpy" in sys.modules:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(rc)
+    sys.exit(rc)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    console_main()

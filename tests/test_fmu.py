@@ -219,3 +219,44 @@ def test_bearing_simulate_command(fmu, tmp_path):
         r = subprocess.run([sys.executable, "-m", "bearing_cosim.cli", "simulate", "--fmu", fmu["path"], *bad],
                            capture_output=True, text=True, env=env, timeout=120)
         assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, (bad, r.stderr)
+
+
+def _profile_steps(points, h=1e-3, loads=None):
+    """Held-per-step inputs sampled from piecewise-linear (t, rpm) points (and optional (t, Fz) loads)."""
+    t_end = points[-1][0]
+    steps = []
+    for k in range(int(round(t_end / h))):
+        t = k * h
+        n = float(np.interp(t, [p[0] for p in points], [p[1] for p in points]))
+        fz = 3000.0 if loads is None else float(np.interp(t, [p[0] for p in loads], [p[1] for p in loads]))
+        steps.append([h, {"shaft_speed": n * RPM, "Fx": 1000.0, "Fz": fz}])
+    return steps
+
+
+@pytest.mark.slow
+def test_deceleration_start_from_rest_and_load_step(fmu, tmp_path):
+    """Three more profiles as input signals: a deceleration (3000 -> 1000 rpm in 0.2 s), a start from rest
+    (0 -> 2000 rpm in 0.2 s) and a step of axial load during rotation (3000 -> 5000 N at 0.1 s). Every step
+    is accepted with finite outputs; the cage follows the shaft (cage-shaft ratio within 5% of its
+    theoretical value over the last 50 ms); after the load step the reaction settles on the new load
+    (0.5%) and the heat flux rises with the load."""
+    cases = {
+        "decel": _profile_steps([(0.0, 3000.0), (0.05, 3000.0), (0.25, 1000.0), (0.35, 1000.0)]),
+        "rest": _profile_steps([(0.0, 0.0), (0.05, 0.0), (0.25, 2000.0), (0.35, 2000.0)]),
+        "load": _profile_steps([(0.0, 2000.0), (0.3, 2000.0)], loads=[(0.0, 3000.0), (0.1, 3000.0),
+                                                                       (0.1 + 1e-9, 5000.0), (0.3, 5000.0)]),
+    }
+    out = {}
+    for name, steps in cases.items():
+        res = drive(fmu, {"params": {}, "start_inputs": steps[0][1], "steps": steps}, tmp_path, f"{name}.json")
+        rows = res["rows"]
+        assert all(r["status"] == 0 for r in rows), name
+        assert all(np.all(np.isfinite(r["values"])) for r in rows), name
+        out[name] = rows
+        tail = rows[-50:]
+        ratio = _vals(tail, "cage_shaft_ratio").mean() / _vals(tail, "cage_shaft_ratio_theory").mean()
+        assert abs(ratio - 1) < 0.05, (name, ratio)
+    rows = out["load"]
+    assert abs(-_vals(rows[-100:], "reaction_Fz").mean() / 5000 - 1) < 0.005
+    assert abs(-_vals(rows[50:100], "reaction_Fz").mean() / 3000 - 1) < 0.005
+    assert _vals(rows[-100:], "heat_flux_total").mean() > _vals(rows[50:100], "heat_flux_total").mean()
