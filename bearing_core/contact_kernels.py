@@ -49,7 +49,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .hertz import ROW_K_LOAD, hertz_lookup
+from .hertz import ROW_K_LOAD, hertz_lookup, hertz_lookup_alpha
 
 # traction model selectors
 TRACTION_COULOMB = 0      # mu = mu0 tanh(|v| / v_reg)
@@ -109,18 +109,7 @@ def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
     else:
         alpha = math.atan2(nz, nr)
     if delta > 0.0:
-        n = table.shape[1]
-        x = (abs(alpha) - alpha0) / dalpha
-        if not x > 0.0:
-            j = 0
-            w = 0.0
-        elif x >= n - 1:
-            j = n - 2
-            w = 1.0
-        else:
-            j = int(x)
-            w = x - j
-        K = (1.0 - w) * table[ROW_K_LOAD, j] + w * table[ROW_K_LOAD, j + 1]
+        K = hertz_lookup_alpha(table, alpha0, dalpha, alpha, ROW_K_LOAD)
         Q = K * delta ** 1.5
         _, a, b, _, p = hertz_lookup(table, alpha0, dalpha, alpha, Q)
     else:

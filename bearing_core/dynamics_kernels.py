@@ -46,10 +46,10 @@ NSB = 9  # states per ball
 
 # ---- parameter vector indices (float64 array P) ------------------------------------------------
 (P_Z, P_NB, P_D, P_DM, P_FI, P_FO, P_A0, P_MB, P_JB, P_MI, P_IT, P_IP, P_MC, P_IC,
- P_RPOCKET, P_CPOCKET, P_KPOCKET, P_CPOCKETD, P_MUPOCKET, P_CLAND, P_KLAND, P_CLANDD, P_MULAND,
+ P_CPOCKET, P_KPOCKET, P_CPOCKETD, P_MUPOCKET, P_CLAND, P_KLAND, P_CLANDD, P_MULAND,
  P_RLAND, P_GUIDE, P_TRACTION, P_ZETA, P_RHO_EFF, P_CD, P_COUPLING, P_AXISYM, P_MULT,
  P_CRX, P_CRY, P_CRZ, P_CRTX, P_CRTY, P_FIXTILT, P_MO, P_KH, P_CH, P_OUTER_ELASTIC,
- P_ETA_LAND, P_WLAND, NPAR) = range(45)
+ P_ETA_LAND, P_WLAND, NPAR) = range(44)
 
 # ---- input vector indices (float64 array U, held over an advance call) --------------------------
 (U_W0, U_W1, U_T0, U_T1, U_FX, U_FY, U_FZ, U_MX, U_MY,
