@@ -34,7 +34,7 @@ class CoSimParameters:
     """Fixed parameters of a session (validated by CoSimSession)."""
 
     bearing: str = "7218B"
-    traction_model: str = "lubricated"     # lubricated | coulomb
+    traction_model: str = "lubricated"     # lubricated | coulomb | kalker
     friction_coefficient: float = 0.1
     cage_friction_coefficient: float = 0.1
     lubricant: str = "generic-mineral-oil"
@@ -57,8 +57,8 @@ class CoSimSession:
 
     def _options(self) -> DynamicsOptions:
         p = self.p
-        if p.traction_model not in ("lubricated", "coulomb"):
-            raise BearingInputError("traction_model", p.traction_model, "lubricated | coulomb")
+        if p.traction_model not in ("lubricated", "coulomb", "kalker"):
+            raise BearingInputError("traction_model", p.traction_model, "lubricated | coulomb | kalker")
         return DynamicsOptions(
             traction=p.traction_model, lubricant=p.lubricant, mu=p.friction_coefficient,
             mu_pocket=p.cage_friction_coefficient, mu_land=p.cage_friction_coefficient, coupling=p.coupling,

@@ -23,15 +23,16 @@ from .hertz_tables import HertzInterp
 from .lubricants import get_lubricant
 from .quasistatic import QuasiStaticModel
 
-TRACTION_MODELS = ("lubricated", "coulomb")
+TRACTION_MODELS = ("lubricated", "coulomb", "kalker")
 INTEGRATORS = ("rk4", "adaptive")
 COUPLINGS = ("load", "displacement")
 
 
 @dataclass(frozen=True)
 class DynamicsOptions:
-    """Model options (SI). traction: 'lubricated' (seed 002 curve of ``lubricant``) or 'coulomb'
-    (mu, regularised as mu tanh(|v| / v_reg), v_reg [m/s]); u_min: floor of the entrainment speed [m/s];
+    """Model options (SI). traction: 'lubricated' (seed 002 curve of ``lubricant``), 'coulomb'
+    (mu, regularised as mu tanh(|v| / v_reg), v_reg [m/s]) or 'kalker' (FASTSIM with friction limit mu on a
+    kalker_grid x kalker_grid grid, seed 000); u_min: floor of the entrainment speed [m/s];
     zeta: normal contact damping as a fraction of critical for the ball mass [-];
     integrator: 'rk4' (fixed dt, baseline) or 'adaptive' (Dormand-Prince 5(4), rtol);
     n_major x n_minor: quadrature points over each contact ellipse; reduced: 'auto' | 'full' |
@@ -75,6 +76,7 @@ class DynamicsOptions:
     housing_stiffness: float = 1e8
     housing_damping_ratio: float = 0.05
     land_viscosity: float = 0.0
+    kalker_grid: int = 12
     record_dt: float = 1e-3
 
     def validate(self):
@@ -99,6 +101,8 @@ class DynamicsOptions:
         check_range("dt", self.dt, 1e-8, 1e-3, unit="s")
         check_range("rtol", self.rtol, 1e-10, 1e-2)
         check_range("atol_pos", self.atol_pos, 1e-12, 1e-6, unit="m")
+        if not isinstance(self.kalker_grid, int) or not 4 <= self.kalker_grid <= 80:
+            raise BearingInputError("kalker_grid", self.kalker_grid, "integer 4..80")
         for nm in ("n_major", "n_minor"):
             v = getattr(self, nm)
             if not isinstance(v, int) or not 1 <= v <= 32:
@@ -165,7 +169,11 @@ class DynamicModel:
         P[K.P_GUIDE] = guide
         P[K.P_RLAND] = 0.5 * g.dm + (0.35 * g.D if guide == 0.0 else -0.35 * g.D)
         lub = get_lubricant(o.lubricant)
-        P[K.P_TRACTION] = 0.0 if o.traction == "lubricated" else 1.0
+        P[K.P_TRACTION] = {"lubricated": 0.0, "coulomb": 1.0, "kalker": 2.0}[o.traction]
+        from .fastsim import combined_elastic
+        P[K.P_GCOMB], P[K.P_NUCOMB] = combined_elastic(g.ring_material.E, g.ring_material.nu,
+                                                       g.ball_material.E, g.ball_material.nu)
+        P[K.P_FS_NX] = P[K.P_FS_NY] = o.kalker_grid
         P[K.P_ZETA] = o.zeta
         P[K.P_RHO_EFF] = 1.2 + o.oil_fraction * (lub.density - 1.2)
         P[K.P_CD] = o.cd

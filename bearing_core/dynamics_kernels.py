@@ -28,8 +28,9 @@ frame turning with each ball's azimuth):
 
 Contact geometry, contact kinematics, traction integrated over the Hertz ellipse and the ball-pocket
 contact come from bearing_core.contact_kernels (seed 002 section 2.2, seed 004 Eqs. 1-5, seed 000 Eq. 6):
-lubricated traction mu(s) = (A + B s) exp(-C s) + D with s = |v| / max(u, u_min), or regularised Coulomb
-mu0 tanh(|v| / v_reg).
+lubricated traction mu(s) = (A + B s) exp(-C s) + D with s = |v| / max(u, u_min), regularised Coulomb
+mu0 tanh(|v| / v_reg), or Kalker's simplified theory (bearing_core.fastsim, seed 000 Eqs. 7-9) with
+creepages from the same contact kinematics and the Hertz pressure as traction bound.
 """
 from __future__ import annotations
 
@@ -40,6 +41,7 @@ from numba import njit
 
 from .contact_kernels import (ball_race_contact, contact_kinematics, ellipse_traction, ball_pocket_contact,
                               normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_LUBRICATED)
+from .fastsim import fastsim_traction, PRESSURE_HERTZ
 
 NSTATE_FIXED = 20
 NSB = 9  # states per ball
@@ -49,7 +51,7 @@ NSB = 9  # states per ball
  P_CPOCKET, P_KPOCKET, P_CPOCKETD, P_MUPOCKET, P_CLAND, P_KLAND, P_CLANDD, P_MULAND,
  P_RLAND, P_GUIDE, P_TRACTION, P_ZETA, P_RHO_EFF, P_CD, P_COUPLING, P_AXISYM, P_MULT,
  P_CRX, P_CRY, P_CRZ, P_CRTX, P_CRTY, P_FIXTILT, P_MO, P_KH, P_CH, P_OUTER_ELASTIC,
- P_ETA_LAND, P_WLAND, NPAR) = range(44)
+ P_ETA_LAND, P_WLAND, P_GCOMB, P_NUCOMB, P_FS_NX, P_FS_NY, NPAR) = range(48)
 
 # ---- input vector indices (float64 array U, held over an advance call) --------------------------
 (U_W0, U_W1, U_T0, U_T1, U_FX, U_FY, U_FZ, U_MX, U_MY,
@@ -105,6 +107,11 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     qy, qwy): contact_kernels.ellipse_quadrature."""
     Z = P[P_Z]
     tmodel = TRACTION_LUBRICATED if P[P_TRACTION] < 0.5 else TRACTION_COULOMB
+    kalker = P[P_TRACTION] > 1.5          # Kalker's simplified theory (FASTSIM), seed 000 Eqs. 7-9
+    Gc = P[P_GCOMB]
+    nuc = P[P_NUCOMB]
+    fnx = int(P[P_FS_NX])
+    fny = int(P[P_FS_NY])
     nb = int(P[P_NB])
     D = P[P_D]
     dm = P[P_DM]
@@ -201,8 +208,14 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # along n, m, t about the ball centre)
         vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, w, vrr, vrt, vrz,
                                                            nir, niz, D)
-        ft, fm, mn, mm, mt, pl = ellipse_traction(ai_s, bi_s, pi_, D, Rdi, vs_t, vs_m, wsp, wrm, wrt, ur,
-                                                  tmodel, tp, qx, qwx, qy, qwy)
+        if kalker:
+            ft, fm, mn, pl = fastsim_traction(ai_s, bi_s, Qi, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny,
+                                              PRESSURE_HERTZ)
+            mm = 0.5 * D * ft        # shear acts on the contact surface, D/2 from the ball centre
+            mt = -0.5 * D * fm
+        else:
+            ft, fm, mn, mm, mt, pl = ellipse_traction(ai_s, bi_s, pi_, D, Rdi, vs_t, vs_m, wsp, wrm, wrt, ur,
+                                                      tmodel, tp, qx, qwx, qy, qwy)
         Fr += -fm * niz; Ft += ft; Fz += fm * nir
         Mr += mn * nir - mm * niz; Mt += mt; Mz += mn * niz + mm * nir
         P_ri += pl
@@ -218,8 +231,14 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # traction, outer race (fixed)
         vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, 0.0, vor, vot, 0.0,
                                                            nor, noz, D)
-        ft, fm, mn, mm, mt, pl = ellipse_traction(ao_s, bo_s, po, D, Rdo, vs_t, vs_m, wsp, wrm, wrt, ur,
-                                                  tmodel, tp, qx, qwx, qy, qwy)
+        if kalker:
+            ft, fm, mn, pl = fastsim_traction(ao_s, bo_s, Qo, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny,
+                                              PRESSURE_HERTZ)
+            mm = 0.5 * D * ft
+            mt = -0.5 * D * fm
+        else:
+            ft, fm, mn, mm, mt, pl = ellipse_traction(ao_s, bo_s, po, D, Rdo, vs_t, vs_m, wsp, wrm, wrt, ur,
+                                                      tmodel, tp, qx, qwx, qy, qwy)
         Fr += -fm * noz; Ft += ft; Fz += fm * nor
         Mr += mn * nor - mm * noz; Mt += mt; Mz += mn * noz + mm * nor
         P_ro += pl

@@ -75,7 +75,7 @@ _INPUT_DESC = {
 _PARAMS = (
     # name, type, start, unit, description, (min, max)
     ("bearing", str, "7218B", None, "bearing preset name (bearing presets: 7218B, 7008-ma2023, 7008-rivera2021, wan-105)", None),
-    ("traction_model", str, "lubricated", None, "ball-race traction: lubricated | coulomb", None),
+    ("traction_model", str, "lubricated", None, "ball-race traction: lubricated | coulomb | kalker (FASTSIM)", None),
     ("friction_coefficient", float, 0.1, "1", "Coulomb friction coefficient of the ball-race contacts", (0.0, 1.0)),
     ("cage_friction_coefficient", float, 0.1, "1", "ball-pocket and cage-land friction coefficient", (0.0, 1.0)),
     ("lubricant", str, "generic-mineral-oil", None, "lubricant of the traction curve", None),
