@@ -44,6 +44,10 @@ class CoSimParameters:
     fixed_tilt: bool = False
     integrator_tolerance: float = 1e-4
     integrator: str = "adaptive"           # adaptive | rk4
+    # geometry overrides of the preset (0 keeps the preset value)
+    free_contact_angle: float = 0.0        # rad
+    pocket_clearance: float = 0.0          # m, diametral
+    land_clearance: float = 0.0            # m, diametral
 
 
 class CoSimSession:
@@ -54,6 +58,25 @@ class CoSimSession:
         self.model: DynamicModel | None = None
         self.t = 0.0
         self.outputs = {n: 0.0 for n in OUTPUT_NAMES}
+
+    def _geometry(self):
+        """The preset with the non-zero geometry overrides applied (validated by BearingGeometry)."""
+        import dataclasses
+        p = self.p
+        g = load_preset(p.bearing)
+        for name, v in (("free_contact_angle", p.free_contact_angle), ("pocket_clearance", p.pocket_clearance),
+                        ("land_clearance", p.land_clearance)):
+            check_range(name, v, 0.0, None)
+        if p.free_contact_angle > 0.0:
+            g = g.with_overrides(alpha0=float(p.free_contact_angle))
+        cage = g.cage
+        if p.pocket_clearance > 0.0:
+            cage = dataclasses.replace(cage, pocket_clearance=float(p.pocket_clearance))
+        if p.land_clearance > 0.0:
+            cage = dataclasses.replace(cage, land_clearance=float(p.land_clearance))
+        if cage is not g.cage:
+            g = g.with_overrides(cage=cage)
+        return g
 
     def _options(self) -> DynamicsOptions:
         p = self.p
@@ -86,7 +109,7 @@ class CoSimSession:
     def initialize(self, t0: float, inputs: dict):
         """Build the model and start it from the quasi-static state at the given inputs."""
         u = self._inputs(inputs)
-        g = load_preset(self.p.bearing)
+        g = self._geometry()
         self.model = DynamicModel(g, self._options())
         loads = (u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"])
         disp = None
@@ -152,6 +175,7 @@ class CoSimSession:
             "ball0_omega_r": o["ball0_wr"], "ball0_omega_t": o["ball0_wt"], "ball0_omega_z": o["ball0_wz"],
             "ball0_slide_roll_i": o["ball0_slide_roll_i"], "ball0_slide_roll_o": o["ball0_slide_roll_o"],
             "ball0_spin_roll_i": o["ball0_spin_roll_i"], "ball0_spin_roll_o": o["ball0_spin_roll_o"],
+            "ball0_traction_i": o["ball0_Ft_i"], "ball0_traction_o": o["ball0_Ft_o"],
         }
         bad = [k for k, v in out.items() if not math.isfinite(v)]
         if bad:

@@ -42,5 +42,7 @@ OUTPUT_SPEC = (
     ("ball0_slide_roll_o", "1", "ball 0 slide-to-roll ratio, outer contact"),
     ("ball0_spin_roll_i", "1", "ball 0 spin-to-roll ratio, inner contact"),
     ("ball0_spin_roll_o", "1", "ball 0 spin-to-roll ratio, outer contact"),
+    ("ball0_traction_i", "N", "ball 0 rolling-direction traction from the inner race (seed 000 Fig. 10)"),
+    ("ball0_traction_o", "N", "ball 0 rolling-direction traction from the outer race"),
 )
 OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUT_SPEC)

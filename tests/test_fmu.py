@@ -260,3 +260,21 @@ def test_deceleration_start_from_rest_and_load_step(fmu, tmp_path):
     assert abs(-_vals(rows[-100:], "reaction_Fz").mean() / 5000 - 1) < 0.005
     assert abs(-_vals(rows[50:100], "reaction_Fz").mean() / 3000 - 1) < 0.005
     assert _vals(rows[-100:], "heat_flux_total").mean() > _vals(rows[50:100], "heat_flux_total").mean()
+
+
+def test_geometry_overrides(fmu, tmp_path):
+    """Overriding the preset's free contact angle (40 -> 25 deg on the 7218B) gives the loaded contact angle
+    that the quasi-static model predicts for the overridden bearing (0.5 deg); a negative angle fails
+    initialisation with a message naming the parameter."""
+    from bearing_core.geometry import load_preset
+    from bearing_core.quasistatic import solve_quasistatic
+    inp = {"shaft_speed": 1000 * RPM, "Fx": 0.0, "Fz": 3000.0}
+    outs = OUT + ["alpha_i_mean"]
+    res = drive(fmu, {"params": {"free_contact_angle": math.radians(25.0)}, "start_inputs": inp,
+                      "steps": [[1e-3, inp]] * 20, "outputs": outs}, tmp_path)
+    ai = np.mean([r["values"][-1] for r in res["rows"]])
+    qs = solve_quasistatic(load_preset("7218B", alpha0=math.radians(25.0)), 1000 * RPM, (0, 0, 3000, 0, 0),
+                           stiffness=False)
+    assert abs(math.degrees(ai - qs.alpha_i[0])) < 0.5
+    bad = drive(fmu, {"params": {"free_contact_angle": -0.1}, "start_inputs": inp, "steps": []}, tmp_path, "b.json")
+    assert bad["init_error"] is not None and "free_contact_angle" in bad["log"]
