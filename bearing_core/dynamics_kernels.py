@@ -101,6 +101,18 @@ def _shaft(U, t):
 
 
 @njit(cache=True)
+def _race_traction(kalker, a, b, Q, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx, fny,
+                   qx, qwx, qy, qwy):
+    """Traction of one ball-race contact on the ball: (F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W]) by
+    FASTSIM (kalker) or the ellipse-integrated lubricated / Coulomb law (contact_kernels)."""
+    if kalker:
+        ft, fm, mn, pl = fastsim_traction(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, PRESSURE_HERTZ)
+        # the shear acts on the contact surface, D/2 from the ball centre
+        return ft, fm, mn, 0.5 * D * ft, -0.5 * D * fm, pl
+    return ellipse_traction(a, b, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, qx, qwx, qy, qwy)
+
+
+@njit(cache=True)
 def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, want_bd):
     """dy/dt of the bearing model. diag (len NOUT) receives the output channels at (t, y); bd (nb x NBD)
     receives per-ball details when want_bd is True. tp: contact_kernels traction parameters; (qx, qwx,
@@ -208,14 +220,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # along n, m, t about the ball centre)
         vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, w, vrr, vrt, vrz,
                                                            nir, niz, D)
-        if kalker:
-            ft, fm, mn, pl = fastsim_traction(ai_s, bi_s, Qi, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny,
-                                              PRESSURE_HERTZ)
-            mm = 0.5 * D * ft        # shear acts on the contact surface, D/2 from the ball centre
-            mt = -0.5 * D * fm
-        else:
-            ft, fm, mn, mm, mt, pl = ellipse_traction(ai_s, bi_s, pi_, D, Rdi, vs_t, vs_m, wsp, wrm, wrt, ur,
-                                                      tmodel, tp, qx, qwx, qy, qwy)
+        ft, fm, mn, mm, mt, pl = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi, vs_t, vs_m, wsp, wrm, wrt,
+                                                ur, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
         Fr += -fm * niz; Ft += ft; Fz += fm * nir
         Mr += mn * nir - mm * niz; Mt += mt; Mz += mn * niz + mm * nir
         P_ri += pl
@@ -231,14 +237,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # traction, outer race (fixed)
         vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, 0.0, vor, vot, 0.0,
                                                            nor, noz, D)
-        if kalker:
-            ft, fm, mn, pl = fastsim_traction(ao_s, bo_s, Qo, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny,
-                                              PRESSURE_HERTZ)
-            mm = 0.5 * D * ft
-            mt = -0.5 * D * fm
-        else:
-            ft, fm, mn, mm, mt, pl = ellipse_traction(ao_s, bo_s, po, D, Rdo, vs_t, vs_m, wsp, wrm, wrt, ur,
-                                                      tmodel, tp, qx, qwx, qy, qwy)
+        ft, fm, mn, mm, mt, pl = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo, vs_t, vs_m, wsp, wrm, wrt,
+                                                ur, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
         Fr += -fm * noz; Ft += ft; Fz += fm * nor
         Mr += mn * nor - mm * noz; Mt += mt; Mz += mn * noz + mm * nor
         P_ro += pl
