@@ -67,6 +67,8 @@ def console_main() -> None:
     """Console-script entry: run, flush, and leave without the C exit handlers when an FMU was run in this
     process (a numba FMU can make the host abort in libgfortran's exit handler; docs/fmu.md)."""
     import os
+    import signal
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)   # `bearing ... | head` ends quietly
     rc = main()
     if "fmpy" in sys.modules:
         sys.stdout.flush()

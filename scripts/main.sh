@@ -14,7 +14,8 @@ echo "      (the first run compiles the numba kernels into the FMU cache, ~10 s)
 .venv/bin/bearing simulate --fmu dist/BearingFMU.fmu --profile seed000 --fx 1000 --fz 3000 --out "$OUT"
 echo "[3/4] quasi-static solution, wan-105 at 15000 rpm, Fz = 889.84 N (seed 003 Table 2 case)"
 .venv/bin/bearing quasistatic --bearing wan-105 --speed-rpm 15000 --fz 889.84 --json > "$OUT/quasistatic_wan-105.json"
-.venv/bin/bearing quasistatic --bearing wan-105 --speed-rpm 15000 --fz 889.84 | head -8
+.venv/bin/bearing quasistatic --bearing wan-105 --speed-rpm 15000 --fz 889.84 > "$OUT/quasistatic_wan-105.txt"
+head -8 "$OUT/quasistatic_wan-105.txt"
 echo "[4/4] quasi-static speed sweep, 7218B, Fz = 5000 N"
 .venv/bin/bearing sweep --bearing 7218B --fz 5000 --speed-max-rpm 15000 --points 21 --out "$OUT"
-echo "results in $OUT/: fmu_simulation.csv/.png/_summary.json, quasistatic_*.json, quasistatic_sweep_*"
+echo "results in $OUT/: fmu_simulation.csv/.png/_summary.json, quasistatic_wan-105.json/.txt, quasistatic_sweep_7218B.csv/.png"
