@@ -168,6 +168,8 @@ class CoSimSession:
             "friction_torque": o["friction_torque"],
             "heat_flux_total": sum(heat.values()),
             **{f"heat_flux_{k}": v for k, v in heat.items()},
+            "heat_flux_race_slide": o["P_race_slide"], "heat_flux_race_spin": o["P_race_spin"],
+            "heat_flux_race_diffslip": o["P_race_diffslip"],
             "ir_x": o["ir_x"], "ir_y": o["ir_y"], "ir_z": o["ir_z"], "ir_tx": o["ir_tx"], "ir_ty": o["ir_ty"],
             "ir_ax": o["ir_ax"],
             "max_contact_pressure": o["p_max"], "alpha_i_mean": o["alpha_i_mean"],

@@ -66,6 +66,7 @@ OUT_NAMES = (
     "friction_torque",                                  # torque needed to drive the inner ring [N m]
     "P_drive", "P_ext",
     "P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_damping",
+    "P_race_slide", "P_race_spin", "P_race_diffslip",    # the race losses split by motion (both races)
     "KE", "U_elastic",
     "alpha_i_mean", "alpha_o_mean", "Q_i_max", "Q_o_max", "Q_i_min",
     "pure_rolling_cage_speed", "pure_rolling_cage_speed_jh",
@@ -167,6 +168,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     FRx = 0.0; FRy = 0.0; FRz = 0.0; MRx = 0.0; MRy = 0.0; TRz = 0.0   # balls -> inner ring
     FCx = 0.0; FCy = 0.0; TC = 0.0                                   # balls -> cage
     P_ri = 0.0; P_ro = 0.0; P_pk = 0.0; P_dr = 0.0; P_dp = 0.0
+    P_sl = 0.0; P_sp = 0.0
     KE = 0.0; Uel = 0.0
     sai = 0.0; sao = 0.0; nai = 0.0; nao = 0.0
     Qimax = 0.0; Qomax = 0.0; Qimin = 1e300; pmax = 0.0
@@ -225,6 +227,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         Fr += -fm * niz; Ft += ft; Fz += fm * nir
         Mr += mn * nir - mm * niz; Mt += mt; Mz += mn * niz + mm * nir
         P_ri += pl
+        P_sl -= ft * vs_t + fm * vs_m     # sliding of the contact centre (rolling direction and across)
+        P_sp -= mn * wsp                  # spin about the contact normal
         tri_t = ft; tri_m = fm
         sl_i = vs_t; u_i = abs(ur); sp_i = wsp; sm_i = vs_m
         # the ring receives the normal force and the opposite traction; torque about z at the contact
@@ -242,6 +246,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         Fr += -fm * noz; Ft += ft; Fz += fm * nor
         Mr += mn * nor - mm * noz; Mt += mt; Mz += mn * noz + mm * nor
         P_ro += pl
+        P_sl -= ft * vs_t + fm * vs_m
+        P_sp -= mn * wsp
         tro_t = ft; tro_m = fm
         # the outer ring receives the normal force and the opposite traction (radial / tangential parts)
         for_r = Fno * nor + fm * noz
@@ -352,6 +358,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     TRz *= mult
     TC *= mult
     P_ri *= mult; P_ro *= mult; P_pk *= mult; P_dr *= mult; P_dp *= mult
+    P_sl *= mult; P_sp *= mult
     KE *= mult
     Uel *= mult
     # cage guidance: land contact (penalty + damping + Coulomb drag torque) on the guiding land
@@ -501,6 +508,11 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     diag[O_P_EXT] = Pext
     diag[O_P_RACE_INNER] = P_ri
     diag[O_P_RACE_OUTER] = P_ro
+    # split of the race losses: centre sliding, spin, and the rest = differential slip across the curved
+    # contact (Heathcote slip, the 'rolling' loss of the conformal groove); the three add up to the total
+    diag[O_P_RACE_SLIDE] = P_sl
+    diag[O_P_RACE_SPIN] = P_sp
+    diag[O_P_RACE_DIFFSLIP] = P_ri + P_ro - P_sl - P_sp
     diag[O_P_POCKET] = P_pk
     diag[O_P_LAND] = P_ld
     diag[O_P_DRAG] = P_dr

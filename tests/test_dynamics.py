@@ -213,3 +213,15 @@ def test_kalker_traction_in_dynamics():
         assert abs(_energy_residual(rec, 0.02)) < 0.01
         runs[trac] = late["cage_speed"].mean()
     assert abs(runs["kalker"] / runs["coulomb"] - 1) < 0.02
+
+
+def test_race_loss_split():
+    """The race losses split into centre sliding, spin and differential slip add up to the total, and for
+    the 40 deg 7218B under thrust the spin part is a large share (Harris & Kotzalas Vol. 2 Ch. 4: spin
+    dominates the friction of angular-contact ball bearings with large contact angles)."""
+    m, rec = _run((0.0, 0.0, 3000.0, 0.0, 0.0), rpm=3000.0, T=0.05)
+    late = _late(rec)
+    total = late["P_race_inner"] + late["P_race_outer"]
+    parts = late["P_race_slide"] + late["P_race_spin"] + late["P_race_diffslip"]
+    assert np.allclose(parts, total, rtol=1e-9, atol=1e-9)
+    assert late["P_race_spin"].mean() > 0.3 * total.mean()
