@@ -77,6 +77,21 @@ def build_parser() -> argparse.ArgumentParser:
     dy.add_argument("--out", default="out", help="output folder (created)")
     dy.set_defaults(func=cmd_dynamics)
 
+    ms = sub.add_parser("microslip", help="adhesion/slip picture of one contact (Kalker/FASTSIM) after a "
+                                          "transient run at constant speed and load")
+    ms.add_argument("--bearing", required=True)
+    ms.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"))
+    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
+        ms.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
+    ms.add_argument("--time", type=_finite("--time"), default=0.02, help="instant of the picture [s]")
+    ms.add_argument("--ball", type=int, default=0)
+    ms.add_argument("--race", choices=("inner", "outer"), default="inner")
+    ms.add_argument("--traction", choices=("kalker", "coulomb", "lubricated"), default="kalker",
+                    help="traction law of the run (the picture is always FASTSIM)")
+    ms.add_argument("--mu", type=_finite("--mu"), default=0.1)
+    ms.add_argument("--out", default="out")
+    ms.set_defaults(func=cmd_microslip)
+
     pr = sub.add_parser("presets", help="list the bearing presets with their sources")
     pr.add_argument("--json", action="store_true")
     pr.set_defaults(func=cmd_presets)
@@ -257,6 +272,32 @@ def cmd_dynamics(a) -> int:
     print(f"final cage speed {summary['final_cage_speed_rpm']:.1f} rpm (spin-free theoretical "
           f"{summary['final_pure_rolling_cage_speed_rpm']:.1f} rpm), friction torque "
           f"{summary['final_friction_torque_Nm']:.3f} N m; {summary['simulated_s']:.3f} s simulated in {wall:.1f} s")
+    return 0
+
+
+def cmd_microslip(a) -> int:
+    from pathlib import Path
+    from .dynamics import DynamicModel, DynamicsOptions
+    from .geometry import load_preset
+    from .postprocess import microslip_map, plot_microslip
+
+    if not (0.0 < a.time <= 10.0):
+        raise _BadArg(f"--time = {a.time} is invalid; allowed: 0 < time <= 10 s")
+    if not (0.0 <= a.mu <= 1.0):
+        raise _BadArg(f"--mu = {a.mu} is invalid; allowed: 0 <= mu <= 1")
+    if a.speed_rpm < 0:
+        raise _BadArg(f"--speed-rpm = {a.speed_rpm} is invalid; allowed: >= 0 rpm")
+    m = DynamicModel(load_preset(a.bearing), DynamicsOptions(traction=a.traction, mu=a.mu,
+                                                             rtol=1e-6 if a.traction == "kalker" else 1e-4))
+    m.initialize(a.speed_rpm * RPM, (a.fx, a.fy, a.fz, a.mx, a.my))
+    m.advance(a.time)
+    mp = microslip_map(m, a.ball, a.race)
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    png = plot_microslip(mp, out / f"microslip_{m.g.name}_{a.race}_ball{a.ball}.png")
+    summary = {k: float(mp[k]) for k in ("a", "b", "Q", "vs_t", "vs_m", "spin", "u_roll", "F_t", "F_m", "M_n",
+                                         "adhesion_fraction")}
+    print(json.dumps(dict(summary, png=str(png))))
     return 0
 
 

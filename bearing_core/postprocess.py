@@ -120,3 +120,62 @@ def plot_dynamics(d: dict, path, title: str = ""):
     fig.savefig(path, dpi=100)
     plt.close(fig)
     return Path(path)
+
+
+def microslip_map(model, ball: int = 0, race: str = "inner", n: int = 40, mu: float | None = None) -> dict:
+    """Kalker/FASTSIM adhesion-slip map of one ball-race contact at the model's current state (seed 000
+    Fig. 11): contact semi-axes and load from the dynamics, creepages and spin from its contact kinematics,
+    friction limit mu (default options.mu), Hertz pressure bound. Returns fastsim_map's dict plus a, b, Q [m, N],
+    the slips and 'adhesion_fraction'."""
+    import numpy as np
+    from .errors import BearingInputError
+    from .fastsim import PRESSURE_HERTZ, combined_elastic, fastsim_map
+
+    if race not in ("inner", "outer"):
+        raise BearingInputError("race", race, "inner | outer")
+    d = model.ball_details()
+    nb = len(d["Q_i"])
+    if not (isinstance(ball, int) and 0 <= ball < nb):
+        raise BearingInputError("ball", ball, f"integer 0..{nb - 1}")
+    k = "i" if race == "inner" else "o"
+    g = model.g
+    G, nu = combined_elastic(g.ring_material.E, g.ring_material.nu, g.ball_material.E, g.ball_material.nu)
+    sign = 1.0 if race == "inner" else -1.0    # entrainment direction at the inner / outer race (omega > 0)
+    a, b, Q = d[f"a_{k}"][ball], d[f"b_{k}"][ball], d[f"Q_{k}"][ball]
+    vs_t, vs_m, w = d[f"slip_{k}"][ball], d[f"slip_m_{k}"][ball], d[f"spin_{k}"][ball]
+    u = sign * d[f"u_{k}"][ball]
+    out = fastsim_map(a, b, Q, model.opt.mu if mu is None else mu, G, nu, vs_t, vs_m, w, u, n, n, PRESSURE_HERTZ)
+    inside = (out["T"] / max(b, 1e-300)) ** 2 + (out["M"] / max(a, 1e-300)) ** 2 <= 1.0
+    out.update(a=a, b=b, Q=Q, vs_t=vs_t, vs_m=vs_m, spin=w, u_roll=u, race=race, ball=ball,
+               adhesion_fraction=float(np.mean(~out["slip"][inside])) if inside.any() else 0.0)
+    return out
+
+
+def plot_microslip(mp: dict, path, title: str = ""):
+    """Contact ellipse with slip arrows (direction of the local slip, opposite to the shear on the ball)
+    in the slip zone and the adhesion zone left blank (seed 000 Fig. 11)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    a, b = mp["a"], mp["b"]
+    fig, ax = plt.subplots(figsize=(6.5, 6), constrained_layout=True)
+    th = np.linspace(0, 2 * np.pi, 200)
+    ax.plot(np.cos(th), np.sin(th), "k-", lw=1)       # ellipse in coordinates normalised by a and b
+    s = mp["slip"].copy()
+    s[::2, :] = False                                   # every other row of arrows, for legibility
+    s[:, ::2] = False
+    mag = np.hypot(mp["Tm"] / a, mp["Tt"] / b)
+    ok = s & (mag > 0)
+    if ok.any():
+        ax.quiver(mp["M"][ok] / a, mp["T"][ok] / b, -mp["Tm"][ok] / a / mag[ok], -mp["Tt"][ok] / b / mag[ok],
+                  color="tab:red", scale=30, width=0.004)
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"across the groove x / a  (a = {a * 1e3:.3f} mm)")
+    ax.set_ylabel(f"rolling direction y / b  (b = {b * 1e3:.3f} mm)")
+    ax.set_title(title or (f"{mp['race']} contact, ball {mp['ball']}: Q = {mp['Q']:.0f} N\nadhesion "
+                           f"{100 * mp['adhesion_fraction']:.0f}% (blank), slip direction arrows"))
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return Path(path)

@@ -65,3 +65,18 @@ def test_dynamics_bad_arguments(args):
     p = subprocess.run([sys.executable, "-m", "bearing_core.cli", *args], capture_output=True, text=True)
     assert p.returncode == 2, p.stderr
     assert len(p.stderr.strip().splitlines()) == 1
+
+
+def test_microslip_subcommand(tmp_path, capsys):
+    rc = main(["microslip", "--bearing", "7218B", "--speed-rpm", "3000", "--fz", "3000", "--time", "0.005",
+               "--race", "outer", "--out", str(tmp_path)])
+    assert rc == 0
+    d = json.loads(capsys.readouterr().out)
+    assert 0.0 <= d["adhesion_fraction"] <= 1.0 and d["Q"] > 0
+    assert (tmp_path / "microslip_7218B_outer_ball0.png").is_file()
+    for bad in (["--time", "0"], ["--race", "middle"], ["--ball", "99"]):
+        p = subprocess.run([sys.executable, "-m", "bearing_core.cli", "microslip", "--bearing", "7218B",
+                            "--speed-rpm", "3000", "--fz", "3000", *bad, "--out", str(tmp_path)],
+                           capture_output=True, text=True)
+        assert p.returncode == 2, (bad, p.stderr)
+        assert len(p.stderr.strip().splitlines()) == 1
