@@ -67,7 +67,7 @@ def build_parser() -> argparse.ArgumentParser:
                          "file with columns time_s, speed_rpm")
     for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
         dy.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
-    dy.add_argument("--traction", choices=("lubricated", "coulomb"), default="lubricated")
+    dy.add_argument("--traction", choices=("lubricated", "coulomb", "kalker"), default="lubricated")
     dy.add_argument("--mu", type=_finite("--mu"), default=0.1, help="Coulomb friction coefficient [-]")
     dy.add_argument("--mu-cage", type=_finite("--mu-cage"), default=0.1,
                     help="ball-pocket and cage-land friction coefficient [-]")

@@ -20,7 +20,7 @@ def build_parser():
                        help=f"load held on the inner ring [{unit}] (unless the profile has the column)")
     s.add_argument("--step", type=core_cli._finite("--step"), default=1e-3, help="communication step [s]")
     s.add_argument("--bearing", default="7218B")
-    s.add_argument("--traction", choices=("lubricated", "coulomb"), default="lubricated")
+    s.add_argument("--traction", choices=("lubricated", "coulomb", "kalker"), default="lubricated")
     s.add_argument("--mu", type=core_cli._finite("--mu"), default=0.1)
     s.add_argument("--mu-cage", type=core_cli._finite("--mu-cage"), default=0.1)
     s.add_argument("--out", default="out")

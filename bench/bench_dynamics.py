@@ -44,7 +44,7 @@ def main(argv=None):
     ap.add_argument("--t-end", type=float, default=2.0, help="simulated time [s] (<= 2 follows seed 000)")
     ap.add_argument("--fx", type=float, default=1000.0, help="radial load [N]")
     ap.add_argument("--fz", type=float, default=3000.0, help="axial load [N]")
-    ap.add_argument("--traction", default="lubricated", choices=("lubricated", "coulomb"))
+    ap.add_argument("--traction", default="lubricated", choices=("lubricated", "coulomb", "kalker"))
     ap.add_argument("--mu", type=float, default=0.1)
     ap.add_argument("--rtol", type=float, default=1e-4)
     ap.add_argument("--json", action="store_true")
