@@ -201,27 +201,6 @@ def cmd_sweep(a) -> int:
     return 0
 
 
-def _read_profile(spec):
-    from .dynamics import SEED000_PROFILE
-    if spec == "seed000":
-        return list(SEED000_PROFILE)
-    import csv as _csv
-    from pathlib import Path
-    p = Path(spec)
-    if not p.is_file():
-        raise _BadArg(f"--profile = {spec!r} is invalid; allowed: seed000 or an existing CSV file")
-    rows = []
-    with p.open() as fh:
-        for r in _csv.DictReader(fh):
-            try:
-                rows.append((float(r["time_s"]), float(r["speed_rpm"])))
-            except (KeyError, ValueError):
-                raise _BadArg(f"--profile {spec}: every row needs numeric time_s and speed_rpm columns")
-    if len(rows) < 2:
-        raise _BadArg(f"--profile {spec}: at least two rows (time_s, speed_rpm) are needed")
-    return rows
-
-
 def cmd_dynamics(a) -> int:
     import time
     from pathlib import Path
@@ -230,7 +209,12 @@ def cmd_dynamics(a) -> int:
     from .geometry import load_preset
     from .postprocess import plot_dynamics, write_records_csv
 
-    prof = _read_profile(a.profile)
+    from .dynamics import read_profile
+    t_prof, n_prof, prof_loads = read_profile(a.profile)
+    if prof_loads:
+        raise _BadArg(f"--profile {a.profile}: load columns are read by 'bearing simulate'; here the loads "
+                      "are --fx ... --my")
+    prof = list(zip(t_prof.tolist(), n_prof.tolist()))
     if not (1e-5 <= a.record_dt <= 1.0):
         raise _BadArg(f"--record-dt = {a.record_dt} is invalid; allowed: 1e-5 <= value <= 1 s")
     g = load_preset(a.bearing)

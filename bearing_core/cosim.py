@@ -80,6 +80,11 @@ class CoSimSession:
 
     def _options(self) -> DynamicsOptions:
         p = self.p
+        # check under the names the user set (FMU parameters), before DynamicsOptions checks its own
+        check_range("friction_coefficient", p.friction_coefficient, 0.0, 1.0)
+        check_range("cage_friction_coefficient", p.cage_friction_coefficient, 0.0, 1.0)
+        check_range("integrator_tolerance", p.integrator_tolerance, 1e-10, 1e-2)
+        check_range("housing_stiffness", p.housing_stiffness, 1e4, 1e12, unit="N/m")
         if p.traction_model not in ("lubricated", "coulomb", "kalker"):
             raise BearingInputError("traction_model", p.traction_model, "lubricated | coulomb | kalker")
         return DynamicsOptions(

@@ -365,6 +365,37 @@ SEED000_PROFILE = ((0.0, 1000.0), (0.5, 1000.0), (1.4, 10000.0), (2.0, 10000.0))
 10,000 rpm/s up to 10,000 rpm at 1.4 s, held to 2 s (Lubricants 2025 13(5) 218, section 4)."""
 
 
+PROFILE_LOAD_COLUMNS = ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")
+
+
+def read_profile(spec: str):
+    """A speed profile: 'seed000' (SEED000_PROFILE) or a CSV file with columns time_s, speed_rpm and
+    optionally Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm. Returns (times [s], speeds [rpm], loads) with loads a dict
+    of the load columns present (None if none). Bad files raise BearingInputError('profile', ...)."""
+    import csv
+    from pathlib import Path
+    if spec == "seed000":
+        t, n = zip(*SEED000_PROFILE)
+        return np.array(t), np.array(n), None
+    p = Path(spec)
+    if not p.is_file():
+        raise BearingInputError("profile", spec, "seed000 or an existing CSV file")
+    with p.open() as fh:
+        rows = list(csv.DictReader(fh))
+    try:
+        t = np.array([float(r["time_s"]) for r in rows])
+        n = np.array([float(r["speed_rpm"]) for r in rows])
+        loads = {c: np.array([float(r[c]) for r in rows]) for c in PROFILE_LOAD_COLUMNS if rows and c in rows[0]}
+    except (KeyError, ValueError, TypeError):
+        raise BearingInputError("profile", spec, "rows with numeric time_s, speed_rpm (and load columns if given)")
+    vals = np.concatenate([t, n] + list(loads.values()))
+    if len(t) < 2 or np.any(np.diff(t) <= 0) or not np.all(np.isfinite(vals)):
+        raise BearingInputError("profile", spec, ">= 2 rows, strictly increasing finite time_s, finite values")
+    if np.any(n < 0):
+        raise BearingInputError("profile", spec, "speed_rpm >= 0")
+    return t, n, (loads or None)
+
+
 def simulate_profile(model: DynamicModel, profile, record_dt: float | None = None, progress=None) -> np.ndarray:
     """Drive an initialised model through a piecewise-linear speed profile ((t [s], speed [rpm]), ...)
     starting at the model's current time; returns the concatenated records. Python is entered once per

@@ -205,6 +205,14 @@ def combined_elastic(E1, nu1, E2, nu2):
 # --------------------------------------------------------------------------------------------------
 # 2. FASTSIM [K82]
 @njit(cache=True)
+def _peak_pressure(Q, ap, bp, pressure):
+    """Peak of the traction-bound pressure [Pa]: Hertz 3Q/(2 pi a b) or FASTSIM's parabolic 2Q/(pi a b)."""
+    if pressure == PRESSURE_HERTZ:
+        return 1.5 * Q / (math.pi * ap * bp)
+    return 2.0 * Q / (math.pi * ap * bp)
+
+
+@njit(cache=True)
 def _fastsim_core(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure,
                   store, sX, sY, sTx, sTy, sSlip):
     """FASTSIM in Kalker's frame: x rolling direction (material moves towards -x, enters at the
@@ -230,10 +238,7 @@ def _fastsim_core(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, press
     iL1 = 3.0 * G * C11 / (8.0 * ap)
     iL2 = 3.0 * G * C22 / (8.0 * ap)
     iL3 = 4.0 * G * c * C23 / (math.pi * ap * ap)
-    if pressure == PRESSURE_HERTZ:
-        p0 = 1.5 * Q / (math.pi * ap * bp)
-    else:
-        p0 = 2.0 * Q / (math.pi * ap * bp)
+    p0 = _peak_pressure(Q, ap, bp, pressure)
     mup0 = mu * p0
     dy = 2.0 * bp / n_y
     ia2 = 1.0 / (ap * ap)
@@ -291,10 +296,7 @@ def _full_slip_core(ap, bp, Q, mu, vx, vy, w, n_x, n_y, pressure, store, sX, sY,
     Fx = 0.0
     Fy = 0.0
     Mz = 0.0
-    if pressure == PRESSURE_HERTZ:
-        p0 = 1.5 * Q / (math.pi * ap * bp)
-    else:
-        p0 = 2.0 * Q / (math.pi * ap * bp)
+    p0 = _peak_pressure(Q, ap, bp, pressure)
     dy = 2.0 * bp / n_y
     ia2 = 1.0 / (ap * ap)
     for j in range(n_y):

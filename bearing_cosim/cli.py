@@ -29,7 +29,7 @@ def build_parser():
 
 
 def cmd_simulate(a) -> int:
-    from .simulate import ProfileError, simulate
+    from .simulate import simulate
     if not Path(a.fmu).is_file():
         raise core_cli._BadArg(f"--fmu = {a.fmu!r} is not a file; build it with: python build_fmu.py")
     if not (1e-5 <= a.step <= 0.1):
@@ -38,10 +38,7 @@ def cmd_simulate(a) -> int:
         raise core_cli._BadArg(f"--mu = {a.mu}, --mu-cage = {a.mu_cage}: allowed 0 <= value <= 1")
     params = {"bearing": a.bearing, "traction_model": a.traction, "friction_coefficient": a.mu,
               "cage_friction_coefficient": a.mu_cage}
-    try:
-        s = simulate(a.fmu, a.profile, (a.fx, a.fy, a.fz, a.mx, a.my), a.step, params, a.out)
-    except ProfileError as e:
-        raise core_cli._BadArg(str(e))
+    s = simulate(a.fmu, a.profile, (a.fx, a.fy, a.fz, a.mx, a.my), a.step, params, a.out)
     print(f"wrote {s['csv']}, {s['plot']} and {Path(a.out) / 'fmu_simulation_summary.json'}")
     print(json.dumps({k: v for k, v in s.items() if k.startswith("final") or k in ("simulated_s", "wall_s")}))
     return 0

@@ -12,36 +12,7 @@ from pathlib import Path
 import numpy as np
 
 RPM = math.pi / 30.0
-SEED000 = ((0.0, 1000.0), (0.5, 1000.0), (1.4, 10000.0), (2.0, 10000.0))
-LOAD_COLS = ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")
-
-
-class ProfileError(ValueError):
-    pass
-
-
-def read_profile(spec: str):
-    """'seed000' or a CSV with columns time_s, speed_rpm and optionally Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm.
-    Returns (times [s], speeds [rpm], loads dict of arrays or None)."""
-    if spec == "seed000":
-        t, n = zip(*SEED000)
-        return np.array(t), np.array(n), None
-    p = Path(spec)
-    if not p.is_file():
-        raise ProfileError(f"--profile = {spec!r} is invalid; allowed: seed000 or an existing CSV file")
-    rows = list(csv.DictReader(p.open()))
-    try:
-        t = np.array([float(r["time_s"]) for r in rows])
-        n = np.array([float(r["speed_rpm"]) for r in rows])
-        loads = {c: np.array([float(r[c]) for r in rows]) for c in LOAD_COLS if rows and c in rows[0]}
-    except (KeyError, ValueError):
-        raise ProfileError(f"--profile {spec}: rows need numeric time_s and speed_rpm (and load columns if given)")
-    if len(t) < 2 or np.any(np.diff(t) <= 0) or not np.all(np.isfinite(np.concatenate([t, n]))):
-        raise ProfileError(f"--profile {spec}: need >= 2 rows with strictly increasing finite time_s")
-    if np.any(n < 0):
-        raise ProfileError(f"--profile {spec}: speed_rpm must be >= 0")
-    return t, n, (loads or None)
-
+from bearing_core.dynamics import PROFILE_LOAD_COLUMNS as LOAD_COLS, read_profile
 
 def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: float = 1e-3, params=None,
              out: str = "out", progress: bool = True) -> dict:
