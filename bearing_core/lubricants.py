@@ -78,7 +78,7 @@ from numba import njit
 
 from .errors import BearingInputError, check_range
 
-T_MIN = 233.15          # K, validity range of the property functions (-40 degC ...
+T_MIN = 233.0           # K, validity range of the property functions (-40 degC ...
 T_MAX = 473.15          # ... 200 degC)
 BETA_T = 6.4e-4         # 1/K, thermal expansion of oils (Hamrock, NASA RP-1255, Ch. 4)
 T15 = 288.15            # K
