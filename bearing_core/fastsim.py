@@ -9,6 +9,9 @@ Contents
   bearing_core.contact_kernels.contact_kinematics (forces, spin moment, dissipated power).
 * fastsim_map(...): the same, plus the adhesion / slip map and local tractions (for plots).
 * fastsim_kalker(...): the solver in Kalker's own frame and creepages.
+* fastsim_traction_fast(...): fastsim_traction with shortcuts (closed-form linear solution at small
+  creepage, full-slip integral when every cell slips, square roots hoisted out of the grid march);
+  creepage_level, slip_level: the dimensionless levels that select them (docs/kalker.md).
 
 Frames and signs (same as contact_kernels)
 ------------------------------------------
@@ -425,6 +428,216 @@ def fastsim_map(a, b, Q, mu, G, nu, vs_t, vs_m, w_spin, u_roll, n_x=40, n_y=40,
                                      float(vs_t), float(vs_m), float(w_spin), float(u_roll),
                                      int(n_x), int(n_y), int(pressure), T, M, Tt, Tm, slip)
     return dict(T=T, M=M, Tt=Tt, Tm=Tm, slip=slip, F_t=Ft, F_m=Fm, M_n=Mn, P_loss=P)
+
+
+# --------------------------------------------------------------------------------------------------
+# 3. Shortcuts around the grid (fastsim_traction_fast). Same frame, signs and outputs as
+#    fastsim_traction; see docs/kalker.md for the measured accuracy and cost.
+SHORTCUT_LIN = 0.03      # default creepage level f below which the closed-form linear solution is used
+SHORTCUT_SLIP = 3.0      # default creepage level f above which the full-slip integral is used
+
+
+@njit(cache=True)
+def creepage_level(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi):
+    """Dimensionless creepage f = sqrt(xi*^2 + eta*^2 + phi*^2) (Kalker frame), each creepage scaled by the
+    value at which its linear force alone reaches 3 mu Q (the Vermeulen-Johnson / simplified-theory
+    saturation of pure creepage, parabolic bound: xi* = G c^2 C11 |xi| / (3 mu Q) = 1):
+    xi* = G c^2 C11 xi / (3 mu Q), eta* = G c^2 C22 eta / (3 mu Q), and for spin the longitudinal
+    creepage that gives the same stick traction rate at the strip ends y = +-b' (phi b' L1 / L3):
+    phi* = G c^3 C23 phi max(1, 32 b' / (3 pi a')) / (3 mu Q) -- 22x the plain G c^3 C23 phi / (3 mu Q)
+    for a ball-race ellipse b/a = 0.15, where spin saturates the strip ends long before the centre.
+    (Like CONTACT's f_crp in m_hertz.f90 simpflex, but each term dimensionless.)"""
+    s = G * ap * bp / (3.0 * mu * Q)
+    c = math.sqrt(ap * bp)
+    x = s * C11 * xi
+    y = s * C22 * eta
+    z = s * c * C23 * phi * max(1.0, 32.0 * bp / (3.0 * math.pi * ap))
+    return math.sqrt(x * x + y * y + z * z)
+
+
+@njit(cache=True)
+def slip_level(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi):
+    """Lower bound over the patch of the FASTSIM increment |g| = |(xi/L1 - phi y/L3, eta/L2 + phi x/L3)|,
+    scaled by the rate 2 mu p0 / a' (parabolic p0 = 2Q/(pi a' b')) at which a strip saturates from its
+    leading edge: h = |g|_min pi a'^2 b' / (4 mu Q). With spin, |g| = |phi| / L3 times the distance from the
+    spin pole (x0, y0) = (-eta L3/(phi L2), xi L3/(phi L1)); the distance to the bounding box of the
+    ellipse is used (a lower bound), so h = 0 when the pole may lie in the patch (cells near the pole
+    stick however large the spin)."""
+    c = math.sqrt(ap * bp)
+    iL1 = 3.0 * G * C11 / (8.0 * ap)
+    iL2 = 3.0 * G * C22 / (8.0 * ap)
+    iL3 = 4.0 * G * c * C23 / (math.pi * ap * ap)
+    if phi == 0.0:
+        gmin = math.sqrt((xi * iL1) ** 2 + (eta * iL2) ** 2)
+    else:
+        x0 = -eta * iL2 / (phi * iL3)
+        y0 = xi * iL1 / (phi * iL3)
+        dxo = max(abs(x0) - ap, 0.0)
+        dyo = max(abs(y0) - bp, 0.0)
+        gmin = abs(phi) * iL3 * math.sqrt(dxo * dxo + dyo * dyo)
+    return gmin * math.pi * ap * ap * bp / (4.0 * mu * Q)
+
+
+@njit(cache=True)
+def _linear_closed_form(ap, bp, G, C11, C22, C23, xi, eta, phi):
+    """FASTSIM's stick solution integrated exactly over the ellipse (no traction bound): the limit of the
+    grid result at small creepage (Kalker frame). Stick traction at distance s = a(y) - x from the
+    leading edge: p_x = -(xi/L1 - phi y/L3) s, p_y = -(eta/L2) s - (phi/(2 L3)) (a(y)^2 - x^2). Gives
+    Fx = -G c^2 C11 xi, Fy = -G c^2 C22 eta - G c^3 C23 phi (Kalker's linear theory, by the choice of
+    L1, L2, L3 [K82]) and Mz = (3 pi/32) G C22 a'^2 b' eta - 32/(15 pi) G c C23 b'^3 phi."""
+    c = math.sqrt(ap * bp)
+    Fx = -G * c * c * C11 * xi
+    Fy = -G * c * c * (C22 * eta + c * C23 * phi)
+    Mz = 3.0 * math.pi / 32.0 * G * C22 * ap * ap * bp * eta - 32.0 / (15.0 * math.pi) * G * c * C23 * bp ** 3 * phi
+    return Fx, Fy, Mz
+
+
+@njit(cache=True)
+def _full_slip_fastsim(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure):
+    """Large-creepage limit of FASTSIM: every cell carries the bound mu p along the direction of the
+    FASTSIM increment -(xi/L1 - phi y/L3, eta/L2 + phi x/L3) (not exactly the rigid-slip direction when
+    L1 != L2: the same tilt as the grid result, see the module docstring). Midpoint rule on the same
+    strips as _fastsim_core, no march."""
+    Fx = 0.0
+    Fy = 0.0
+    Mz = 0.0
+    c = math.sqrt(ap * bp)
+    iL1 = 3.0 * G * C11 / (8.0 * ap)
+    iL2 = 3.0 * G * C22 / (8.0 * ap)
+    iL3 = 4.0 * G * c * C23 / (math.pi * ap * ap)
+    p0 = _peak_pressure(Q, ap, bp, pressure)
+    mup0 = mu * p0
+    dy = 2.0 * bp / n_y
+    hertz = pressure == PRESSURE_HERTZ
+    sh = np.empty(n_x)
+    for i in range(n_x):
+        q = 4.0 * (i + 0.5) * (n_x - i - 0.5) / (n_x * n_x)
+        sh[i] = math.sqrt(q) if hertz else q
+    for j in range(n_y):
+        y = -bp + (j + 0.5) * dy
+        ey = 1.0 - (y / bp) ** 2
+        sey = math.sqrt(ey)
+        aj = ap * sey
+        dx = 2.0 * aj / n_x
+        dA = dx * dy
+        gbj = mup0 * (sey if hertz else ey) * dA
+        gx = xi * iL1 - phi * y * iL3
+        for i in range(n_x):
+            xc = aj - (i + 0.5) * dx
+            gy = eta * iL2 + phi * xc * iL3
+            g = math.sqrt(gx * gx + gy * gy)
+            if g == 0.0:
+                continue
+            gb = gbj * sh[i] / g
+            fx = -gb * gx
+            fy = -gb * gy
+            Fx += fx
+            Fy += fy
+            Mz += xc * fy - y * fx
+    return Fx, Fy, Mz
+
+
+@njit(cache=True)
+def _fastsim_core_lean(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure):
+    """_fastsim_core without the map output, with the same arithmetic reorganised: the Hertz bound of
+    cell i on any strip is mu p0 sqrt(e_y) (2/n_x) sqrt((i + 1/2)(n_x - i - 1/2)) (cell centres at the
+    same fractions of every strip), so its square roots are taken once per call, not once per cell;
+    and the stick test compares squares (one square root per slipping cell only). Same grid, same
+    result to rounding (not bitwise)."""
+    Fx = 0.0
+    Fy = 0.0
+    Mz = 0.0
+    c = math.sqrt(ap * bp)
+    iL1 = 3.0 * G * C11 / (8.0 * ap)
+    iL2 = 3.0 * G * C22 / (8.0 * ap)
+    iL3 = 4.0 * G * c * C23 / (math.pi * ap * ap)
+    p0 = _peak_pressure(Q, ap, bp, pressure)
+    mup0 = mu * p0
+    dy = 2.0 * bp / n_y
+    hertz = pressure == PRESSURE_HERTZ
+    # bound shape of cell i relative to the strip's centre bound: e_i / e_y = 4 (i+1/2)(n-i-1/2) / n^2
+    sh = np.empty(n_x)
+    for i in range(n_x):
+        q = 4.0 * (i + 0.5) * (n_x - i - 0.5) / (n_x * n_x)
+        sh[i] = math.sqrt(q) if hertz else q
+    for j in range(n_y):
+        y = -bp + (j + 0.5) * dy
+        ey = 1.0 - (y / bp) ** 2
+        sey = math.sqrt(ey)
+        aj = ap * sey
+        dx = 2.0 * aj / n_x
+        dA = dx * dy
+        gbj = mup0 * (sey if hertz else ey)
+        gx = xi * iL1 - phi * y * iL3
+        gy0 = eta * iL2
+        gy1 = phi * iL3
+        px = 0.0
+        py = 0.0
+        sfx = 0.0
+        sfy = 0.0
+        sxfy = 0.0
+        for i in range(n_x):
+            xc = aj - (i + 0.5) * dx
+            if i == 0:
+                ds = 0.5 * dx
+                xm = aj - 0.25 * dx
+            else:
+                ds = dx
+                xm = xc + 0.5 * dx
+            px -= gx * ds
+            py -= (gy0 + gy1 * xm) * ds
+            gb = gbj * sh[i]
+            pm2 = px * px + py * py
+            if pm2 > gb * gb:
+                f = gb / math.sqrt(pm2)
+                px *= f
+                py *= f
+            sfx += px
+            sfy += py
+            sxfy += xc * py
+        Fx += sfx * dA
+        Fy += sfy * dA
+        Mz += (sxfy - y * sfx) * dA
+    return Fx, Fy, Mz
+
+
+@njit(cache=True)
+def fastsim_traction_fast(a, b, Q, mu, G, nu, vs_t, vs_m, w_spin, u_roll, n_x=12, n_y=12,
+                          pressure=PRESSURE_PARABOLIC, f_lin=SHORTCUT_LIN, f_slip=SHORTCUT_SLIP):
+    """fastsim_traction (same arguments, frame, signs and outputs) with shortcuts around the grid:
+    creepage level f (creepage_level) <= f_lin: the closed-form linear (stick) solution, no grid;
+    f >= f_slip and slip_level >= f_slip (the increment exceeds f_slip times the saturation rate
+    everywhere, spin pole outside the patch): the full-slip limit (bound times the FASTSIM increment
+    direction, no march);
+    otherwise the grid march of fastsim_traction with the square roots hoisted (_fastsim_core_lean).
+    f_lin = 0 and f_slip = inf give the grid everywhere. u_roll == 0: exact full sliding as
+    fastsim_traction. Accuracy and cost of each branch: docs/kalker.md, bench/bench_fastsim.py."""
+    if not (Q > 0.0 and a > 0.0 and b > 0.0):
+        return 0.0, 0.0, 0.0, 0.0
+    ap = b
+    bp = a
+    if u_roll == 0.0:
+        e2 = np.empty((0, 0))
+        b2 = np.empty((0, 0), dtype=np.bool_)
+        return _contact_frame(a, b, Q, mu, G, nu, vs_t, vs_m, w_spin, u_roll, n_x, n_y, pressure,
+                              False, e2, e2, e2, e2, b2)
+    sg = -1.0 if u_roll > 0.0 else 1.0
+    C11, C22, C23 = kalker_coefficients(ap / bp, nu)
+    iu = 1.0 / abs(u_roll)
+    xi = sg * vs_t * iu
+    eta = sg * vs_m * iu
+    phi = w_spin * iu
+    f = creepage_level(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi)
+    if f <= f_lin:
+        Fx, Fy, Mz = _linear_closed_form(ap, bp, G, C11, C22, C23, xi, eta, phi)
+    elif f >= f_slip and slip_level(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi) >= f_slip:
+        Fx, Fy, Mz = _full_slip_fastsim(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure)
+    else:
+        Fx, Fy, Mz = _fastsim_core_lean(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure)
+    Ft = sg * Fx
+    Fm = sg * Fy
+    P = -(Ft * vs_t + Fm * vs_m + Mz * w_spin)
+    return Ft, Fm, Mz, P
 
 
 if __name__ == "__main__":          # timing of one contact evaluation at the default grid
