@@ -1,9 +1,9 @@
 """Seed 003 wear study on the wan-105 bearing: wear coefficient and film against speed and load (seed 003
 Figs. 5-10), sliding speed over a contact ellipse (Fig. 12), sliding at the ellipse centre against speed
-(Fig. 13), and raceway wear depth over hours (not in the seed). Writes numbers to
-docs/figures/seed003_wear_study.json and the figures docs/figures/seed003_wear_*.png.
+(Fig. 13), and raceway wear depth over hours (not in the seed). Writes the figures docs/figures/seed003_wear_*.png and the numbers to
+out/seed003_wear_study.json (quoted in docs/wear.md), with a summary on stdout.
 
-    python bench/wear_study.py [--out docs/figures]
+    python bench/wear_study.py [--out docs/figures] [--json out/seed003_wear_study.json]
 
 Loads the seed does not state: the axial preload of Figs. 5-10 (Fz = 500 N, the preload the seed names for
 Fig. 12) and the load levels of Figs. 6-10 (ours: Fx 100/300/500 N, M 1/3/5 N m). Speed 10000 rpm for
@@ -80,8 +80,9 @@ def load_sweep(g, label, loads_list):
 def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", default="docs/figures")
-    a = ap.parse_args(argv)
-    out = Path(a.out)
+    ap.add_argument("--json", default="out/seed003_wear_study.json")
+    args = ap.parse_args(argv)
+    out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     import matplotlib
     matplotlib.use("Agg")
@@ -190,7 +191,9 @@ def main(argv=None):
     res["quadrature_convergence_V_dot_m3_s"] = conv
     res["runtime_s"] = time.time() - t0
 
-    (out / "seed003_wear_study.json").write_text(json.dumps(res, indent=1))
+    jpath = Path(args.json)
+    jpath.parent.mkdir(parents=True, exist_ok=True)
+    jpath.write_text(json.dumps(res, indent=1))
 
     # ---- figures -------------------------------------------------------------------------------------
     psi = np.array(sp[0]["psi_deg"])
