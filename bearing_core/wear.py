@@ -63,7 +63,7 @@ the smallest loaded-contact deflection of the cycle).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit

@@ -20,9 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
-from bearing_core import film
 from bearing_core.geometry import load_preset
-from bearing_core.wear import (SEED003, SEED003_AS_PRINTED, operating_point_wear, wear_quadrature, wear_report)
+from bearing_core.wear import SEED003, SEED003_AS_PRINTED, operating_point_wear, wear_rates, wear_report
 
 RPM = math.pi / 30.0
 FZ_PRELOAD = 500.0          # N, seed 003 Fig. 12 "preload 500 N"; assumed for Figs. 5-10
@@ -183,7 +182,6 @@ def main(argv=None):
         "outer_wear_volume_m3": [r["outer_wear_volume_m3"] for r in repF]}
     # quadrature convergence of the ellipse integral on the Fig. 5 case at 10000 rpm
     o = op(g, 10000.0, L5)
-    from bearing_core.wear import wear_rates
     conv = {}
     for n in (8, 16, 32, 48, 96):
         conv[str(n)] = [wear_rates(o[r].states, n_major=n, n_minor=n // 2 if n > 8 else 4).V_dot_total
