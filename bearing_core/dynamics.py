@@ -24,7 +24,13 @@ from .lubricants import get_lubricant
 from .quasistatic import QuasiStaticModel
 
 TRACTION_MODELS = ("lubricated", "coulomb", "kalker")
-INTEGRATORS = ("rk4", "adaptive")
+INTEGRATORS = ("rk4", "adaptive", "implicit", "auto")
+# stats: [0] accepted steps, [1] rejected, [2] rhs calls, [3] last step, [4] failure flag (kernels);
+# integrator='auto' selector: current method, cost of each [rhs equivalents / simulated s], intervals
+# since the last probe, last step of each method
+ST_CUR, ST_C1, ST_C2, ST_AGE, ST_H1, ST_H2, NSTATS = 5, 6, 7, 8, 9, 10, 11
+AUTO_PROBE = 25
+AUTO_CHUNK = 5e-3   # [s] interval on which 'auto' chooses
 COUPLINGS = ("load", "displacement")
 
 
@@ -34,7 +40,10 @@ class DynamicsOptions:
     (mu, regularised as mu tanh(|v| / v_reg), v_reg [m/s]) or 'kalker' (FASTSIM with friction limit mu on a
     kalker_grid x kalker_grid grid, seed 000); u_min: floor of the entrainment speed [m/s];
     zeta: normal contact damping as a fraction of critical for the ball mass [-];
-    integrator: 'rk4' (fixed dt, baseline) or 'adaptive' (Dormand-Prince 5(4), rtol);
+    integrator: 'rk4' (fixed dt, baseline), 'adaptive' (explicit Dormand-Prince 5(4), rtol) or 'implicit'
+    (Rosenbrock-W ROS34PW2 with the bearing's arrow-structured Jacobian, rtol; integrate_rosw) or 'auto'
+    (per requested interval, whichever of 'adaptive' and 'implicit' costs less: implicit wins where
+    the traction is stiff, at low rolling speed and with Kalker creep forces);
     n_major x n_minor: quadrature points over each contact ellipse; reduced: 'auto' | 'full' |
     'axisymmetric' (one representative ball, pure axial load only); pocket/land: penalty stiffness
     [N/m], damping ratio, Coulomb friction; oil_fraction: oil volume fraction of the oil-air mixture for
@@ -133,7 +142,7 @@ class DynamicModel:
         self.t = 0.0
         self.y = None
         self.U = np.zeros(K.NU)
-        self.stats = np.zeros(5)
+        self.stats = np.zeros(NSTATS)
         self.qs = None
 
     # ---- set-up -----------------------------------------------------------------------------
@@ -310,12 +319,21 @@ class DynamicModel:
         rdt = self.opt.record_dt if record_dt is None else float(record_dt)
         nmax = int((t_end - self.t) / rdt) + 2
         rec = np.zeros((nmax, K.NOUT))
-        method = 0 if self.opt.integrator == "rk4" else 1
-        dt0 = self.opt.dt if method == 0 else max(self.stats[3], self.opt.dt) if self.stats[3] > 0 else self.opt.dt
-        self.stats[4] = 0.0
-        n = K.integrate(self.y, self.t, t_end, dt0, method, self.opt.rtol, self._atol, self.P, self.U,
-                        self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
-                        rdt, rec, nmax, self.stats)
+        if self.opt.integrator == "auto" and t_end - self.t > 1.5 * AUTO_CHUNK:
+            # split into chunks (whole multiples of the record interval) and choose per chunk
+            L = rdt * max(1, round(AUTO_CHUNK / rdt))
+            n = 0
+            ta = self.t
+            while ta < t_end - 1e-12:
+                tb = min(ta + L, t_end)
+                if t_end - tb < 0.5 * L:
+                    tb = t_end
+                n += self._integrate(ta, tb, rdt, rec[n:], nmax - n)
+                if self.stats[4] != 0.0:
+                    break
+                ta = tb
+        else:
+            n = self._integrate(self.t, t_end, rdt, rec, nmax)
         if self.stats[4] != 0.0 or not np.all(np.isfinite(self.y)):
             raise FloatingPointError(
                 f"integration failed at t in [{self.t:.6g}, {t_end:.6g}] s "
@@ -323,6 +341,57 @@ class DynamicModel:
                 "reduce dt / rtol or check the inputs")
         self.t = t_end
         return rec[:n]
+
+    def _integrate(self, t_start, t_end, rdt, rec, nmax):
+        """One kernel call from t_start to t_end (state self.y); returns the number of records."""
+        if self.opt.integrator == "auto":
+            method = self._auto_choose()
+        else:
+            method = {"rk4": 0, "adaptive": 1, "implicit": 2}[self.opt.integrator]
+        if method == 0:
+            dt0 = self.opt.dt
+        else:
+            hk = self.stats[ST_H1 if method == 1 else ST_H2]
+            dt0 = hk if hk > 0 else (self.stats[3] if self.stats[3] > 0 else self.opt.dt)
+        self.stats[4] = 0.0
+        before = self.stats[:3].copy()
+        if method == 2:
+            n = K.integrate_rosw(self.y, t_start, t_end, dt0, self.opt.rtol, self._atol, self.P, self.U,
+                                 self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
+                                 rdt, rec, nmax, self.stats)
+        else:
+            n = K.integrate(self.y, t_start, t_end, dt0, method, self.opt.rtol, self._atol, self.P, self.U,
+                            self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
+                            rdt, rec, nmax, self.stats)
+        if method > 0:
+            self.stats[ST_H1 if method == 1 else ST_H2] = self.stats[3]
+            d = self.stats[:3] - before
+            # cost in right-hand-side equivalents per simulated second (deterministic, unlike wall time):
+            # the implicit step adds its linear algebra, measured as ~4 rhs calls per step (7218B, 16 balls)
+            cost = (d[2] + (4.0 * (d[0] + d[1]) if method == 2 else 0.0)) / (t_end - t_start)
+            k = ST_C1 if method == 1 else ST_C2
+            self.stats[k] = cost if self.stats[k] <= 0 else 0.5 * (self.stats[k] + cost)
+        return n
+
+    def _auto_choose(self) -> int:
+        """integrator='auto': run the cheaper of the explicit Dormand-Prince (1) and the Rosenbrock-W (2)
+        integrators, by their measured cost per simulated second (stats[ST_C1], stats[ST_C2]); the
+        other one is probed every AUTO_PROBE intervals, or sooner when the current one becomes much
+        dearer than the other's last cost. The selector state lives in stats, so FMU rollback restores it."""
+        st = self.stats
+        cur = int(st[ST_CUR]) if st[ST_CUR] > 0 else 1
+        other = 3 - cur
+        c_cur, c_oth = st[ST_C1 if cur == 1 else ST_C2], st[ST_C1 if other == 1 else ST_C2]
+        st[ST_AGE] += 1
+        probe = st[ST_AGE] >= AUTO_PROBE or (c_oth > 0 and c_cur > 1.5 * c_oth) or (c_oth <= 0 and st[ST_AGE] >= 2)
+        if probe:
+            st[ST_AGE] = 0
+            st[ST_CUR] = other       # run the other one now; the next choice compares the two costs
+            return other
+        if c_oth > 0 and c_oth < c_cur:
+            cur = other
+        st[ST_CUR] = cur
+        return cur
 
     def _shaft_speed(self, t):
         w, _ = K._shaft(self.U, t)

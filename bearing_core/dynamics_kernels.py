@@ -41,7 +41,7 @@ from numba import njit
 
 from .contact_kernels import (ball_race_contact, contact_kinematics, ellipse_traction, ball_pocket_contact,
                               normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_LUBRICATED)
-from .fastsim import fastsim_traction, PRESSURE_HERTZ
+from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 
 NSTATE_FIXED = 20
 NSB = 9  # states per ball
@@ -83,7 +83,10 @@ for _i, _n in enumerate(OUT_NAMES):   # O_<NAME> integer constants, compile-time
 # per-ball diagnostics columns (ball_details)
 (BD_AI, BD_AO, BD_QI, BD_QO, BD_DI, BD_DO, BD_AI_SEMI, BD_BI, BD_AO_SEMI, BD_BO, BD_PI, BD_PO,
  BD_FTI, BD_FMI, BD_FTO, BD_FMO, BD_VSI, BD_VSO, BD_UI, BD_UO, BD_SPI, BD_SPO, BD_WSI, BD_WSO,
- BD_FPOCKET, NBD) = range(26)
+ BD_FPOCKET,
+ # contributions of the ball to the ring / cage / outer-ring loads (for the implicit integrator's Jacobian)
+ BD_CFRX, BD_CFRY, BD_CFRZ, BD_CMRX, BD_CMRY, BD_CFCX, BD_CFCY, BD_CTC, BD_CFOX, BD_CFOY, NBD) = range(36)
+NCB = 10
 
 
 @njit(cache=True)
@@ -107,7 +110,7 @@ def _race_traction(kalker, a, b, Q, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, t
     """Traction of one ball-race contact on the ball: (F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W]) by
     FASTSIM (kalker) or the ellipse-integrated lubricated / Coulomb law (contact_kernels)."""
     if kalker:
-        ft, fm, mn, pl = fastsim_traction(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, PRESSURE_HERTZ)
+        ft, fm, mn, pl = fastsim_traction_fast(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, PRESSURE_HERTZ)
         # the shear acts on the contact surface, D/2 from the ball centre
         return ft, fm, mn, 0.5 * D * ft, -0.5 * D * fm, pl
     return ellipse_traction(a, b, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, qx, qwx, qy, qwy)
@@ -183,6 +186,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         o = NSTATE_FIXED + NSB * j
         th = y[o]; rb = y[o + 1]; zb = y[o + 2]
         thd = y[o + 3]; rd = y[o + 4]; zd = y[o + 5]
+        s_frx = FRx; s_fry = FRy; s_frz = FRz; s_mrx = MRx; s_mry = MRy
+        s_fcx = FCx; s_fcy = FCy; s_tc = TC; s_fox = FOx; s_foy = FOy
         Wr = y[o + 6]; Wt = y[o + 7]; Wz = y[o + 8]
         c = math.cos(th)
         s = math.sin(th)
@@ -338,6 +343,10 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             bd[j, BD_VSI] = sl_i; bd[j, BD_VSO] = sl_o; bd[j, BD_UI] = u_i; bd[j, BD_UO] = u_o
             bd[j, BD_SPI] = sp_i; bd[j, BD_SPO] = sp_o; bd[j, BD_WSI] = sm_i; bd[j, BD_WSO] = sm_o
             bd[j, BD_FPOCKET] = Fpk
+            bd[j, BD_CFRX] = FRx - s_frx; bd[j, BD_CFRY] = FRy - s_fry; bd[j, BD_CFRZ] = FRz - s_frz
+            bd[j, BD_CMRX] = MRx - s_mrx; bd[j, BD_CMRY] = MRy - s_mry
+            bd[j, BD_CFCX] = FCx - s_fcx; bd[j, BD_CFCY] = FCy - s_fcy; bd[j, BD_CTC] = TC - s_tc
+            bd[j, BD_CFOX] = FOx - s_fox; bd[j, BD_CFOY] = FOy - s_foy
         if j == 0:
             diag[O_BALL0_WR] = Wr
             diag[O_BALL0_WT] = Wt
@@ -604,7 +613,8 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             hmax = t1 - t
             if rec_dt > 0:
                 hmax = min(hmax, max(next_rec - t, 1e-12))
-            h = min(h, hmax)
+            h_prop = h
+            h = min(h, hmax)       # a step shortened to hit a record / the interval end ...
             for i in range(n):
                 yt[i] = y[i] + h * (0.2 * k1[i])
             rhs(t + 0.2 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
@@ -653,6 +663,8 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 fac = min(5.0, max(0.2, fac))
                 err_prev = max(err, 1e-4)
                 h = h * fac
+                if h_prop > h and fac >= 1.0:
+                    h = h_prop     # ... does not shrink the next one
             else:
                 stats[1] += 1
                 if not ok:
@@ -672,3 +684,416 @@ def evaluate(t, y, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd)
     dy = np.empty(y.size)
     rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
     return dy
+
+
+# ---- Rosenbrock-W integrator with a ball-block Jacobian ------------------------------------------
+# ROS34PW2 (Rang & Angermann, BIT Numer. Math. 45 (2005) 761-787): 4 stages, order 3, embedded order 2,
+# L-stable, and a W-method: it keeps order 3 with ANY approximation W of the Jacobian (lagged, finite
+# differences). Hairer & Wanner, Solving ODEs II, Sec. IV.7, form:
+#   (I - h g W) k_i = f(t + a_i h, y + h sum_j A_ij k_j) + h W sum_j G_ij k_j,
+#   y1 = y + h sum b_i k_i,  err = h sum (b_i - bh_i) k_i.
+# W has the bearing's arrow structure: balls do not touch each other, so the ball-ball part is block
+# diagonal (9 x 9 per ball: Hertz normal contact at ~3e4 rad/s and the traction slope, which at low rolling
+# speed damps ball slip at ~1e5 1/s), plus the coupling of every ball to the 20 ring / cage / outer-ring
+# states (the cage pocket contacts are as stiff as the balls). Column k of every ball block comes from ONE
+# right-hand side call that perturbs state k of all balls at once; the rhs reports each ball's share of
+# the ring / cage loads (bd columns BD_C*), which gives the fixed-state rows of those columns per ball.
+# 20 more calls give the fixed-state columns: 29 calls + 1 per Jacobian. The linear systems are solved
+# by eliminating the ball blocks (Schur complement on the 20 fixed states). t is treated as a state with
+# a zero column in W (allowed for a W-method), so no df/dt term appears.
+ROSW_G = 4.3586652150845900e-01
+ROSW_A = np.array([[0.0, 0.0, 0.0, 0.0],
+                   [8.7173304301691801e-01, 0.0, 0.0, 0.0],
+                   [8.4457060015369423e-01, -1.1299064236484185e-01, 0.0, 0.0],
+                   [0.0, 0.0, 1.0, 0.0]])
+ROSW_GAM = np.array([[0.0, 0.0, 0.0, 0.0],
+                     [-8.7173304301691801e-01, 0.0, 0.0, 0.0],
+                     [-9.0338057013044082e-01, 5.4180672388095326e-02, 0.0, 0.0],
+                     [2.4212380706095346e-01, -1.2232505839045147e+00, 5.4526025533510214e-01, 0.0]])
+ROSW_B = np.array([2.4212380706095346e-01, -1.2232505839045147e+00, 1.5452602553351020e+00,
+                   4.3586652150845900e-01])
+ROSW_BH = np.array([3.7810903145819369e-01, -9.6042292212423178e-02, 0.5, 2.1793326075422950e-01])
+ROSW_C = np.array([0.0, 8.7173304301691801e-01, 7.3157995778885238e-01, 1.0])
+JAC_EVERY = 20
+
+
+@njit(cache=True)
+def _lu_factor(M, piv):
+    """In-place LU with partial pivoting of a small dense matrix (Golub & Van Loan Alg. 3.4.1)."""
+    m = M.shape[0]
+    for k in range(m):
+        p = k
+        big = abs(M[k, k])
+        for i in range(k + 1, m):
+            if abs(M[i, k]) > big:
+                big = abs(M[i, k]); p = i
+        piv[k] = p
+        if p != k:
+            for c in range(m):
+                tmp = M[k, c]; M[k, c] = M[p, c]; M[p, c] = tmp
+        d = M[k, k]
+        if d == 0.0:
+            d = 1e-300
+            M[k, k] = d
+        for i in range(k + 1, m):
+            M[i, k] /= d
+            f = M[i, k]
+            if f != 0.0:
+                for c in range(k + 1, m):
+                    M[i, c] -= f * M[k, c]
+
+
+@njit(cache=True)
+def _lu_solve(M, piv, x, o):
+    """Solve (LU) z = x[o:o+m] in place."""
+    m = M.shape[0]
+    for k in range(m):
+        p = piv[k]
+        if p != k:
+            tmp = x[o + k]; x[o + k] = x[o + p]; x[o + p] = tmp
+    for i in range(1, m):
+        s = x[o + i]
+        for c in range(i):
+            s -= M[i, c] * x[o + c]
+        x[o + i] = s
+    for i in range(m - 1, -1, -1):
+        s = x[o + i]
+        for c in range(i + 1, m):
+            s -= M[i, c] * x[o + c]
+        x[o + i] = s / M[i, i]
+
+
+
+
+@njit(cache=True)
+def _lu_factor(M, piv):
+    """In-place LU with partial pivoting of a small dense matrix (Golub & Van Loan Alg. 3.4.1)."""
+    m = M.shape[0]
+    for k in range(m):
+        p = k
+        big = abs(M[k, k])
+        for i in range(k + 1, m):
+            if abs(M[i, k]) > big:
+                big = abs(M[i, k]); p = i
+        piv[k] = p
+        if p != k:
+            for c in range(m):
+                tmp = M[k, c]; M[k, c] = M[p, c]; M[p, c] = tmp
+        d = M[k, k]
+        if d == 0.0:
+            d = 1e-300
+            M[k, k] = d
+        for i in range(k + 1, m):
+            M[i, k] /= d
+            f = M[i, k]
+            if f != 0.0:
+                for c in range(k + 1, m):
+                    M[i, c] -= f * M[k, c]
+
+
+@njit(cache=True)
+def _lu_solve(M, piv, x):
+    """Solve (LU) z = x in place (x: 1-D view of length m)."""
+    m = M.shape[0]
+    for k in range(m):
+        p = piv[k]
+        if p != k:
+            tmp = x[k]; x[k] = x[p]; x[p] = tmp
+    for i in range(1, m):
+        s = x[i]
+        for c in range(i):
+            s -= M[i, c] * x[c]
+        x[i] = s
+    for i in range(m - 1, -1, -1):
+        s = x[i]
+        for c in range(i + 1, m):
+            s -= M[i, c] * x[c]
+        x[i] = s / M[i, i]
+
+
+@njit(cache=True)
+def _cb_rows(P):
+    """Rows of dy that the ball contribution channels BD_CFRX..BD_CFOY enter, and their factors
+    (mirrors the end of rhs: masses, multiplicity and the zeroed rows of each configuration)."""
+    rows = np.array([5, 6, 7, 8, 9, 14, 15, 11, 18, 19])
+    fac = np.zeros(NCB)
+    axisym = P[P_AXISYM] > 0.5
+    mult = P[P_MULT]
+    if P[P_COUPLING] < 0.5:
+        if not axisym:
+            fac[0] = 1.0 / P[P_MI]; fac[1] = 1.0 / P[P_MI]
+            if P[P_FIXTILT] < 0.5:
+                fac[3] = 1.0 / P[P_IT]; fac[4] = 1.0 / P[P_IT]
+        fac[2] = mult / P[P_MI]
+    if not axisym:
+        fac[5] = 1.0 / P[P_MC]; fac[6] = 1.0 / P[P_MC]
+        if P[P_OUTER_ELASTIC] > 0.5:
+            fac[8] = 1.0 / P[P_MO]; fac[9] = 1.0 / P[P_MO]
+    fac[7] = mult / P[P_IC]
+    return rows, fac
+
+
+@njit(cache=True)
+def _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, atol_scale,
+              yt, ft, diag, bd, bd0):
+    """Finite-difference W in arrow form: Wff (20 x 20), Wbf (nb x 9 x 20: ball rows, fixed columns),
+    Wfb (nb x 20 x 9: fixed rows, ball columns), Wbb (nb x 9 x 9). Refreshes f0 and diag at (t, y).
+    Returns the number of rhs calls (30)."""
+    n = y.size
+    nb = Wbb.shape[0]
+    rows, fac = _cb_rows(P)
+    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
+    for k in range(NSTATE_FIXED):
+        for i in range(n):
+            yt[i] = y[i]
+        d = 1.5e-8 * max(abs(y[k]), abs(atol_scale[k]) * 1e2)
+        yt[k] = y[k] + d
+        d = yt[k] - y[k]
+        rhs(t, yt, ft, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+        for r in range(NSTATE_FIXED):
+            Wff[r, k] = (ft[r] - f0[r]) / d
+        for j in range(nb):
+            o = NSTATE_FIXED + NSB * j
+            for r in range(NSB):
+                Wbf[j, r, k] = (ft[o + r] - f0[o + r]) / d
+    for k in range(NSB):
+        for i in range(n):
+            yt[i] = y[i]
+        for j in range(nb):
+            i = NSTATE_FIXED + NSB * j + k
+            sc = abs(atol_scale[i]) * 1e2
+            yt[i] = y[i] + 1.5e-8 * max(abs(y[i]), sc)
+        rhs(t, yt, ft, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
+        for j in range(nb):
+            o = NSTATE_FIXED + NSB * j
+            d = yt[o + k] - y[o + k]
+            for r in range(NSB):
+                Wbb[j, r, k] = (ft[o + r] - f0[o + r]) / d
+            for r in range(NSTATE_FIXED):
+                Wfb[j, r, k] = 0.0
+            for c in range(NCB):
+                Wfb[j, rows[c], k] = fac[c] * (bd[j, BD_CFRX + c] - bd0[j, BD_CFRX + c]) / d
+    # diag must describe (t, y) for the records
+    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    return NSTATE_FIXED + NSB + 2
+
+
+@njit(cache=True)
+def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs):
+    """Factor I - hg W: ball blocks LUb, X_j = (I - hg Wbb_j)^-1 (-hg Wbf_j), Schur complement
+    S = I - hg Wff + hg sum_j Wfb_j X_j on the fixed states."""
+    nb = Wbb.shape[0]
+    nf = NSTATE_FIXED
+    for r in range(nf):
+        for c in range(nf):
+            S[r, c] = -hg * Wff[r, c]
+        S[r, r] += 1.0
+    col = np.empty(NSB)
+    for j in range(nb):
+        for a in range(NSB):
+            for c in range(NSB):
+                LUb[j, a, c] = -hg * Wbb[j, a, c]
+            LUb[j, a, a] += 1.0
+        _lu_factor(LUb[j], pivb[j])
+        for c in range(nf):
+            nz = False
+            for a in range(NSB):
+                col[a] = -hg * Wbf[j, a, c]
+                if col[a] != 0.0:
+                    nz = True
+            if nz:
+                _lu_solve(LUb[j], pivb[j], col)
+            for a in range(NSB):
+                X[j, a, c] = col[a]
+        for r in range(nf):
+            for a in range(NSB):
+                w = Wfb[j, r, a]
+                if w != 0.0:
+                    w *= hg
+                    for c in range(nf):
+                        S[r, c] += w * X[j, a, c]
+    _lu_factor(S, pivs)
+
+
+@njit(cache=True)
+def _w_solve(hg, x, Wfb, LUb, pivb, X, S, pivs, tmp):
+    """x <- (I - hg W)^-1 x with the factors of _w_factor (tmp: nb x 9 work array)."""
+    nb = LUb.shape[0]
+    nf = NSTATE_FIXED
+    for j in range(nb):
+        o = nf + NSB * j
+        for a in range(NSB):
+            tmp[j, a] = x[o + a]
+        _lu_solve(LUb[j], pivb[j], tmp[j])
+        # r_f <- r_f - A_fb y_b with A_fb = -hg Wfb
+        for r in range(nf):
+            acc = 0.0
+            for a in range(NSB):
+                acc += Wfb[j, r, a] * tmp[j, a]
+            x[r] += hg * acc
+    _lu_solve(S, pivs, x[:nf])
+    for j in range(nb):
+        o = nf + NSB * j
+        for a in range(NSB):
+            acc = tmp[j, a]
+            for c in range(nf):
+                acc -= X[j, a, c] * x[c]
+            x[o + a] = acc
+
+
+@njit(cache=True)
+def _w_matvec(v, out, Wff, Wbf, Wfb, Wbb):
+    """out <- W v (arrow structure)."""
+    nb = Wbb.shape[0]
+    nf = NSTATE_FIXED
+    for r in range(nf):
+        acc = 0.0
+        for c in range(nf):
+            acc += Wff[r, c] * v[c]
+        out[r] = acc
+    for j in range(nb):
+        o = nf + NSB * j
+        for r in range(nf):
+            acc = 0.0
+            for a in range(NSB):
+                acc += Wfb[j, r, a] * v[o + a]
+            out[r] += acc
+        for a in range(NSB):
+            acc = 0.0
+            for c in range(NSB):
+                acc += Wbb[j, a, c] * v[o + c]
+            for c in range(nf):
+                acc += Wbf[j, a, c] * v[c]
+            out[o + a] = acc
+
+
+@njit(cache=True)
+def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
+                   rec_dt, rec, nrec_max, stats):
+    """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate()."""
+    n = y.size
+    nb = int(P[P_NB])
+    nf = NSTATE_FIXED
+    f0 = np.empty(n)
+    ks = np.empty((4, n))
+    yt = np.empty(n)
+    ft = np.empty(n)
+    r = np.empty(n)
+    v = np.empty(n)
+    wv = np.empty(n)
+    ynew = np.empty(n)
+    Wff = np.zeros((nf, nf))
+    Wbf = np.zeros((nb, NSB, nf))
+    Wfb = np.zeros((nb, nf, NSB))
+    Wbb = np.zeros((nb, NSB, NSB))
+    LUb = np.empty((nb, NSB, NSB))
+    pivb = np.zeros((nb, NSB), dtype=np.int64)
+    X = np.empty((nb, NSB, nf))
+    S = np.empty((nf, nf))
+    pivs = np.zeros(nf, dtype=np.int64)
+    tmp = np.empty((nb, NSB))
+    diag = np.empty(NOUT)
+    bd = np.empty((nb, NBD))
+    bd0 = np.empty((nb, NBD))
+    nrec = 0
+    t = t0
+    next_rec = t0 if rec_dt > 0 else 1e300
+    h = h0
+    h_lu = -1.0
+    jac_age = JAC_EVERY
+    nrej = 0
+    err_prev = 1e-4
+    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    stats[2] += 1
+    while t < t1 - 1e-15:
+        if jac_age >= JAC_EVERY:
+            stats[2] += _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy,
+                                  qwy, atol_scale, yt, ft, diag, bd, bd0)
+            jac_age = 0
+            h_lu = -1.0
+        if t >= next_rec - 1e-12 and nrec < nrec_max:
+            for k in range(NOUT):
+                rec[nrec, k] = diag[k]          # diag belongs to the last rhs(t, y) call (f0)
+            nrec += 1
+            next_rec += rec_dt
+        hmax = t1 - t
+        if rec_dt > 0:
+            hmax = min(hmax, max(next_rec - t, 1e-12))
+        hs = min(h, hmax)
+        if hs != h_lu:
+            _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs)
+            h_lu = hs
+        hg = hs * ROSW_G
+        ok = True
+        for s in range(4):
+            if s == 0:
+                for i in range(n):
+                    r[i] = f0[i]
+            else:
+                for i in range(n):
+                    acc = 0.0
+                    acg = 0.0
+                    for q in range(s):
+                        acc += ROSW_A[s, q] * ks[q, i]
+                        acg += ROSW_GAM[s, q] * ks[q, i]
+                    yt[i] = y[i] + hs * acc
+                    v[i] = acg
+                rhs(t + ROSW_C[s] * hs, yt, r, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd,
+                    False)
+                _w_matvec(v, wv, Wff, Wbf, Wfb, Wbb)
+                for i in range(n):
+                    r[i] += hs * wv[i]
+            _w_solve(hg, r, Wfb, LUb, pivb, X, S, pivs, tmp)
+            for i in range(n):
+                ks[s, i] = r[i]
+                if not math.isfinite(r[i]):
+                    ok = False
+        stats[2] += 3
+        acc2 = 0.0
+        if ok:
+            for i in range(n):
+                e = 0.0
+                yn = y[i]
+                for s in range(4):
+                    yn += hs * ROSW_B[s] * ks[s, i]
+                    e += hs * (ROSW_B[s] - ROSW_BH[s]) * ks[s, i]
+                ynew[i] = yn
+                at = atol_scale[i]
+                sc = -at if at < 0.0 else at + rtol * max(abs(y[i]), abs(yn))
+                q = e / sc
+                acc2 += q * q
+            if not math.isfinite(acc2):
+                ok = False
+        err = math.sqrt(acc2 / n) if ok else 1e300
+        if ok and err <= 1.0:
+            t += hs
+            for i in range(n):
+                y[i] = ynew[i]
+            stats[0] += 1
+            jac_age += 1
+            nrej = 0
+            rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            stats[2] += 1
+            # PI controller for an order-2 error estimate (Gustafsson; Hairer & Wanner II, IV.8)
+            fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 3.0)) * (max(err_prev, 1e-10) ** (0.4 / 3.0))
+            fac = min(4.0, max(0.2, fac))
+            err_prev = max(err, 1e-4)
+            if hs < h:
+                fac = max(fac, 1.0)       # a step shortened to hit a record/interval end: keep h
+                hs = h
+            if fac < 1.0 or fac > 1.25:   # small changes keep h (and the factorisation)
+                h = hs * fac
+        else:
+            stats[1] += 1
+            if not ok:
+                h = hs * 0.25
+            else:
+                h = hs * max(0.2, 0.9 * err ** (-1.0 / 3.0))
+            nrej += 1
+            if nrej >= 2 and jac_age > 0:
+                jac_age = JAC_EVERY       # repeated rejections: refresh the lagged Jacobian
+            if h < 1e-12:
+                stats[4] = 2.0
+                return nrec
+    stats[3] = h
+    return nrec
