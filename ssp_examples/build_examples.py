@@ -1,0 +1,66 @@
+"""Build the FMUs of the SSP examples and generate the SSP archives.
+
+    python ssp_examples/build_examples.py [--dest ssp_examples/build]
+
+-> build/fmus/BearingFMU.fmu (= dist/BearingFMU.fmu, via build_fmu.build), build/fmus/BearingFMUDisplacement.fmu
+(the same FMU with coupling = displacement as start value, via build_fmu.build_variant), the helper FMUs
+(JeffcottRotor, SpeedRamp, InductionMotor, ShaftInertia, FanLoad; sources in <example>/fmus/), and
+build/rotor_bearings.ssp, build/drivetrain.ssp (by each example's make_ssp.py). Nothing here is committed.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(HERE))
+
+HELPERS = {"rotor_bearings": ("jeffcott_rotor.py", "speed_ramp.py"),
+           "drivetrain": ("induction_motor.py", "shaft_inertia.py", "fan_load.py")}
+
+
+def build_fmus(dest: Path) -> Path:
+    from pythonfmu.builder import FmuBuilder
+    import build_fmu
+
+    fmus = Path(dest) / "fmus"
+    fmus.mkdir(parents=True, exist_ok=True)
+    build_fmu.build(fmus)
+    build_fmu.build_variant("BearingFMUDisplacement", {"coupling": "displacement"}, fmus)
+    for example, scripts in HELPERS.items():
+        for s in scripts:
+            FmuBuilder.build_FMU(HERE / example / "fmus" / s, dest=fmus)
+    return fmus
+
+
+def make_ssps(dest: Path, fmus: Path) -> list:
+    import importlib.util
+
+    out = []
+    for example in HELPERS:
+        spec = importlib.util.spec_from_file_location(f"make_ssp_{example}", HERE / example / "make_ssp.py")
+        mod = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = mod
+        spec.loader.exec_module(mod)
+        out.append(mod.make(Path(dest) / f"{example}.ssp", fmu_dir=fmus))
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--dest", default=str(HERE / "build"))
+    a = ap.parse_args(argv)
+    fmus = build_fmus(Path(a.dest))
+    for f in sorted(fmus.glob("*.fmu")):
+        print(f"built {f} ({f.stat().st_size / 1024:.0f} KiB)")
+    for p in make_ssps(Path(a.dest), fmus):
+        print(f"wrote {p}")
+    return 0
+
+
+if __name__ == "__main__":
+    import scipy.linalg  # noqa: F401  (before numba: docs/fmu.md)
+    sys.exit(main())
