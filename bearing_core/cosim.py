@@ -48,6 +48,16 @@ class CoSimParameters:
     free_contact_angle: float = 0.0        # rad
     pocket_clearance: float = 0.0          # m, diametral
     land_clearance: float = 0.0            # m, diametral
+    # oil, churning and the thermal network (issue 5)
+    oil: str = ""                          # lubricants.OILS name ("" = the traction curve's oil)
+    oil_fraction: float = 0.0              # oil volume fraction of the oil-air mixture (drag, churning)
+    churning: bool = False                 # seed 001 Eqs. 12-17 churning torques on cage and inner ring
+    oil_temperature: float = 313.15        # K, oil temperature when thermal is off
+    thermal: bool = False                  # thermal network (seed 001 Eqs. 21-29), stepped every step
+    ambient_temperature: float = 308.15    # K, ambient air and initial temperature of the network
+    oil_inlet_temperature: float = 0.0     # K, oil supply temperature (0 = ambient)
+    oil_flow_rate: float = 0.0             # m^3/s of circulating oil through the bearing
+    thermal_time_scale: float = 1.0        # thermal seconds per simulated second (> 1 fast-forwards heating)
 
 
 class CoSimSession:
@@ -87,11 +97,23 @@ class CoSimSession:
         check_range("housing_stiffness", p.housing_stiffness, 1e4, 1e12, unit="N/m")
         if p.traction_model not in ("lubricated", "coulomb", "kalker"):
             raise BearingInputError("traction_model", p.traction_model, "lubricated | coulomb | kalker")
+        check_range("oil_fraction", p.oil_fraction, 0.0, 1.0)
+        check_range("ambient_temperature", p.ambient_temperature, 233.15, 473.15, unit="K")
+        T_in = p.oil_inlet_temperature or p.ambient_temperature
+        check_range("oil_inlet_temperature", T_in, 233.15, 473.15, unit="K")
+        check_range("oil_flow_rate", p.oil_flow_rate, 0.0, 0.1, unit="m^3/s")
+        td = None
+        if p.thermal:
+            from .thermal import ThermalData
+            td = ThermalData(T_amb=p.ambient_temperature, T_in=T_in, flow_rate=p.oil_flow_rate)
         return DynamicsOptions(
             traction=p.traction_model, lubricant=p.lubricant, mu=p.friction_coefficient,
             mu_pocket=p.cage_friction_coefficient, mu_land=p.cage_friction_coefficient, coupling=p.coupling,
             outer_mount=p.outer_mounting, housing_stiffness=p.housing_stiffness, fixed_tilt=bool(p.fixed_tilt),
-            rtol=p.integrator_tolerance, integrator=p.integrator, reduced="full")
+            rtol=p.integrator_tolerance, integrator=p.integrator, reduced="full",
+            oil=p.oil, oil_fraction=p.oil_fraction, churning=bool(p.churning),
+            oil_temperature=p.oil_temperature if not p.thermal else T_in, thermal=bool(p.thermal),
+            thermal_data=td, thermal_time_scale=p.thermal_time_scale)
 
     @staticmethod
     def _inputs(inputs: dict) -> dict:
@@ -141,7 +163,7 @@ class CoSimSession:
         except BearingInputError as e:
             raise StepRejected(str(e))
         m = self.model
-        saved = (m.y.copy(), m.t, m.U.copy(), m.stats.copy())
+        saved = (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), m.thermal_state())
         try:
             m.set_inputs(loads=(u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"]),
                          displacement=None if self.p.coupling != "displacement" else
@@ -153,7 +175,8 @@ class CoSimSession:
             self._update_outputs()
             self._check_limits()
         except (BearingInputError, FloatingPointError, StepRejected) as e:
-            m.y, m.t, m.U, m.stats = saved
+            m.y, m.t, m.U, m.stats = saved[:4]
+            m.set_thermal_state(saved[4])
             self.t = m.t
             self._update_outputs()
             raise StepRejected(str(e))
@@ -164,7 +187,10 @@ class CoSimSession:
         w = o["shaft_speed"]
         csr = o["cage_speed"] / w if w > 0 else 0.0
         csr_t = o["pure_rolling_cage_speed"] / w if w > 0 else 0.0
-        heat = {k: o[f"P_{k}"] for k in ("race_inner", "race_outer", "pocket", "land", "drag", "damping")}
+        heat = {k: o[f"P_{k}"] for k in ("race_inner", "race_outer", "pocket", "land", "drag", "damping",
+                                         "churn_cage", "churn_ring")}
+        T = self.model.temperatures()
+        fl = self.model.film()
         out = {
             "reaction_Fx": o["Fx"], "reaction_Fy": o["Fy"], "reaction_Fz": o["Fz"],
             "reaction_Mx": o["Mx"], "reaction_My": o["My"],
@@ -183,6 +209,12 @@ class CoSimSession:
             "ball0_slide_roll_i": o["ball0_slide_roll_i"], "ball0_slide_roll_o": o["ball0_slide_roll_o"],
             "ball0_spin_roll_i": o["ball0_spin_roll_i"], "ball0_spin_roll_o": o["ball0_spin_roll_o"],
             "ball0_traction_i": o["ball0_Ft_i"], "ball0_traction_o": o["ball0_Ft_o"],
+            "temperature_ball": T["ball"], "temperature_outer_ring": T["outer"],
+            "temperature_inner_ring": T["inner"], "temperature_oil": T["oil"],
+            "heat_to_ambient": T["heat_to_ambient"], "heat_to_oil_flow": T["heat_to_oil_flow"],
+            "film_min_inner": float(fl["h_min_i"][fl["h_min_i"] > 0].min()) if np.any(fl["h_min_i"] > 0) else 0.0,
+            "film_min_outer": float(fl["h_min_o"][fl["h_min_o"] > 0].min()) if np.any(fl["h_min_o"] > 0) else 0.0,
+            "film_parameter_min": fl["Lambda_min"],
         }
         bad = [k for k, v in out.items() if not math.isfinite(v)]
         if bad:
@@ -198,12 +230,14 @@ class CoSimSession:
     # ---- state for rollback (FMI get/set FMU state) --------------------------------------------
     def get_state(self):
         m = self.model
-        return None if m is None else (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), dict(self.outputs))
+        return None if m is None else (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), dict(self.outputs),
+                                       m.thermal_state())
 
     def set_state(self, state):
         if state is None:
             return
-        y, t, U, stats, outs = state
+        y, t, U, stats, outs, th = state
+        self.model.set_thermal_state(th)
         self.model.y[:] = y
         self.model.t = t
         self.model.U[:] = U

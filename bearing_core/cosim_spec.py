@@ -27,6 +27,8 @@ OUTPUT_SPEC = (
     ("heat_flux_land", "W", "cage-land friction and hydrodynamic drag"),
     ("heat_flux_drag", "W", "ball drag in the oil-air mixture"),
     ("heat_flux_damping", "W", "contact and support damping"),
+    ("heat_flux_churn_cage", "W", "oil churning of the cage (seed 001 Eq. 15; parameter churning)"),
+    ("heat_flux_churn_ring", "W", "oil churning of the inner ring (seed 001 Eq. 17; parameter churning)"),
     ("ir_x", "m", "inner-ring displacement x"),
     ("ir_y", "m", "inner-ring displacement y"),
     ("ir_z", "m", "inner-ring displacement z"),
@@ -47,5 +49,14 @@ OUTPUT_SPEC = (
     ("ball0_spin_roll_o", "1", "ball 0 spin-to-roll ratio, outer contact"),
     ("ball0_traction_i", "N", "ball 0 rolling-direction traction from the inner race (seed 000 Fig. 10)"),
     ("ball0_traction_o", "N", "ball 0 rolling-direction traction from the outer race"),
+    ("temperature_ball", "K", "ball node temperature (thermal network; oil_temperature when thermal is off)"),
+    ("temperature_outer_ring", "K", "outer ring / housing node temperature"),
+    ("temperature_inner_ring", "K", "inner ring / shaft node temperature"),
+    ("temperature_oil", "K", "oil and cage node temperature"),
+    ("heat_to_ambient", "W", "heat rejected by the network to the ambient air"),
+    ("heat_to_oil_flow", "W", "heat carried away by the circulating oil"),
+    ("film_min_inner", "m", "smallest Hamrock-Dowson minimum film thickness of the inner contacts"),
+    ("film_min_outer", "m", "smallest Hamrock-Dowson minimum film thickness of the outer contacts"),
+    ("film_parameter_min", "1", "smallest film parameter Lambda = h_min / composite roughness"),
 )
 OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUT_SPEC)

@@ -55,7 +55,16 @@ class DynamicsOptions:
     moments are then reactions (outputs Mx, My), not loads. outer_mount: 'fixed' or 'elastic' (outer
     ring on a radial housing spring housing_stiffness [N/m] with damping ratio housing_damping_ratio on the
     outer-ring mass). land_viscosity [Pa s]: > 0 makes the guiding land oil-flooded (short journal bearing
-    force and Petroff drag of seed 001 Eqs. 4-5 besides the contact penalty)."""
+    force and Petroff drag of seed 001 Eqs. 4-5 besides the contact penalty).
+    churning: oil churning torques of seed 001 Eqs. 12-17 (bearing_core.churning) on the cage and the inner
+    ring, in the oil-air mixture of oil_fraction (ball drag is the existing Eq. 10 term). oil: name in
+    bearing_core.lubricants (default: the traction curve's oil) for viscosity, density and pressure-
+    viscosity; oil_temperature [K]: its temperature when thermal is off. thermal: a thermal network
+    (bearing_core.thermal, seed 001 Eqs. 21-29; thermal_data: ThermalData) stepped on the slow time scale
+    after every advance() with the mean losses of the interval (times thermal_time_scale, > 1 to
+    fast-forward the heating); its temperatures feed back into the oil viscosity and density (churning,
+    drag, flooded land, film thickness) and the traction curve (lubricants.traction_curve_at at the ball
+    temperature). roughness [m]: rms roughness of each surface for the film parameter Lambda."""
 
     traction: str = "lubricated"
     lubricant: str = "generic-mineral-oil"
@@ -87,6 +96,13 @@ class DynamicsOptions:
     land_viscosity: float = 0.0
     kalker_grid: int = 12
     record_dt: float = 1e-3
+    churning: bool = False
+    oil: str = ""
+    oil_temperature: float = 313.15
+    thermal: bool = False
+    thermal_data: object = None
+    thermal_time_scale: float = 1.0
+    roughness: float = 0.1e-6
 
     def validate(self):
         if self.traction not in TRACTION_MODELS:
@@ -123,6 +139,16 @@ class DynamicsOptions:
             check_range(nm, getattr(self, nm), 0.0, 1.0)
         check_range("cd", self.cd, 0.0, 5.0)
         check_range("record_dt", self.record_dt, 1e-6, 10.0, unit="s")
+        from .lubricants import TRACTION_OIL, get_oil
+        get_oil(self.oil or TRACTION_OIL[self.lubricant])
+        check_range("oil_temperature", self.oil_temperature, 233.15, 473.15, unit="K")
+        check_range("thermal_time_scale", self.thermal_time_scale, 1e-3, 1e6)
+        check_range("roughness", self.roughness, 1e-9, 1e-5, unit="m")
+        if self.thermal_data is not None:
+            from .thermal import ThermalData
+            if not isinstance(self.thermal_data, ThermalData):
+                raise BearingInputError("thermal_data", self.thermal_data, "a bearing_core.thermal.ThermalData")
+            self.thermal_data.validate()
 
 
 class DynamicModel:
@@ -197,7 +223,74 @@ class DynamicModel:
                      if o.outer_mount == "elastic" else 0.0)
         P[K.P_ETA_LAND] = o.land_viscosity
         P[K.P_WLAND] = g.cage.land_width
+        from .churning import ChurningGeometry
+        cg = ChurningGeometry.from_bearing(g)
+        P[K.P_CH_ON] = 1.0 if o.churning else 0.0
+        P[K.P_CH_BC], P[K.P_CH_DC], P[K.P_CH_CC] = cg.B_c, cg.D_c, cg.c_c
+        P[K.P_CH_WALL] = 1.0 if g.cage.guidance == "inner" else 0.0
+        P[K.P_CH_BIR], P[K.P_CH_DLI], P[K.P_CH_CS] = cg.B_ir, cg.D_Li, cg.c_s
         return P
+
+    # ---- oil properties and temperatures ------------------------------------------------------
+    @property
+    def oil_name(self) -> str:
+        from .lubricants import TRACTION_OIL
+        return self.opt.oil or TRACTION_OIL[self.opt.lubricant]
+
+    def apply_temperatures(self, T_oil: float, T_ball: float | None = None):
+        """Set the temperature-dependent parameters [K]: oil-air mixture density and viscosity for churning
+        and drag at T_oil, the flooded land viscosity (if land_viscosity > 0, with thermal on), and the
+        lubricated traction curve at T_ball (lubricants.traction_curve_at)."""
+        from .lubricants import get_oil, traction_curve_at
+        o = self.opt
+        oil = get_oil(self.oil_name)
+        T_oil = min(max(float(T_oil), 233.15), 473.15)
+        rho, eta = oil.density(T_oil), oil.eta(T_oil)
+        X = o.oil_fraction
+        self.P[K.P_RHO_EFF] = 1.2 + X * (rho - 1.2)
+        self.P[K.P_CH_RHO] = 1.2 + X * (rho - 1.2)
+        self.P[K.P_CH_ETA] = 1.8e-5 + X * (eta - 1.8e-5)     # air 1.8e-5 Pa s (churning.churning_losses)
+        if o.thermal and o.land_viscosity > 0:
+            self.P[K.P_ETA_LAND] = eta
+        self._T_oil = T_oil
+        if T_ball is not None and o.traction == "lubricated":
+            T_ball = min(max(float(T_ball), 233.15), 473.15)
+            c = traction_curve_at(o.lubricant, T_ball)
+            self._tp = CK.traction_params(o.mu, o.v_reg, c.A, c.B, c.C, c.D, o.u_min)
+
+    def film(self) -> dict:
+        """Hamrock-Dowson film thickness (bearing_core.film, seed 003 Eq. 23) of every ball-race contact at
+        the current instant with the oil at its current temperature: h_c_i, h_min_i, h_c_o, h_min_o [m]
+        (arrays over balls; 0 where unloaded) and the smallest film parameter Lambda_min [-] (two surfaces of
+        rms roughness options.roughness)."""
+        from .film import film_thickness_nb, ellipticity_nb, film_parameter_nb
+        from .lubricants import get_oil
+        g = self.g
+        oil = get_oil(self.oil_name)
+        T = getattr(self, "_T_oil", self.opt.oil_temperature)
+        eta0, alpha = oil.eta(T), oil.alpha(T)
+        Ep = 2.0 / ((1 - g.ring_material.nu ** 2) / g.ring_material.E + (1 - g.ball_material.nu ** 2) / g.ball_material.E)
+        bd = self.ball_details()
+        out = {}
+        lam = np.inf
+        for race, f, sgn in (("i", g.fi, -1.0), ("o", g.fo, 1.0)):
+            Q = bd[f"Q_{race}"]
+            al = bd[f"alpha_{race}"]
+            u = bd[f"u_{race}"]
+            hc = np.zeros(Q.size)
+            hm = np.zeros(Q.size)
+            Ry = f * g.D / (2.0 * f - 1.0)
+            for j in range(Q.size):
+                if Q[j] <= 0 or u[j] <= 0:
+                    continue
+                Rx = 0.5 * g.D * (g.dm + sgn * g.D * math.cos(al[j])) / g.dm
+                k = ellipticity_nb(Rx, Ry, 0)
+                hc[j], hm[j] = film_thickness_nb(u[j], eta0, alpha, Rx, Ry, Ep, Q[j], k, 1.0)
+                lam = min(lam, film_parameter_nb(hm[j], self.opt.roughness, self.opt.roughness))
+            out[f"h_c_{race}"], out[f"h_min_{race}"] = hc, hm
+        out["Lambda_min"] = float(lam) if np.isfinite(lam) else 0.0
+        out["T_oil"] = T
+        return out
 
     def initialize(self, omega: float, loads=(0.0, 0.0, 0.0, 0.0, 0.0), displacement=None, t0: float = 0.0):
         """Start at (near) equilibrium from the quasi-static solution (outer raceway control) at shaft
@@ -259,6 +352,21 @@ class DynamicModel:
         self.U[K.U_FX:K.U_MY + 1] = loads
         self.stats[:] = 0.0
         self._atol = self._atol_scale(nb)
+        self.thermal = None
+        self.apply_temperatures(self.opt.oil_temperature, self.opt.oil_temperature)
+        if self.opt.thermal:
+            from .thermal import ThermalData, ThermalNetwork
+            td = self.opt.thermal_data or ThermalData(T_amb=self.opt.oil_temperature, T_in=self.opt.oil_temperature)
+            qs_b = self.ball_details()
+            Qi = float(np.max(qs_b["Q_i"])) if np.max(qs_b["Q_i"]) > 0 else 1000.0
+            import dataclasses
+            if td.a_i is None:   # contact ellipses of the most loaded ball (seed 001 Eq. 26)
+                j = int(np.argmax(qs_b["Q_i"]))
+                td = dataclasses.replace(td, a_i=float(qs_b["a_i"][j]) or None, b_i=float(qs_b["b_i"][j]) or None,
+                                         a_o=float(qs_b["a_o"][j]) or None, b_o=float(qs_b["b_o"][j]) or None,
+                                         ball_load=Qi)
+            self.thermal = ThermalNetwork(g, oil=self.oil_name, data=td, T0=None)
+            self._apply_thermal()
         return self
 
     def _atol_scale(self, nb):
@@ -339,8 +447,56 @@ class DynamicModel:
                 f"integration failed at t in [{self.t:.6g}, {t_end:.6g}] s "
                 f"({'non-finite state' if self.stats[4] == 1 else 'step size underflow'}); "
                 "reduce dt / rtol or check the inputs")
+        if self.thermal is not None and n > 0:
+            self._thermal_step(rec[:n], (t_end - self.t) * self.opt.thermal_time_scale)
         self.t = t_end
         return rec[:n]
+
+    # ---- thermal network on the slow time scale (seed 001 Eqs. 21-29) -------------------------------
+    def heat_sources(self, rec) -> dict:
+        """Mean loss powers [W] of records (n x NOUT) keyed by the thermal network's sources: race traction
+        with half the contact damping each, pocket, land, churning of cage and inner ring, ball drag."""
+        m = rec.mean(axis=0)
+        I = K.OUT_INDEX
+        dmp = 0.5 * m[I["P_damping"]]
+        return {"Q_br_i": max(m[I["P_race_inner"]] + dmp, 0.0), "Q_br_o": max(m[I["P_race_outer"]] + dmp, 0.0),
+                "Q_bp": max(m[I["P_pocket"]], 0.0), "Q_cg": max(m[I["P_land"]], 0.0),
+                "Q_ch_c": max(m[I["P_churn_cage"]], 0.0), "Q_ch_s": max(m[I["P_churn_ring"]], 0.0),
+                "Q_ch_b": 0.0, "drag": max(m[I["P_drag"]], 0.0)}
+
+    def _thermal_step(self, rec, dt):
+        self.thermal.step(self.heat_sources(rec), dt)
+        self._apply_thermal()
+
+    def _apply_thermal(self):
+        T = self.thermal.temperatures()
+        self.apply_temperatures(T["oil"], T["ball"])
+
+    def thermal_state(self):
+        """Copy of the thermal network state (None without one), for rollback."""
+        if self.thermal is None:
+            return None
+        th = self.thermal
+        return (th.T.copy(), th.E_generated, th.E_ambient, th.E_flow)
+
+    def set_thermal_state(self, st):
+        if st is None or self.thermal is None:
+            return
+        th = self.thermal
+        th.T[:] = st[0]
+        th.E_generated, th.E_ambient, th.E_flow = st[1], st[2], st[3]
+        self._apply_thermal()
+
+    def temperatures(self) -> dict:
+        """Node temperatures [K] (ball, outer, inner, oil) and the heat flows to ambient and to the oil flow [W];
+        the isothermal oil temperature when the thermal network is off."""
+        if self.thermal is None:
+            T = self.opt.oil_temperature
+            return {"ball": T, "outer": T, "inner": T, "oil": T, "heat_to_ambient": 0.0, "heat_to_oil_flow": 0.0}
+        d = dict(self.thermal.temperatures())
+        d["heat_to_ambient"] = self.thermal.heat_to_ambient()
+        d["heat_to_oil_flow"] = self.thermal.heat_to_oil_flow()
+        return d
 
     def _integrate(self, t_start, t_end, rdt, rec, nmax):
         """One kernel call from t_start to t_end (state self.y); returns the number of records."""

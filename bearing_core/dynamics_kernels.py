@@ -42,6 +42,7 @@ from numba import njit
 from .contact_kernels import (ball_race_contact, contact_kinematics, ellipse_traction, ball_pocket_contact,
                               normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_LUBRICATED)
 from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
+from .churning import cylinder_churning_torque
 
 NSTATE_FIXED = 20
 NSB = 9  # states per ball
@@ -51,7 +52,12 @@ NSB = 9  # states per ball
  P_CPOCKET, P_KPOCKET, P_CPOCKETD, P_MUPOCKET, P_CLAND, P_KLAND, P_CLANDD, P_MULAND,
  P_RLAND, P_GUIDE, P_TRACTION, P_ZETA, P_RHO_EFF, P_CD, P_COUPLING, P_AXISYM, P_MULT,
  P_CRX, P_CRY, P_CRZ, P_CRTX, P_CRTY, P_FIXTILT, P_MO, P_KH, P_CH, P_OUTER_ELASTIC,
- P_ETA_LAND, P_WLAND, P_GCOMB, P_NUCOMB, P_FS_NX, P_FS_NY, NPAR) = range(48)
+ P_ETA_LAND, P_WLAND, P_GCOMB, P_NUCOMB, P_FS_NX, P_FS_NY,
+ # oil churning (seed 001 Eqs. 12-17, bearing_core.churning): switch, mixture density and viscosity,
+ # cage surface width / diameter / gap and its wall speed factor (0 fixed wall, 1 shaft-speed wall),
+ # inner-ring churned width / shoulder diameter / gap
+ P_CH_ON, P_CH_RHO, P_CH_ETA, P_CH_BC, P_CH_DC, P_CH_CC, P_CH_WALL, P_CH_BIR, P_CH_DLI, P_CH_CS,
+ NPAR) = range(58)
 
 # ---- input vector indices (float64 array U, held over an advance call) --------------------------
 (U_W0, U_W1, U_T0, U_T1, U_FX, U_FY, U_FZ, U_MX, U_MY,
@@ -67,6 +73,7 @@ OUT_NAMES = (
     "P_drive", "P_ext",
     "P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_damping",
     "P_race_slide", "P_race_spin", "P_race_diffslip",    # the race losses split by motion (both races)
+    "P_churn_cage", "P_churn_ring",                      # oil churning of cage and inner ring (seed 001)
     "KE", "U_elastic",
     "alpha_i_mean", "alpha_o_mean", "Q_i_max", "Q_o_max", "Q_i_min",
     "pure_rolling_cage_speed", "pure_rolling_cage_speed_jh",
@@ -431,6 +438,20 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if P[P_GUIDE] > 0.5:
             TRz -= Th
         P_ld += Th * (wg - wc) - (fhx * vxc + fhy * vyc)
+    # oil churning (seed 001 Eqs. 12-17 as torques, bearing_core.churning): on the cage against its
+    # speed relative to the facing wall, and on the inner ring (the drive supplies it)
+    P_chc = 0.0
+    P_chs = 0.0
+    T_chs = 0.0
+    if P[P_CH_ON] > 0.5:
+        wrel = wc - P[P_CH_WALL] * w
+        Tch = cylinder_churning_torque(P[P_CH_RHO], P[P_CH_ETA], wrel, P[P_CH_BC], P[P_CH_DC], P[P_CH_CC])
+        TC += Tch
+        P_chc = -Tch * wrel
+        if P[P_CH_WALL] > 0.5:
+            TRz -= Tch            # the shaft-speed wall (inner ring) takes the reaction
+        T_chs = cylinder_churning_torque(P[P_CH_RHO], P[P_CH_ETA], w, P[P_CH_BIR], P[P_CH_DLI], P[P_CH_CS])
+        P_chs = -T_chs * w
     # cage equations
     dy[10] = wc
     dy[11] = TC / P[P_IC]
@@ -496,7 +517,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         Pext = U[U_FX] * vxi + U[U_FY] * vyi + U[U_FZ] * vzi + U[U_MX] * wxi + U[U_MY] * wyi
         KE += 0.5 * mi * (vxi * vxi + vyi * vyi + vzi * vzi) + 0.5 * It * (wxi * wxi + wyi * wyi)
     # drive: the shaft must supply the traction torque (TRz is the torque of the balls on the ring)
-    fric = -TRz
+    fric = -TRz - T_chs
     diag[O_T] = t
     diag[O_SHAFT_SPEED] = w
     diag[O_SHAFT_ACCEL] = wdot
@@ -523,6 +544,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     diag[O_P_RACE_SPIN] = P_sp
     diag[O_P_RACE_DIFFSLIP] = P_ri + P_ro - P_sl - P_sp
     diag[O_P_POCKET] = P_pk
+    diag[O_P_CHURN_CAGE] = P_chc
+    diag[O_P_CHURN_RING] = P_chs
     diag[O_P_LAND] = P_ld
     diag[O_P_DRAG] = P_dr
     diag[O_P_DAMPING] = P_dp

@@ -2,11 +2,14 @@
 10,000 rpm/s to 10,000 rpm at 1.4 s, held to 2 s), full 16-ball model.
 
 Prints wall time, simulated time, real-time factor (wall / simulated; < 1 is faster than real time) of
-the production integrator, and its speed-up over the papers' fixed-step RK4 (dt = 1e-5 s) measured in
-the same run, with the relative difference of the mean cage speed over the last 0.3 s between the two.
+the production integrator ('auto' by default: per 5 ms chunk the cheaper of the explicit Dormand-Prince
+5(4) and the Rosenbrock-W ROS34PW2 with the arrow-structured ball/ring/cage Jacobian), and its speed-up
+over the papers' fixed-step RK4 (dt = 1e-5 s) measured in the same run, with the relative difference of
+the mean cage speed over the last 0.3 s between the two; also the explicit and implicit integrators alone.
 Numba compilation is done (or loaded from cache) before timing.
 
     python bench/bench_dynamics.py [--t-end 2.0] [--json] [--fx 1000 --fz 3000] [--traction lubricated]
+                                   [--integrator auto|adaptive|implicit] [--no-others]
 """
 from __future__ import annotations
 
@@ -47,13 +50,16 @@ def main(argv=None):
     ap.add_argument("--traction", default="lubricated", choices=("lubricated", "coulomb", "kalker"))
     ap.add_argument("--mu", type=float, default=0.1)
     ap.add_argument("--rtol", type=float, default=1e-4)
+    ap.add_argument("--integrator", default="auto", choices=("auto", "adaptive", "implicit"),
+                    help="production integrator to time against RK4")
+    ap.add_argument("--no-others", action="store_true", help="skip timing the other two integrators")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args(argv)
     loads = (a.fx, 0.0, a.fz, 0.0, 0.0)
     # warm-up: compile or load the numba cache for both integrators
-    run("adaptive", 0.002, loads, a.traction, a.mu, a.rtol)
-    run("rk4", 0.002, loads, a.traction, a.mu, a.rtol)
-    wall, rec, st = run("adaptive", a.t_end, loads, a.traction, a.mu, a.rtol)
+    for integ in ("adaptive", "implicit", "auto", "rk4"):
+        run(integ, 0.002, loads, a.traction, a.mu, a.rtol)
+    wall, rec, st = run(a.integrator, a.t_end, loads, a.traction, a.mu, a.rtol)
     wall0, rec0, st0 = run("rk4", a.t_end, loads, a.traction, a.mu, a.rtol)
     tail = rec["t"] > a.t_end - 0.3
     tail0 = rec0["t"] > a.t_end - 0.3
@@ -70,17 +76,30 @@ def main(argv=None):
         "baseline_cage_speed_rpm": c0 * 30 / math.pi,
         "steps": int(st[0]), "rejected": int(st[1]), "rhs_calls": int(st[2]),
         "baseline_rhs_calls": int(st0[2]),
-        "loads_N": {"Fx": a.fx, "Fz": a.fz}, "traction": a.traction,
+        "loads_N": {"Fx": a.fx, "Fz": a.fz}, "traction": a.traction, "integrator": a.integrator,
     }
+    if not a.no_others:
+        for integ in ("adaptive", "implicit", "auto"):
+            if integ == a.integrator:
+                continue
+            w2, rec2, st2 = run(integ, a.t_end, loads, a.traction, a.mu, a.rtol)
+            c2 = rec2["cage_speed"][rec2["t"] > a.t_end - 0.3].mean()
+            out[f"{integ}_wall_s"] = w2
+            out[f"{integ}_speedup_vs_rk4"] = wall0 / w2
+            out[f"{integ}_cage_speed_rel_diff"] = abs(c2 / c0 - 1.0)
     if a.json:
         print(json.dumps(out))
     else:
         print(f"7218B seed-000 profile, {a.t_end:g} s simulated, Fx {a.fx:g} N, Fz {a.fz:g} N, {a.traction}")
-        print(f"production (adaptive Dormand-Prince 5(4), rtol {a.rtol:g}): wall {wall:.2f} s, real-time factor {wall / a.t_end:.2f}, "
+        print(f"production ({a.integrator}, rtol {a.rtol:g}): wall {wall:.2f} s, real-time factor {wall / a.t_end:.2f}, "
               f"{int(st[2])} rhs calls ({int(st[0])} steps, {int(st[1])} rejected)")
         print(f"baseline (RK4, dt 1e-5 s): wall {wall0:.2f} s, {int(st0[2])} rhs calls")
         print(f"speed-up vs RK4: {wall0 / wall:.2f}x; mean cage speed over the last 0.3 s: "
               f"{c1 * 30 / math.pi:.1f} vs {c0 * 30 / math.pi:.1f} rpm (rel. diff {abs(c1 / c0 - 1):.2e})")
+        for integ in ("adaptive", "implicit", "auto"):
+            if f"{integ}_wall_s" in out:
+                print(f"  {integ}: wall {out[integ + '_wall_s']:.2f} s, speed-up vs RK4 "
+                      f"{out[integ + '_speedup_vs_rk4']:.2f}x, cage rel. diff {out[integ + '_cage_speed_rel_diff']:.2e}")
     return out
 
 

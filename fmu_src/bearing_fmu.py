@@ -62,6 +62,7 @@ _UNITS = {
     "m": dict(m=1), "m/s": dict(m=1, s=-1), "m/s2": dict(m=1, s=-2), "rad": dict(rad=1),
     "rad/s": dict(rad=1, s=-1), "N": dict(kg=1, m=1, s=-2), "N.m": dict(kg=1, m=2, s=-2),
     "W": dict(kg=1, m=2, s=-3), "Pa": dict(kg=1, m=-1, s=-2), "N/m": dict(kg=1, s=-2), "Pa.s": dict(kg=1, m=-1, s=-1),
+    "K": dict(K=1), "m^3/s": dict(m=3, s=-1),
     "1": dict(),
 }
 _INPUT_DESC = {
@@ -83,11 +84,20 @@ _PARAMS = (
     ("outer_mounting", str, "fixed", None, "outer ring: fixed | elastic (housing spring)", None),
     ("housing_stiffness", float, 1e8, "N/m", "radial housing stiffness for outer_mounting = elastic", (1e4, 1e12)),
     ("fixed_tilt", bool, False, None, "inner ring cannot tilt (shaft held by other bearings)", None),
-    ("integrator", str, "adaptive", None, "adaptive (Dormand-Prince 5(4)) | rk4 (fixed 1e-5 s)", None),
+    ("integrator", str, "adaptive", None, "adaptive (Dormand-Prince 5(4)) | implicit (Rosenbrock-W) | auto | rk4 (fixed 1e-5 s)", None),
     ("integrator_tolerance", float, 1e-4, "1", "relative tolerance of the adaptive integrator", (1e-10, 1e-2)),
     ("free_contact_angle", float, 0.0, "rad", "override of the preset's free contact angle (0: preset)", (0.0, 1.0472)),
     ("pocket_clearance", float, 0.0, "m", "override of the diametral ball-pocket clearance (0: preset)", (0.0, 0.01)),
     ("land_clearance", float, 0.0, "m", "override of the diametral cage-land clearance (0: preset)", (0.0, 0.01)),
+    ("oil", str, "", None, "oil of the viscosity data (bearing_core.lubricants; empty: the traction curve's oil)", None),
+    ("oil_fraction", float, 0.0, "1", "oil volume fraction of the oil-air mixture (ball drag, churning)", (0.0, 1.0)),
+    ("churning", bool, False, None, "oil churning torques on cage and inner ring (seed 001 Eqs. 12-17)", None),
+    ("oil_temperature", float, 313.15, "K", "oil temperature when thermal is off", (233.15, 473.15)),
+    ("thermal", bool, False, None, "thermal network (seed 001 Eqs. 21-29) fed by the losses of every step", None),
+    ("ambient_temperature", float, 308.15, "K", "ambient air temperature and initial temperature", (233.15, 473.15)),
+    ("oil_inlet_temperature", float, 0.0, "K", "oil supply temperature (0: ambient)", (0.0, 473.15)),
+    ("oil_flow_rate", float, 0.0, "m^3/s", "circulating oil flow through the bearing", (0.0, 0.1)),
+    ("thermal_time_scale", float, 1.0, "1", "thermal seconds per simulated second (> 1 fast-forwards heating)", (1e-3, 1e6)),
 )
 
 
