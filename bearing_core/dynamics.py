@@ -17,7 +17,7 @@ import numpy as np
 
 from . import contact_kernels as CK
 from . import dynamics_kernels as K
-from .errors import BearingInputError, check_range
+from .errors import BearingInputError, ConvergenceError, check_range
 from .geometry import BearingGeometry
 from .hertz_tables import HertzInterp
 from .lubricants import get_lubricant
@@ -471,6 +471,40 @@ class DynamicModel:
     def _apply_thermal(self):
         T = self.thermal.temperatures()
         self.apply_temperatures(T["oil"], T["ball"])
+
+    def thermal_equilibrium(self, window: float = 0.05, tol: float = 0.1, max_iter: int = 30) -> dict:
+        """Two-time-scale thermal steady state at the current speed and loads: repeat (advance the dynamics
+        by window [s] at fixed temperatures; mean losses of that window -> steady state of the thermal
+        network -> new temperatures) until no node moves by more than tol [K]. Returns temperatures [K],
+        losses by source, heat generated and rejected (ambient + oil flow) [W], the iterations and the
+        balance (rejected / generated - 1) at the final temperatures."""
+        if self.thermal is None:
+            raise BearingInputError("thermal", False, "True (DynamicsOptions(thermal=True))")
+        check_range("window", window, 1e-3, 10.0, unit="s")
+        for it in range(1, max_iter + 1):
+            rec = self.advance(self.t + window, record_dt=min(window / 20, 1e-3))
+            Q = self.heat_sources(rec)
+            T_old = self.thermal.T.copy()
+            self.thermal.steady_state(Q, set_state=True)
+            self._apply_thermal()
+            if np.max(np.abs(self.thermal.T - T_old)) < tol:
+                break
+        else:
+            raise ConvergenceError(f"thermal equilibrium not reached in {max_iter} iterations of {window} s")
+        # check: one more window at the final temperatures (no update); its losses must equal what the
+        # network rejects at those temperatures
+        th = self.thermal_state()
+        rec = self.advance(self.t + window, record_dt=min(window / 20, 1e-3))
+        self.set_thermal_state(th)
+        Q = self.heat_sources(rec)
+        gen = sum(Q.values())
+        rej = self.thermal.heat_to_ambient() + self.thermal.heat_to_oil_flow()
+        I = K.OUT_INDEX
+        return {"temperatures_K": self.thermal.temperatures(), "losses_W": Q, "heat_generated_W": gen,
+                "heat_rejected_W": rej, "balance": rej / gen - 1.0 if gen > 0 else 0.0, "iterations": it,
+                "drive_power_W": float(rec[:, I["P_drive"]].mean()),
+                "friction_torque_Nm": float(rec[:, I["friction_torque"]].mean()),
+                "cage_speed_rad_s": float(rec[:, I["cage_speed"]].mean())}
 
     def thermal_state(self):
         """Copy of the thermal network state (None without one), for rollback."""
