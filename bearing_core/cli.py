@@ -71,7 +71,7 @@ def build_parser() -> argparse.ArgumentParser:
     dy.add_argument("--mu", type=_finite("--mu"), default=0.1, help="Coulomb friction coefficient [-]")
     dy.add_argument("--mu-cage", type=_finite("--mu-cage"), default=0.1,
                     help="ball-pocket and cage-land friction coefficient [-]")
-    dy.add_argument("--integrator", choices=("adaptive", "rk4"), default="adaptive")
+    dy.add_argument("--integrator", choices=("adaptive", "implicit", "auto", "rk4"), default="adaptive")
     dy.add_argument("--reduced", choices=("auto", "full", "axisymmetric"), default="auto")
     dy.add_argument("--record-dt", type=_finite("--record-dt"), default=1e-3, help="output interval [s]")
     dy.add_argument("--out", default="out", help="output folder (created)")
@@ -91,6 +91,37 @@ def build_parser() -> argparse.ArgumentParser:
     ms.add_argument("--mu", type=_finite("--mu"), default=0.1)
     ms.add_argument("--out", default="out")
     ms.set_defaults(func=cmd_microslip)
+
+    th = sub.add_parser("thermal", help="thermal steady state of the coupled dynamic-thermal model (seed 001): "
+                                         "temperatures, losses by source, heat balance")
+    th.add_argument("--bearing", required=True)
+    th.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"))
+    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
+        th.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
+    th.add_argument("--oil", default="iso-vg32-mineral", help="oil name (bearing_core.lubricants)")
+    th.add_argument("--oil-fraction", type=_finite("--oil-fraction"), default=0.05,
+                    help="oil volume fraction of the oil-air mixture [-]")
+    th.add_argument("--ambient-c", type=_finite("--ambient-c"), default=35.0, help="ambient temperature [degC]")
+    th.add_argument("--oil-inlet-c", type=_finite("--oil-inlet-c"), default=None,
+                    help="oil supply temperature [degC] (default: ambient)")
+    th.add_argument("--oil-flow-lpm", type=_finite("--oil-flow-lpm"), default=0.0,
+                    help="circulating oil flow [L/min]")
+    th.add_argument("--no-churning", action="store_true", help="leave out the churning torques")
+    th.add_argument("--json", action="store_true")
+    th.set_defaults(func=cmd_thermal)
+
+    we = sub.add_parser("wear", help="raceway wear over a duty of hours (seed 003 modified Archard model, "
+                                      "two time scales)")
+    we.add_argument("--bearing", required=True)
+    we.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"))
+    we.add_argument("--fx", type=_finite("--fx"), default=0.0, help="radial load [N]")
+    we.add_argument("--fy", type=_finite("--fy"), default=0.0, help="radial load [N]")
+    we.add_argument("--fz", type=_finite("--fz"), default=0.0, help="axial load [N]")
+    we.add_argument("--mx", type=_finite("--mx"), default=0.0, help="moment [N m]")
+    we.add_argument("--my", type=_finite("--my"), default=0.0, help="moment [N m]")
+    we.add_argument("--hours", type=_finite("--hours"), default=1000.0, help="duration [h]")
+    we.add_argument("--json", action="store_true")
+    we.set_defaults(func=cmd_wear)
 
     pr = sub.add_parser("presets", help="list the bearing presets with their sources")
     pr.add_argument("--json", action="store_true")
@@ -282,6 +313,60 @@ def cmd_microslip(a) -> int:
     summary = {k: float(mp[k]) for k in ("a", "b", "Q", "vs_t", "vs_m", "spin", "u_roll", "F_t", "F_m", "M_n",
                                          "adhesion_fraction")}
     print(json.dumps(dict(summary, png=str(png))))
+    return 0
+
+
+def cmd_thermal(a) -> int:
+    import math
+    from .dynamics import DynamicModel, DynamicsOptions
+    from .geometry import load_preset
+    from .thermal import ThermalData
+
+    T_amb = a.ambient_c + 273.15
+    T_in = (a.oil_inlet_c if a.oil_inlet_c is not None else a.ambient_c) + 273.15
+    td = ThermalData(T_amb=T_amb, T_in=T_in, flow_rate=a.oil_flow_lpm / 60000.0)
+    opts = DynamicsOptions(oil=a.oil, oil_fraction=a.oil_fraction, churning=not a.no_churning, thermal=True,
+                           thermal_data=td, oil_temperature=T_in)
+    m = DynamicModel(load_preset(a.bearing), opts)
+    m.initialize(a.speed_rpm * math.pi / 30, (a.fx, a.fy, a.fz, a.mx, a.my))
+    r = m.thermal_equilibrium()
+    out = {"bearing": a.bearing, "speed_rpm": a.speed_rpm, "loads_N": [a.fx, a.fy, a.fz],
+           "moments_Nm": [a.mx, a.my], "oil": a.oil, "oil_fraction": a.oil_fraction,
+           "ambient_temperature_K": T_amb, "oil_inlet_temperature_K": T_in,
+           "oil_flow_m3_per_s": td.flow_rate,
+           "temperatures_K": r["temperatures_K"], "losses_W": {k: float(v) for k, v in r["losses_W"].items()},
+           "heat_generated_W": float(r["heat_generated_W"]), "heat_rejected_W": float(r["heat_rejected_W"]),
+           "heat_balance": float(r["balance"]), "drive_power_W": r["drive_power_W"],
+           "friction_torque_Nm": r["friction_torque_Nm"], "cage_speed_rpm": r["cage_speed_rad_s"] * 30 / math.pi,
+           "iterations": r["iterations"]}
+    film = m.film()
+    out["film_min_inner_m"] = float(film["h_min_i"][film["h_min_i"] > 0].min()) if (film["h_min_i"] > 0).any() else 0.0
+    out["film_min_outer_m"] = float(film["h_min_o"][film["h_min_o"] > 0].min()) if (film["h_min_o"] > 0).any() else 0.0
+    out["film_parameter_min"] = film["Lambda_min"]
+    if a.json:
+        print(json.dumps(out))
+    else:
+        print(f"{a.bearing} at {a.speed_rpm:g} rpm, loads {out['loads_N']} N, oil {a.oil} (fraction {a.oil_fraction:g})")
+        for k, v in r["temperatures_K"].items():
+            print(f"  T_{k:6s} {v - 273.15:7.1f} degC")
+        for k, v in out["losses_W"].items():
+            print(f"  {k:7s} {v:9.2f} W")
+        print(f"  generated {out['heat_generated_W']:.2f} W, rejected {out['heat_rejected_W']:.2f} W "
+              f"(balance {out['heat_balance']:+.2e}); friction torque {out['friction_torque_Nm']:.4f} N m; "
+              f"Lambda_min {out['film_parameter_min']:.2f}")
+    return 0
+
+
+def cmd_wear(a) -> int:
+    from .wear import wear_report
+
+    r = wear_report(a.bearing, a.speed_rpm, a.fx, a.fz, a.hours, fy=a.fy, mx=a.mx, my=a.my)
+    if a.json:
+        print(json.dumps(r, default=lambda o: o.tolist() if hasattr(o, "tolist") else str(o)))
+    else:
+        for k, v in r.items():
+            if not isinstance(v, (list, tuple, dict)) and not hasattr(v, "__len__") or isinstance(v, str):
+                print(f"{k:40s} {v}")
     return 0
 
 

@@ -80,3 +80,28 @@ def test_microslip_subcommand(tmp_path, capsys):
                            capture_output=True, text=True)
         assert p.returncode == 2, (bad, p.stderr)
         assert len(p.stderr.strip().splitlines()) == 1
+
+
+def test_thermal_command_json(capsys):
+    """`bearing thermal`: coupled dynamic-thermal steady state; heat generated = rejected within 1%
+    (issue 5) and the drive power equals the heat generated within 1% (energy bookkeeping)."""
+    rc = main(["thermal", "--bearing", "7218B", "--speed-rpm", "4000", "--fz", "3000", "--oil-flow-lpm", "0.5",
+               "--json"])
+    assert rc == 0
+    d = json.loads(capsys.readouterr().out)
+    assert abs(d["heat_balance"]) < 0.01
+    assert abs(d["drive_power_W"] / d["heat_generated_W"] - 1) < 0.01
+    assert set(d["temperatures_K"]) == {"ball", "outer", "inner", "oil"}
+    assert all(T > d["ambient_temperature_K"] for T in d["temperatures_K"].values())
+    assert d["film_parameter_min"] > 0
+
+
+def test_wear_command_json_and_bad_input(capsys):
+    rc = main(["wear", "--bearing", "wan-105", "--speed-rpm", "10000", "--fx", "300", "--fz", "500",
+               "--hours", "100", "--json"])
+    assert rc == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["inner_wear_depth_m"] > 0 and d["outer_wear_volume_m3"] > 0
+    rc = main(["wear", "--bearing", "wan-105", "--speed-rpm", "10000", "--fz", "500", "--hours", "-1"])
+    assert rc == 2
+    assert "hours" in capsys.readouterr().err
