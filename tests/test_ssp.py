@@ -1,0 +1,158 @@
+"""SSP examples (ssp_examples/): the generated SSP archives are read by fmpy's SSP support and by libcosim (Open
+Simulation Platform, C++, libcosimpy from PyPI); both masters run each example in fresh processes (exit status
+checked, docs/fmu.md), agree with each other, and the systems are physically sound.
+
+Short versions of the examples (the long run-ups are in ssp_examples/*/run.py): the rotor at constant speed
+(0.15 s, 1500 steps of 1e-4 s), the drivetrain's first 0.3 s from rest (300 steps of 1e-3 s).
+"""
+import json
+import math
+import os
+import sys
+import time
+import zipfile
+from pathlib import Path
+from xml.etree import ElementTree as ET
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+SSP = ROOT / "ssp_examples"
+for p in (str(ROOT), str(SSP), str(SSP / "rotor_bearings"), str(SSP / "drivetrain")):
+    if p not in sys.path:
+        sys.path.insert(0, p)
+
+from masters import NS, run_subprocess, ssd_info  # noqa: E402
+
+
+def _load(name, path):
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(name, path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[name] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+rotor_make = _load("ssp_rotor_make", SSP / "rotor_bearings" / "make_ssp.py")
+drive_make = _load("ssp_drive_make", SSP / "drivetrain" / "make_ssp.py")
+drive_run = _load("ssp_drive_run", SSP / "drivetrain" / "run.py")
+
+
+@pytest.fixture(scope="module")
+def build(tmp_path_factory):
+    import build_examples
+    d = tmp_path_factory.mktemp("ssp_build")
+    fmus = build_examples.build_fmus(d)
+    env = dict(os.environ, BEARING_FMU_CACHE=str(tmp_path_factory.mktemp("ssp_fmu_cache")))
+    return {"dir": d, "fmus": fmus, "env": env}
+
+
+def _both(build, ssp, tmp_path):
+    R, wall = {}, {}
+    for master in ("fmpy", "libcosim"):
+        t0 = time.perf_counter()
+        summary, R[master], code = run_subprocess(master, ssp, tmp_path / f"{master}.npz", env=build["env"],
+                                                  timeout=300)
+        wall[master] = time.perf_counter() - t0
+        assert code == 0
+        assert all(np.all(np.isfinite(v)) for v in R[master].values())
+    print("wall times [s]:", {k: round(v, 1) for k, v in wall.items()})
+    return R
+
+
+def test_ssd_has_units_bindings_and_is_valid(build, tmp_path):
+    """The generated SSD validates against the SSP 1.0 schema (fmpy's reader), every connector carries a type and
+    its unit (defined in ssd:Units), every connected input is declared, bindings carry the bearing's String
+    parameters and the start values of the bearing inputs, and the OSP step annotation is there."""
+    from fmpy.ssp.ssd import read_ssd
+    ssp = rotor_make.make(tmp_path / "rotor.ssp", rotor_make.RotorDesign(stop_time=0.01), fmu_dir=build["fmus"])
+    read_ssd(str(ssp))                                  # raises on a schema violation
+    root = ET.fromstring(zipfile.ZipFile(ssp).read("SystemStructure.ssd"))
+    units = {u.get("name") for u in root.findall("ssd:Units/ssc:Unit", NS)}
+    for c in root.findall(".//ssd:Connector", NS):
+        real = c.find("ssc:Real", NS)
+        assert real is not None
+        assert real.get("unit") is None or real.get("unit") in units
+    info = ssd_info(ssp)
+    a = info["components"]["bearing_A"]
+    assert a["parameters"]["coupling"] == ("String", "displacement")
+    assert a["parameters"]["bearing"] == ("String", "7218B")
+    assert a["parameters"]["dz"][0] == "Real" and float(a["parameters"]["dz"][1]) > 0   # preloaded start pose
+    assert info["step"] == 1e-4
+    ends = {(c.get("endElement"), c.get("endConnector")) for c in root.findall(".//ssd:Connection", NS)}
+    for name, comp in info["components"].items():
+        for cn, kind in comp["connectors"]:
+            if kind == "input":
+                assert (name, cn) in ends
+    # the reverse mapping of bearing B (mirrored frame) is in the rotor, not in connections
+    assert not root.findall(".//ssc:LinearTransformation", NS)
+
+
+def test_rotor_bearings_two_masters_statics(build, tmp_path):
+    """Jeffcott rotor (100 kg disk, 7218B pair, fixed-position preload, 500 N axial load) at a constant 150 rad/s
+    for 0.15 s, h = 1e-4 s, run by fmpy and by libcosim. Over the last two revolutions:
+    * the radial reactions of the two bearings sum to the rotor's weight within 1% (the rotating unbalance force
+      averages out over whole revolutions; the residue is the decaying start transient of the disk, ~8 N);
+    * the axial reactions (bearing B's frame mirrored) sum to minus the axial load within 20 N (1% of bearing A's
+      axial reaction);
+    * each bearing's radial reaction equals its static load (system statics with bearing_core's quasi-static
+      bearings, make_ssp.py) within 2%;
+    * fmpy and libcosim agree: mean cage speeds within 0.1%, mean reactions within 0.5% (the masters differ only
+      in fmpy's zero inputs during the first step and in time rounding)."""
+    w = 150.0
+    d = rotor_make.RotorDesign(speed_start=w, speed_end=w, ramp_start=0.0, ramp_end=0.0, stop_time=0.15)
+    ssp = rotor_make.make(tmp_path / "rotor.ssp", d, fmu_dir=build["fmus"])
+    meta = json.loads(Path(str(ssp) + ".json").read_text())
+    R = _both(build, ssp, tmp_path)
+    W = d.disk_mass * d.gravity
+    for m, r in R.items():
+        t = r["time"]
+        assert abs(t[-1] - 0.15) < 2e-4 and len(t) >= 1499
+        win = t > t[-1] - 2 * 2 * math.pi / w
+        fy = (r["bearing_A.reaction_Fy"] + r["bearing_B.reaction_Fy"])[win].mean()
+        fz = (r["bearing_A.reaction_Fz"] - r["bearing_B.reaction_Fz"])[win].mean()
+        print(m, "sum Fy", fy, "W", W, "sum Fz", fz)
+        assert abs(fy / W - 1) < 0.01, (m, fy, W)
+        assert abs(fz + d.axial_load) < 20.0, (m, fz)
+        for b in "AB":
+            mean = r[f"bearing_{b}.reaction_Fy"][win].mean()
+            assert abs(mean / meta[f"reaction_{b}"][1] - 1) < 0.02, (m, b, mean, meta[f"reaction_{b}"][1])
+    f, l = R["fmpy"], R["libcosim"]
+    win_f = f["time"] > 0.05
+    win_l = l["time"] > 0.05
+    for b in "AB":
+        cf, cl = f[f"bearing_{b}.cage_speed"][win_f].mean(), l[f"bearing_{b}.cage_speed"][win_l].mean()
+        assert abs(cf / cl - 1) < 1e-3, (b, cf, cl)
+        for k in ("reaction_Fy", "reaction_Fz"):
+            vf, vl = f[f"bearing_{b}.{k}"][win_f].mean(), l[f"bearing_{b}.{k}"][win_l].mean()
+            assert abs(vf / vl - 1) < 5e-3, (b, k, vf, vl)
+
+
+@pytest.mark.slow
+def test_drivetrain_two_masters_energy(build, tmp_path):
+    """Drivetrain from rest (induction motor, 0.3 kg.m2 shaft, fan, two 7218B bearings in load coupling with
+    different loads), first 0.3 s, h = 1e-3 s, run by fmpy and by libcosim:
+    * energy: motor work (motor FMU) = fan work (fan FMU) + bearing losses (time integral of the bearings'
+      heat_flux_total) + kinetic energy of the shaft (shaft FMU) within 2% of the motor work; the residual holds
+      the bearings' own kinetic energy (balls, cage) and the one-step lag of explicit coupling;
+    * the shaft-side bookkeeping closes to 1e-9 of the motor work;
+    * the masters agree: final speed within 1% (fmpy feeds 0 to every input in its first step, so its shaft
+      starts one step later), mean bearing losses over the last 0.1 s within 10% (chaotic cage and pocket
+      contacts at low speed: compare means)."""
+    d = drive_make.DrivetrainDesign(stop_time=0.3)
+    ssp = drive_make.make(tmp_path / "drivetrain.ssp", d, fmu_dir=build["fmus"])
+    R = _both(build, ssp, tmp_path)
+    for m, r in R.items():
+        e = drive_run.energy_balance(r, d.step, drive_make.asdict(d))
+        print(m, json.dumps(e))
+        assert r["shaft.shaft_speed"][-1] > 5.0                     # it runs up on its own
+        assert abs(e["residual_rel"]) < 0.02, (m, e)
+        assert abs(e["shaft_side_residual_J"]) < 1e-9 * e["motor_work_J"] + 1e-9, (m, e)
+    f, l = R["fmpy"], R["libcosim"]
+    assert abs(f["shaft.shaft_speed"][-1] / l["shaft.shaft_speed"][-1] - 1) < 0.01
+    qf = (f["bearing_A.heat_flux_total"] + f["bearing_B.heat_flux_total"])[f["time"] > 0.2].mean()
+    ql = (l["bearing_A.heat_flux_total"] + l["bearing_B.heat_flux_total"])[l["time"] > 0.2].mean()
+    assert abs(qf / ql - 1) < 0.10, (qf, ql)
