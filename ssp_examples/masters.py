@@ -117,7 +117,9 @@ def run_libcosim(ssp, stop_time=None) -> dict:
         raise RuntimeError("libcosim: simulate_until failed")
     out = {}
     for key, idx, ref in watch:
-        tp, steps, vals = obs.time_series_real_samples(slave_index=idx, value_reference=ref, from_step=0,
+        # from step 1: libcosimpy 0.0.6 trims its sample lists by counting zero step numbers, so a step-0 sample
+        # would cost the last sample
+        tp, steps, vals = obs.time_series_real_samples(slave_index=idx, value_reference=ref, from_step=1,
                                                        sample_count=n + 5)
         t = np.asarray(tp, dtype=float) * 1e-9
         keep = t > info["start"] + 0.5 * h           # step results only (from t0 + h), like the fmpy rows
