@@ -33,6 +33,12 @@ def _finite(name):
     return conv
 
 
+def _add_loads(parser):
+    """--fx --fy --fz [N] and --mx --my [N m]: loads on the inner ring."""
+    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
+        parser.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="bearing", description="Angular-contact ball bearing tribo-dynamic model")
     sub = p.add_subparsers(dest="cmd", parser_class=_Parser)
@@ -41,8 +47,7 @@ def build_parser() -> argparse.ArgumentParser:
     q = sub.add_parser("quasistatic", help="Jones-Harris 5-DOF quasi-static solution")
     q.add_argument("--bearing", required=True, help="preset name (see 'bearing presets')")
     q.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"), help="inner-ring speed [rpm]")
-    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
-        q.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
+    _add_loads(q)
     q.add_argument("--control", choices=("outer", "inner", "hybrid"), default="outer",
                    help="raceway control hypothesis (default outer)")
     q.add_argument("--json", action="store_true", help="print one JSON object")
@@ -51,8 +56,7 @@ def build_parser() -> argparse.ArgumentParser:
     sw = sub.add_parser("sweep", help="quasi-static speed sweep: CSV and plots of contact angles, loads, "
                                       "ball speeds and the pure-rolling cage speed")
     sw.add_argument("--bearing", required=True)
-    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
-        sw.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
+    _add_loads(sw)
     sw.add_argument("--speed-max-rpm", type=_finite("--speed-max-rpm"), default=15000.0)
     sw.add_argument("--points", type=int, default=16)
     sw.add_argument("--control", choices=("outer", "inner", "hybrid"), default="outer")
@@ -65,8 +69,7 @@ def build_parser() -> argparse.ArgumentParser:
     dy.add_argument("--profile", default="seed000",
                     help="'seed000' (1000 rpm to 0.5 s, 10,000 rpm/s to 10,000 rpm, held to 2 s) or a CSV "
                          "file with columns time_s, speed_rpm")
-    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
-        dy.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
+    _add_loads(dy)
     dy.add_argument("--traction", choices=("lubricated", "coulomb", "kalker"), default="lubricated")
     dy.add_argument("--mu", type=_finite("--mu"), default=0.1, help="Coulomb friction coefficient [-]")
     dy.add_argument("--mu-cage", type=_finite("--mu-cage"), default=0.1,
@@ -81,8 +84,7 @@ def build_parser() -> argparse.ArgumentParser:
                                           "transient run at constant speed and load")
     ms.add_argument("--bearing", required=True)
     ms.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"))
-    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
-        ms.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
+    _add_loads(ms)
     ms.add_argument("--time", type=_finite("--time"), default=0.02, help="instant of the picture [s]")
     ms.add_argument("--ball", type=int, default=0)
     ms.add_argument("--race", choices=("inner", "outer"), default="inner")
@@ -96,8 +98,7 @@ def build_parser() -> argparse.ArgumentParser:
                                          "temperatures, losses by source, heat balance")
     th.add_argument("--bearing", required=True)
     th.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"))
-    for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
-        th.add_argument(f"--{nm}", type=_finite(f"--{nm}"), default=0.0, help=f"load on the inner ring [{unit}]")
+    _add_loads(th)
     th.add_argument("--oil", default="iso-vg32-mineral", help="oil name (bearing_core.lubricants)")
     th.add_argument("--oil-fraction", type=_finite("--oil-fraction"), default=0.05,
                     help="oil volume fraction of the oil-air mixture [-]")
@@ -114,11 +115,7 @@ def build_parser() -> argparse.ArgumentParser:
                                       "two time scales)")
     we.add_argument("--bearing", required=True)
     we.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"))
-    we.add_argument("--fx", type=_finite("--fx"), default=0.0, help="radial load [N]")
-    we.add_argument("--fy", type=_finite("--fy"), default=0.0, help="radial load [N]")
-    we.add_argument("--fz", type=_finite("--fz"), default=0.0, help="axial load [N]")
-    we.add_argument("--mx", type=_finite("--mx"), default=0.0, help="moment [N m]")
-    we.add_argument("--my", type=_finite("--my"), default=0.0, help="moment [N m]")
+    _add_loads(we)
     we.add_argument("--hours", type=_finite("--hours"), default=1000.0, help="duration [h]")
     we.add_argument("--json", action="store_true")
     we.set_defaults(func=cmd_wear)

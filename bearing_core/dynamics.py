@@ -357,14 +357,12 @@ class DynamicModel:
         if self.opt.thermal:
             from .thermal import ThermalData, ThermalNetwork
             td = self.opt.thermal_data or ThermalData(T_amb=self.opt.oil_temperature, T_in=self.opt.oil_temperature)
-            qs_b = self.ball_details()
-            Qi = float(np.max(qs_b["Q_i"])) if np.max(qs_b["Q_i"]) > 0 else 1000.0
-            import dataclasses
             if td.a_i is None:   # contact ellipses of the most loaded ball (seed 001 Eq. 26)
-                j = int(np.argmax(qs_b["Q_i"]))
-                td = dataclasses.replace(td, a_i=float(qs_b["a_i"][j]) or None, b_i=float(qs_b["b_i"][j]) or None,
-                                         a_o=float(qs_b["a_o"][j]) or None, b_o=float(qs_b["b_o"][j]) or None,
-                                         ball_load=Qi)
+                bd = self.ball_details()
+                j = int(np.argmax(bd["Q_i"]))
+                if bd["Q_i"][j] > 0.0 and bd["Q_o"][j] > 0.0:
+                    td = replace(td, a_i=float(bd["a_i"][j]), b_i=float(bd["b_i"][j]), a_o=float(bd["a_o"][j]),
+                                 b_o=float(bd["b_o"][j]), ball_load=float(bd["Q_i"][j]))
             self.thermal = ThermalNetwork(g, oil=self.oil_name, data=td, T0=None)
             self._apply_thermal()
         return self

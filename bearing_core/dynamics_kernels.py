@@ -767,54 +767,6 @@ def _lu_factor(M, piv):
 
 
 @njit(cache=True)
-def _lu_solve(M, piv, x, o):
-    """Solve (LU) z = x[o:o+m] in place."""
-    m = M.shape[0]
-    for k in range(m):
-        p = piv[k]
-        if p != k:
-            tmp = x[o + k]; x[o + k] = x[o + p]; x[o + p] = tmp
-    for i in range(1, m):
-        s = x[o + i]
-        for c in range(i):
-            s -= M[i, c] * x[o + c]
-        x[o + i] = s
-    for i in range(m - 1, -1, -1):
-        s = x[o + i]
-        for c in range(i + 1, m):
-            s -= M[i, c] * x[o + c]
-        x[o + i] = s / M[i, i]
-
-
-
-
-@njit(cache=True)
-def _lu_factor(M, piv):
-    """In-place LU with partial pivoting of a small dense matrix (Golub & Van Loan Alg. 3.4.1)."""
-    m = M.shape[0]
-    for k in range(m):
-        p = k
-        big = abs(M[k, k])
-        for i in range(k + 1, m):
-            if abs(M[i, k]) > big:
-                big = abs(M[i, k]); p = i
-        piv[k] = p
-        if p != k:
-            for c in range(m):
-                tmp = M[k, c]; M[k, c] = M[p, c]; M[p, c] = tmp
-        d = M[k, k]
-        if d == 0.0:
-            d = 1e-300
-            M[k, k] = d
-        for i in range(k + 1, m):
-            M[i, k] /= d
-            f = M[i, k]
-            if f != 0.0:
-                for c in range(k + 1, m):
-                    M[i, c] -= f * M[k, c]
-
-
-@njit(cache=True)
 def _lu_solve(M, piv, x):
     """Solve (LU) z = x in place (x: 1-D view of length m)."""
     m = M.shape[0]
