@@ -50,6 +50,11 @@ def build_parser() -> argparse.ArgumentParser:
     _add_loads(q)
     q.add_argument("--control", choices=("outer", "inner", "hybrid"), default="outer",
                    help="raceway control hypothesis (default outer)")
+    q.add_argument("--traction", choices=("kalker", "coulomb", "lubricated"), default=None,
+                   help="quasi-static TRIBOLOGICAL model with this traction (the dynamics' contact interface) "
+                        "instead of Jones-Harris raceway control")
+    q.add_argument("--mu", type=_finite("--mu"), default=0.1,
+                   help="friction coefficient of --traction kalker / coulomb [-]")
     q.add_argument("--json", action="store_true", help="print one JSON object")
     q.set_defaults(func=cmd_quasistatic)
 
@@ -75,6 +80,8 @@ def build_parser() -> argparse.ArgumentParser:
     dy.add_argument("--mu-cage", type=_finite("--mu-cage"), default=0.1,
                     help="ball-pocket and cage-land friction coefficient [-]")
     dy.add_argument("--integrator", choices=("adaptive", "implicit", "auto", "rk4"), default="adaptive")
+    dy.add_argument("--start", choices=("jones-harris", "tribological"), default="jones-harris",
+                    help="initial state: Jones-Harris quasi-static or the quasi-static tribological model")
     dy.add_argument("--reduced", choices=("auto", "full", "axisymmetric"), default="auto")
     dy.add_argument("--record-dt", type=_finite("--record-dt"), default=1e-3, help="output interval [s]")
     dy.add_argument("--out", default="out", help="output folder (created)")
@@ -167,6 +174,8 @@ def cmd_quasistatic(a) -> int:
     if a.speed_rpm < 0:
         raise _BadArg(f"--speed-rpm = {a.speed_rpm} is invalid; allowed: 0 <= speed <= 190000 rpm")
     g = load_preset(a.bearing)
+    if a.traction is not None:
+        return _tribo_quasistatic(a, g)
     res = solve_quasistatic(g, a.speed_rpm * RPM, (a.fx, a.fy, a.fz, a.mx, a.my), control=a.control)
     d = quasistatic_dict(res)
     if a.json:
@@ -192,6 +201,72 @@ def cmd_quasistatic(a) -> int:
         print("stiffness matrix (rows Fx,Fy,Fz [N], Mx,My [N m]; cols dx,dy,dz [m], tx,ty [rad]):")
         for row in res.stiffness:
             print("  " + " ".join(f"{v:12.4e}" for v in row))
+    return 0
+
+
+def tribo_quasistatic_dict(res) -> dict:
+    """JSON-ready dict of a TriboQuasiStaticResult (keys carry their units); the Jones-Harris start for
+    comparison under 'jones_harris'."""
+    g = res.geometry
+    deg = np.degrees
+    jh = res.jones_harris
+    return {
+        "bearing": g.name, "model": "tribological", "traction": res.traction, "mu": res.mu,
+        "speed_rpm": res.omega / RPM,
+        "loads": dict(zip(("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm"), map(float, res.loads))),
+        "psi_deg": deg(res.psi).tolist(),
+        "alpha_i_deg": deg(res.alpha_i).tolist(), "alpha_o_deg": deg(res.alpha_o).tolist(),
+        "Q_i_N": res.Q_i.tolist(), "Q_o_N": res.Q_o.tolist(),
+        "a_i_m": res.a_i.tolist(), "b_i_m": res.b_i.tolist(), "a_o_m": res.a_o.tolist(), "b_o_m": res.b_o.tolist(),
+        "omega_m_rpm": (res.orbit_speed / RPM).tolist(),
+        "ball_omega_rpm": (res.omega_ball / RPM).tolist(),
+        "ball_omega_axes": "absolute angular velocity (radial, tangential, axial) in the ball's local frame",
+        "attitude_deg": deg(res.attitude).tolist(), "yaw_deg": deg(res.yaw).tolist(),
+        "slide_roll_i": res.slide_roll_i.tolist(), "slide_roll_o": res.slide_roll_o.tolist(),
+        "spin_roll_i": res.spin_roll_i.tolist(), "spin_roll_o": res.spin_roll_o.tolist(),
+        "Ft_i_N": res.Ft_i.tolist(), "Fm_i_N": res.Fm_i.tolist(), "Ft_o_N": res.Ft_o.tolist(),
+        "Fm_o_N": res.Fm_o.tolist(),
+        "cage_speed_rpm": res.cage_speed / RPM,
+        "friction_torque_Nm": res.friction_torque,
+        "losses_W": res.losses,
+        "reaction": dict(zip(("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm"), map(float, res.reaction))),
+        "displacement": dict(zip(("dx_m", "dy_m", "dz_m", "tx_rad", "ty_rad"), map(float, res.u))),
+        "equilibrium_residual_N": res.residual,
+        "jones_harris": {"cage_speed_rpm": jh.cage_speed / RPM, "alpha_i_deg": deg(jh.alpha_i).tolist(),
+                         "alpha_o_deg": deg(jh.alpha_o).tolist(), "beta_deg": deg(jh.beta).tolist(),
+                         "omega_m_rpm": (jh.omega_m / RPM).tolist()},
+    }
+
+
+def _tribo_quasistatic(a, g) -> int:
+    from .dynamics import DynamicsOptions
+    from .quasistatic_tribo import solve_tribo_quasistatic
+    if a.speed_rpm * RPM < 1.0:
+        raise _BadArg(f"--speed-rpm = {a.speed_rpm} is invalid with --traction; allowed: 10 <= speed <= 190000 rpm "
+                      "(the tribological model needs rolling)")
+    opt = DynamicsOptions(traction=a.traction, mu=a.mu)
+    res = solve_tribo_quasistatic(g, a.speed_rpm * RPM, (a.fx, a.fy, a.fz, a.mx, a.my), opt)
+    d = tribo_quasistatic_dict(res)
+    if a.json:
+        print(json.dumps(d))
+        return 0
+    print(f"bearing {g.name}  speed {a.speed_rpm:g} rpm  quasi-static tribological model, {a.traction} traction "
+          f"(mu {a.mu:g})")
+    print(f"loads  Fx {a.fx:g} N  Fy {a.fy:g} N  Fz {a.fz:g} N  Mx {a.mx:g} N m  My {a.my:g} N m")
+    u = res.u
+    print(f"displacement  dx {u[0]*1e6:.3f} um  dy {u[1]*1e6:.3f} um  dz {u[2]*1e6:.3f} um  "
+          f"tx {u[3]*1e3:.4f} mrad  ty {u[4]*1e3:.4f} mrad")
+    print(f"cage speed (mean orbit) {d['cage_speed_rpm']:.1f} rpm (Jones-Harris {d['jones_harris']['cage_speed_rpm']:.1f})"
+          f"   friction torque {res.friction_torque:.4f} N m   residual {res.residual:.1e} N")
+    print(f"{'ball':>4} {'psi':>6} {'a_i':>7} {'a_o':>7} {'Q_i':>9} {'Q_o':>9} {'w_m':>8} {'att':>7} {'yaw':>8} "
+          f"{'sl/r_i':>8} {'sl/r_o':>8} {'sp/r_i':>7} {'sp/r_o':>7}")
+    print(f"{'':>4} {'deg':>6} {'deg':>7} {'deg':>7} {'N':>9} {'N':>9} {'rpm':>8} {'deg':>7} {'deg':>8} "
+          f"{'-':>8} {'-':>8} {'-':>7} {'-':>7}")
+    for j in range(g.Z):
+        print(f"{j:4d} {d['psi_deg'][j]:6.1f} {d['alpha_i_deg'][j]:7.3f} {d['alpha_o_deg'][j]:7.3f} "
+              f"{res.Q_i[j]:9.2f} {res.Q_o[j]:9.2f} {d['omega_m_rpm'][j]:8.1f} {d['attitude_deg'][j]:7.3f} "
+              f"{d['yaw_deg'][j]:8.4f} {d['slide_roll_i'][j]:8.5f} {d['slide_roll_o'][j]:8.5f} "
+              f"{d['spin_roll_i'][j]:7.4f} {d['spin_roll_o'][j]:7.4f}")
     return 0
 
 
@@ -250,7 +325,7 @@ def cmd_dynamics(a) -> int:
                           integrator=a.integrator, reduced=a.reduced, record_dt=a.record_dt)
     m = DynamicModel(g, opt)
     loads = (a.fx, a.fy, a.fz, a.mx, a.my)
-    m.initialize(prof[0][1] * RPM, loads, t0=prof[0][0])
+    m.initialize(prof[0][1] * RPM, loads, t0=prof[0][0], start=a.start)
     t0 = time.perf_counter()
 
     def progress(t, t_end):
@@ -271,6 +346,7 @@ def cmd_dynamics(a) -> int:
     summary = {
         "bearing": g.name, "loads": dict(zip(("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm"), loads)),
         "traction": a.traction, "mu": a.mu, "integrator": a.integrator, "reduced_model": bool(m.axisym),
+        "start": a.start,
         "simulated_s": float(d["t"][-1] - d["t"][0]), "wall_s": wall,
         "final_speed_rpm": float(d["shaft_speed"][-1] / RPM),
         "final_cage_speed_rpm": float(d["cage_speed"][tail].mean() / RPM),

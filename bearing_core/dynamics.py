@@ -32,6 +32,7 @@ ST_CUR, ST_C1, ST_C2, ST_AGE, ST_H1, ST_H2, NSTATS = 5, 6, 7, 8, 9, 10, 11
 AUTO_PROBE = 25
 AUTO_CHUNK = 5e-3   # [s] interval on which 'auto' chooses
 COUPLINGS = ("load", "displacement")
+START_MODELS = ("jones-harris", "tribological")
 
 
 @dataclass(frozen=True)
@@ -292,12 +293,19 @@ class DynamicModel:
         out["T_oil"] = T
         return out
 
-    def initialize(self, omega: float, loads=(0.0, 0.0, 0.0, 0.0, 0.0), displacement=None, t0: float = 0.0):
+    def initialize(self, omega: float, loads=(0.0, 0.0, 0.0, 0.0, 0.0), displacement=None, t0: float = 0.0,
+                   start: str = "jones-harris"):
         """Start at (near) equilibrium from the quasi-static solution (outer raceway control) at shaft
         speed omega [rad/s] and loads (Fx, Fy, Fz, Mx, My) [N, N m]. Displacement-driven coupling takes
         ``displacement`` = (dx, dy, dz, tx, ty, vx, vy, vz, wx, wy) [m, rad, m/s, rad/s] instead; the
         quasi-static start then uses the load that this displacement needs (found by the QS solve of the
-        loads returned by a static pass)."""
+        loads returned by a static pass). start: 'jones-harris' (raceway control) or 'tribological' (the
+        quasi-static tribological model with this model's traction, bearing_core.quasistatic_tribo; seed 000
+        Sec. 3.1 stage 1; load-driven ring on a fixed outer ring only; its result is kept in self.tribo_qs)."""
+        if start not in START_MODELS:
+            raise BearingInputError("start", start, " | ".join(START_MODELS))
+        if start == "tribological" and (self.opt.coupling != "load" or self.opt.outer_mount != "fixed"):
+            raise BearingInputError("start", start, "jones-harris with displacement coupling or an elastic outer ring")
         omega = check_range("omega", omega, 0.0, 2.0e4, unit="rad/s")
         loads = np.asarray(loads, dtype=float).reshape(-1)
         if loads.size != 5 or not np.all(np.isfinite(loads)):
@@ -345,6 +353,16 @@ class DynamicModel:
             y[b + 6] = -qs.omega_R[j] * math.sin(qs.beta[j])
             y[b + 7] = 0.0
             y[b + 8] = qs.omega_R[j] * math.cos(qs.beta[j]) + qs.omega_m[j]
+        self.tribo_qs = None
+        if start == "tribological":
+            from .quasistatic_tribo import TriboQuasiStaticModel
+            tq = TriboQuasiStaticModel(g, o).solve(omega, loads)
+            self.tribo_qs = tq
+            y[0:5] = tq.u
+            y[11] = tq.cage_speed
+            for j in range(nb):       # reduced model: ball 0 stands for all (pure axial load: all equal)
+                b, bt = K.NSTATE_FIXED + K.NSB * j, K.NSTATE_FIXED + K.NSB * j
+                y[b + 1:b + 9] = tq.y[bt + 1:bt + 9]
         self.y = y
         self.t = float(t0)
         self.U[K.U_W0] = self.U[K.U_W1] = omega
