@@ -134,7 +134,7 @@ class TriboQuasiStaticModel:
         (largest of |F|, |M|/(dm/2) and 1 N); maxit: residual evaluations of one solve. start: a previous
         solution to start from (speeds scaled to omega), else the Jones-Harris solution; if that start does
         not converge, the solution is continued in speed from 100 rpm (or omega, if lower) in steps of
-        x1.4. Raises ConvergenceError if no step converges."""
+        x2 (a quarter of maxit each). Raises ConvergenceError if no step converges."""
         omega = check_range("omega", omega, 1.0, 2.0e4, unit="rad/s")
         check_range("tol", tol, 1e-12, 1e-2)
         if not isinstance(maxit, int) or not 1 <= maxit <= 100000:
@@ -149,11 +149,11 @@ class TriboQuasiStaticModel:
         w_lo = min(omega, 100.0 * math.pi / 30.0)
         speeds = [w_lo]
         while speeds[-1] < omega:
-            speeds.append(min(speeds[-1] * 1.4, omega))
+            speeds.append(min(speeds[-1] * 2.0, omega))
         prev = None
         for w in speeds:
             try:
-                prev = self._solve_one(w, loads, tol, maxit, prev)
+                prev = self._solve_one(w, loads, tol, max(maxit // 4, 50), prev)
             except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
                 raise ConvergenceError(f"{first}; continuation in speed failed at {w * 30 / math.pi:.0f} rpm: {e}") \
                     from None

@@ -1,0 +1,127 @@
+"""Quasi-static tribological model (bearing_core.quasistatic_tribo): convergence and cost over a matrix of
+cases, and a seed 000 Table 1 analogue (Jones-Harris vs quasi-static tribological vs tribo-dynamic model).
+
+    python bench/bench_tribo_qs.py [--quick] [--out out/]
+
+(a) matrix: 7218B; traction Kalker mu 0.1 and 0.001, Coulomb 0.1, lubricated; 1000 / 3000 / 10,000 rpm;
+    loads (Fx, Fz) = (0, 3000), (1000, 3000), (3000, 2000) N: converged or not, residual evaluations, wall
+    time, cage (mean orbital) speed against Jones-Harris.
+(b) Table 1 analogue: seed 000 compares its J-H model, its quasi-static tribological model and its
+    tribo-dynamic model (mean values) for one bearing and load. Its bearing and loads are not ours to
+    reuse (refs. [37, 44], not given), so the same three columns are computed for 7218B, Kalker mu 0.1,
+    Fx 1000 N, Fz 3000 N at 10,000 rpm; the dynamic column comes from a
+    0.3 s run (full model, started from the tribological solution): inner-ring displacements and cage speed
+    averaged over the last 0.1 s, ball quantities a snapshot at the end of the ball nearest azimuth 0.
+Writes out/bench_tribo_qs.json.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+
+from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.errors import ConvergenceError
+from bearing_core.geometry import load_preset
+from bearing_core.quasistatic_tribo import solve_tribo_quasistatic
+
+RPM = math.pi / 30
+
+
+def matrix(g, quick):
+    rows = []
+    cases = [("kalker", 0.1), ("kalker", 0.001), ("coulomb", 0.1), ("lubricated", 0.1)]
+    speeds = (3000,) if quick else (1000, 3000, 10000)
+    loads = ((0, 3000), (1000, 3000)) if quick else ((0, 3000), (1000, 3000), (3000, 2000))
+    for tr, mu in cases:
+        for n in speeds:
+            for fx, fz in loads:
+                opt = DynamicsOptions(traction=tr, mu=mu)
+                t0 = time.perf_counter()
+                try:
+                    q = solve_tribo_quasistatic(g, n * RPM, (fx, 0, fz, 0, 0), opt)
+                    row = dict(ok=True, evaluations=q.iterations, residual_N=q.residual,
+                               cage_rpm=q.cage_speed / RPM, jh_cage_rpm=q.jones_harris.cage_speed / RPM)
+                except ConvergenceError as e:
+                    row = dict(ok=False, error=str(e)[-120:])
+                row.update(traction=tr, mu=mu, speed_rpm=n, Fx_N=fx, Fz_N=fz, wall_s=time.perf_counter() - t0)
+                rows.append(row)
+                print(f"{tr:10s} mu {mu:<5g} {n:6d} rpm Fx {fx:5d} Fz {fz:5d}: "
+                      + (f"ok  {row['evaluations']:5d} evals {row['wall_s']:6.2f} s  cage {row['cage_rpm']:8.1f} "
+                         f"(J-H {row['jh_cage_rpm']:8.1f}) rpm" if row["ok"] else f"FAIL {row['wall_s']:6.2f} s"),
+                      flush=True)
+    return rows
+
+
+def table1(g, quick):
+    n, loads = 10000.0, (1000.0, 0.0, 3000.0, 0.0, 0.0)
+    opt = DynamicsOptions(traction="kalker", mu=0.1, mu_pocket=0.1, mu_land=0.1, reduced="full", integrator="auto")
+    m = DynamicModel(g, opt)
+    t0 = time.perf_counter()
+    m.initialize(n * RPM, loads, start="tribological")
+    t_qs = time.perf_counter() - t0
+    q, jh = m.tribo_qs, m.qs
+    t_end = 0.1 if quick else 0.3
+    t0 = time.perf_counter()
+    d = records_to_dict(m.advance(t_end, record_dt=1e-4))
+    t_dyn = time.perf_counter() - t0
+    tail = d["t"] >= t_end - (0.03 if quick else 0.1)
+
+    def deg(x):
+        return float(np.degrees(x))
+
+    # ball rows of the dynamic column: snapshot at t_end of the ball nearest azimuth 0 (ball 0 of the
+    # quasi-static models sits at the radial load); ring displacements: mean over the tail
+    bd = m.ball_details()
+    th = (bd["theta"] + math.pi) % (2 * math.pi) - math.pi
+    j = int(np.argmin(np.abs(th)))
+    Wd = bd["omega"][j]
+
+    # J-H: omega_R about the spin axis at attitude beta in the cage frame -> local (r, t, z) absolute
+    W_jh = (-jh.omega_R[0] * math.sin(jh.beta[0]), 0.0, jh.omega_R[0] * math.cos(jh.beta[0]) + jh.omega_m[0])
+    rows = {
+        "inner ring radial displacement dx [m]": (jh.u[0], q.u[0], d["ir_x"][tail].mean()),
+        "inner ring axial displacement dz [m]": (jh.u[2], q.u[2], d["ir_z"][tail].mean()),
+        "inner contact angle, ball at psi = 0 [deg]": (deg(jh.alpha_i[0]), deg(q.alpha_i[0]), deg(bd["alpha_i"][j])),
+        "outer contact angle, ball at psi = 0 [deg]": (deg(jh.alpha_o[0]), deg(q.alpha_o[0]), deg(bd["alpha_o"][j])),
+        "attitude angle, ball at psi = 0 [deg]": (deg(jh.beta[0]), deg(q.attitude[0]), deg(bd["attitude"][j])),
+        "yaw angle, ball at psi = 0 [deg]": (0.0, deg(q.yaw[0]), deg(bd["yaw"][j])),
+        "Omega_t (paper's w_bx), psi = 0 [rpm]": (W_jh[1] / RPM, q.omega_ball[0, 1] / RPM, Wd[1] / RPM),
+        "Omega_r (paper's w_by), psi = 0 [rpm]": (W_jh[0] / RPM, q.omega_ball[0, 0] / RPM, Wd[0] / RPM),
+        "Omega_z (paper's w_bz), psi = 0 [rpm]": (W_jh[2] / RPM, q.omega_ball[0, 2] / RPM, Wd[2] / RPM),
+        "orbital speed, ball at psi = 0 [rpm]": (jh.omega_m[0] / RPM, q.orbit_speed[0] / RPM, bd["orbit_speed"][j] / RPM),
+        "cage speed (mean orbit / cage) [rpm]": (jh.cage_speed / RPM, q.cage_speed / RPM, d["cage_speed"][tail].mean() / RPM),
+    }
+    print(f"\nTable 1 analogue: 7218B, Kalker mu 0.1, Fx 1000 N, Fz 3000 N, 10,000 rpm "
+          f"(QS {t_qs:.1f} s, dynamics {t_end} s in {t_dyn:.1f} s wall)")
+    print(f"{'item':45s} {'J-H (outer control)':>20s} {'QS tribological':>16s} {'tribo-dynamic':>14s}")
+    for k, (a, b, c) in rows.items():
+        fmt = "{:>20.4e} {:>16.4e} {:>14s}" if "[m]" in k else "{:>20.3f} {:>16.3f} {:>14s}"
+        cs = "n/a" if c is None else (f"{c:.4e}" if "[m]" in k else f"{c:.3f}")
+        print(f"{k:45s} " + fmt.format(a, b, cs))
+    print(f"(dynamic column: ball {j} at psi = {math.degrees(th[j]):.1f} deg at t = {t_end} s)")
+    return {"case": "7218B kalker mu 0.1 Fx 1000 N Fz 3000 N 10000 rpm", "qs_wall_s": t_qs, "dyn_wall_s": t_dyn,
+            "dyn_simulated_s": t_end,
+            "rows": {k: [None if v is None else float(v) for v in r] for k, r in rows.items()}}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--quick", action="store_true", help="a few cases only")
+    ap.add_argument("--out", default="out")
+    a = ap.parse_args()
+    g = load_preset("7218B")
+    res = {"matrix": matrix(g, a.quick), "table1": table1(g, a.quick)}
+    ok = sum(r["ok"] for r in res["matrix"])
+    print(f"\nconverged {ok} of {len(res['matrix'])}")
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "bench_tribo_qs.json").write_text(json.dumps(res, indent=1))
+
+
+if __name__ == "__main__":
+    main()
