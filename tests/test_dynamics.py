@@ -304,3 +304,16 @@ def test_sliding_falls_with_axial_load_in_oil():
         m.advance(0.1)
         slip[fz] = abs(m.ball_details()["slip_i"][0])
     assert slip[20.0] > 3.0 * slip[300.0], slip
+
+
+def test_ball_guided_cage_is_refused_with_a_clear_error():
+    """A ball-guided cage drifts onto a ball in the dynamics (measured, docs/seed000_hypotheses.md): refused
+    with an error naming the field and the allowed values instead of a silent wrong answer."""
+    import dataclasses
+    from bearing_core.dynamics import DynamicModel
+    from bearing_core.errors import BearingInputError
+    from bearing_core.geometry import load_preset
+    g = load_preset("7218B")
+    g = dataclasses.replace(g, cage=dataclasses.replace(g.cage, guidance="ball"))
+    with pytest.raises(BearingInputError, match="cage.guidance"):
+        DynamicModel(g)
