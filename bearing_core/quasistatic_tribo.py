@@ -144,6 +144,8 @@ class TriboQuasiStaticModel:
             raise BearingInputError("loads", loads.tolist(), "5 finite values (Fx, Fy, Fz, Mx, My)")
         try:
             return self._solve_one(omega, loads, tol, maxit, start)
+        except BearingInputError:
+            raise
         except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
             first = e
         w_lo = min(omega, 100.0 * math.pi / 30.0)
@@ -154,6 +156,8 @@ class TriboQuasiStaticModel:
         for w in speeds:
             try:
                 prev = self._solve_one(w, loads, tol, max(maxit // 4, 50), prev)
+            except BearingInputError:
+                raise
             except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
                 raise ConvergenceError(f"{first}; continuation in speed failed at {w * 30 / math.pi:.0f} rpm: {e}") \
                     from None

@@ -105,6 +105,8 @@ def test_input_errors():
         m.solve(0.0, (0, 0, 3000, 0, 0))
     with pytest.raises(BearingInputError, match="loads"):
         m.solve(100.0, (0, 0, float("nan"), 0, 0))
+    with pytest.raises(BearingInputError, match="Fz"):       # an input error, not a solver failure
+        m.solve(100.0, (0, 0, 1e9, 0, 0))
     with pytest.raises(BearingInputError, match="maxit"):
         m.solve(100.0, (0, 0, 3000, 0, 0), maxit=0)
     with pytest.raises(BearingInputError, match="coupling"):
