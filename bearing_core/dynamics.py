@@ -446,7 +446,8 @@ class DynamicModel:
         self.U[K.U_W0], self.U[K.U_W1] = w0, w1
         self.U[K.U_T0], self.U[K.U_T1] = self.t, t_end
         rdt = self.opt.record_dt if record_dt is None else float(record_dt)
-        nmax = int((t_end - self.t) / rdt) + 2
+        # + 1 per auto chunk: float rounding can add one record at a chunk end
+        nmax = int((t_end - self.t) / rdt) + 2 + int((t_end - self.t) / AUTO_CHUNK) + 1
         rec = np.zeros((nmax, K.NOUT))
         if self.opt.integrator == "auto" and t_end - self.t > 1.5 * AUTO_CHUNK:
             # split into chunks (whole multiples of the record interval) and choose per chunk

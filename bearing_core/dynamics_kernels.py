@@ -595,11 +595,14 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         while t < t1 - 1e-15:
             h = min(dt, t1 - t)
             rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            if t >= next_rec - 1e-12 and nrec < nrec_max:
-                for k in range(NOUT):
-                    rec[nrec, k] = diag[k]
-                nrec += 1
-                next_rec += rec_dt
+            if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
+                if nrec < nrec_max:
+                    for k in range(NOUT):
+                        rec[nrec, k] = diag[k]
+                    nrec += 1
+                    next_rec += rec_dt
+                else:
+                    next_rec = 1e300      # record buffer full: stop recording (never stall on it)
             for i in range(n):
                 yt[i] = y[i] + 0.5 * h * k1[i]
             rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
@@ -627,14 +630,19 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         stats[2] += 1
         err_prev = 1e-4
         while t < t1 - 1e-15:
-            if t >= next_rec - 1e-12 and nrec < nrec_max:
-                rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-                for k in range(NOUT):
-                    rec[nrec, k] = diag[k]
-                nrec += 1
-                next_rec += rec_dt
+            if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
+                if nrec < nrec_max:
+                    rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+                    for k in range(NOUT):
+                        rec[nrec, k] = diag[k]
+                    nrec += 1
+                    next_rec += rec_dt
+                else:
+                    # record buffer full: stop recording; a stale next_rec would cap every later step
+                    # at 1e-12 s (a stall)
+                    next_rec = 1e300
             hmax = t1 - t
-            if rec_dt > 0:
+            if rec_dt > 0 and next_rec < t1 - 1e-12:
                 hmax = min(hmax, max(next_rec - t, 1e-12))
             h_prop = h
             h = min(h, hmax)       # a step shortened to hit a record / the interval end ...
@@ -986,13 +994,16 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
                                   qwy, atol_scale, yt, ft, diag, bd, bd0)
             jac_age = 0
             h_lu = -1.0
-        if t >= next_rec - 1e-12 and nrec < nrec_max:
-            for k in range(NOUT):
-                rec[nrec, k] = diag[k]          # diag belongs to the last rhs(t, y) call (f0)
-            nrec += 1
-            next_rec += rec_dt
+        if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
+            if nrec < nrec_max:
+                for k in range(NOUT):
+                    rec[nrec, k] = diag[k]      # diag belongs to the last rhs(t, y) call (f0)
+                nrec += 1
+                next_rec += rec_dt
+            else:
+                next_rec = 1e300                # record buffer full: stop recording (never stall on it)
         hmax = t1 - t
-        if rec_dt > 0:
+        if rec_dt > 0 and next_rec < t1 - 1e-12:
             hmax = min(hmax, max(next_rec - t, 1e-12))
         hs = min(h, hmax)
         if hs != h_lu:
@@ -1054,9 +1065,9 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
             fac = min(4.0, max(0.2, fac))
             err_prev = max(err, 1e-4)
             if hs < h:
-                fac = max(fac, 1.0)       # a step shortened to hit a record/interval end: keep h
-                hs = h
-            if fac < 1.0 or fac > 1.25:   # small changes keep h (and the factorisation)
+                pass                      # a step shortened to hit a record/interval end: keep h
+                                          # (growing it from a short step let h run away, to 1e70)
+            elif fac < 1.0 or fac > 1.25:  # small changes keep h (and the factorisation)
                 h = hs * fac
         else:
             stats[1] += 1

@@ -317,3 +317,24 @@ def test_ball_guided_cage_is_refused_with_a_clear_error():
     g = dataclasses.replace(g, cage=dataclasses.replace(g.cage, guidance="ball"))
     with pytest.raises(BearingInputError, match="cage.guidance"):
         DynamicModel(g)
+
+
+@pytest.mark.parametrize("integrator", ["rk4", "adaptive", "implicit", "auto"])
+def test_fine_records_over_many_auto_chunks_do_not_stall(integrator):
+    """Regression: with a record interval much shorter than the step and an advance() over many 5 ms
+    'auto' chunks, float rounding added one record per chunk until the buffer was full; the kernel then
+    kept capping every step at 1e-12 s (a stall, seen at 7218B 10,000 rpm, Fr 20 kN, Fa 40 kN), and the
+    Rosenbrock step size grew from shortened steps to 1e70. Now: exactly one record per interval, evenly
+    spaced, a sane step size, and a full record buffer ends recording instead of the integration."""
+    m = DynamicModel(load_preset("7218B"), DynamicsOptions(reduced="axisymmetric", integrator=integrator))
+    m.initialize(1000 * RPM, (0.0, 0.0, 3000.0, 0.0, 0.0))
+    rdt, T = 2e-5, 0.03
+    r = records_to_dict(m.advance(T, record_dt=rdt))
+    assert len(r["t"]) == round(T / rdt)
+    assert np.allclose(np.diff(r["t"]), rdt, rtol=1e-6, atol=0)
+    assert 0.0 < m.stats[3] <= 0.01
+    if integrator != "rk4":
+        from bearing_core.dynamics_kernels import NOUT
+        rec = np.zeros((7, NOUT))
+        n = m._integrate(m.t, m.t + 2e-3, rdt, rec, 7)   # a buffer for 7 of the 100 records
+        assert n == 7 and np.all(np.isfinite(m.y)) and m.stats[4] == 0.0
