@@ -9,6 +9,8 @@ class BearingInputError(ValueError):
     """Bad input: ``parameter`` had ``value``, allowed is ``allowed`` (a human-readable range)."""
 
     def __init__(self, parameter: str, value, allowed: str, detail: str = ""):
+        if hasattr(value, "item") and getattr(value, "shape", None) == ():
+            value = value.item()            # numpy scalar: print 0.5, not np.float64(0.5)
         self.parameter = parameter
         self.value = value
         self.allowed = allowed

@@ -164,33 +164,102 @@ class BearingGeometry:
         return d
 
 
-# ---- presets -----------------------------------------------------------------------------
+# ---- presets, catalogue designations and bearing files ----------------------------------------
 def list_presets() -> list[str]:
     return sorted(json.loads(p.read_text())["name"] for p in PRESET_DIR.glob("*.json"))
 
 
-def _preset_path(name: str) -> Path:
+def _is_file_spec(spec) -> bool:
+    s = str(spec)
+    return s.lower().endswith(".json") or "/" in s or "\\" in s
+
+
+def bearing_definition(spec) -> dict:
+    """The bearing definition in user units (see docs/bearing_files.md) for ``spec``: a preset name
+    (list_presets()), a catalogue designation such as ``7210B`` (bearing_core.catalogue, internal geometry
+    estimated), the path of a bearing JSON file, or a dict in that format."""
+    from .catalogue import catalogue_definition, is_catalogue_designation
+
+    if isinstance(spec, dict):
+        return dict(spec)
+    if isinstance(spec, Path) or _is_file_spec(spec):
+        path = Path(spec).expanduser()
+        if not path.is_file():
+            raise BearingInputError("bearing", str(spec), "a preset name, a catalogue designation or an existing "
+                                    "bearing JSON file", "file not found")
+        try:
+            d = json.loads(path.read_text())
+        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
+            raise BearingInputError("bearing", str(spec), "a readable JSON bearing file", str(e)) from None
+        if not isinstance(d, dict):
+            raise BearingInputError("bearing", str(spec), "a JSON object with the bearing-file fields")
+        d.setdefault("name", path.stem)
+        d.setdefault("source", f"bearing file {path.name}")
+        return d
     for p in PRESET_DIR.glob("*.json"):
-        if json.loads(p.read_text())["name"].lower() == str(name).lower():
-            return p
-    raise BearingInputError("bearing", name, "one of " + ", ".join(list_presets()))
+        d = json.loads(p.read_text())
+        if d["name"].lower() == str(spec).lower():
+            return d
+    if is_catalogue_designation(spec):
+        return catalogue_definition(spec)
+    raise BearingInputError("bearing", spec, "one of " + ", ".join(list_presets())
+                            + ", a catalogue designation (70xx/72xx/73xx + C/AC/A/B, e.g. 7210B) or a bearing "
+                            "JSON file (docs/bearing_files.md)")
 
 
-def load_preset(name: str, **overrides) -> BearingGeometry:
-    """Load a named preset (see list_presets()); keyword overrides replace SI fields."""
-    geo = from_dict(json.loads(_preset_path(name).read_text()))
+def load_bearing(spec, **overrides) -> BearingGeometry:
+    """Bearing from a preset name, catalogue designation, bearing JSON file path or definition dict
+    (see bearing_definition()); keyword overrides replace SI fields."""
+    geo = from_dict(bearing_definition(spec))
     return geo.with_overrides(**overrides) if overrides else geo
 
 
-def preset_data(name: str) -> dict:
-    """The raw preset file content (user units, with source and notes)."""
-    return json.loads(_preset_path(name).read_text())
+def load_preset(name, **overrides) -> BearingGeometry:
+    """Load a named preset (see list_presets()); also accepts what load_bearing() accepts."""
+    return load_bearing(name, **overrides)
 
 
-def _req(d: dict, key: str):
+def preset_data(name) -> dict:
+    """The raw definition (user units, with source and notes) of a preset, designation or file."""
+    return bearing_definition(name)
+
+
+# Fields of a bearing definition (docs/bearing_files.md); anything else is refused so that a misspelt
+# optional field does not silently fall back to its default.
+BEARING_FIELDS = (
+    "name", "source", "notes", "estimated", "number_of_balls", "ball_diameter_mm", "pitch_diameter_mm",
+    "free_contact_angle_deg", "diametral_clearance_mm", "inner_raceway_diameter_mm", "outer_raceway_diameter_mm",
+    "fi", "fo", "inner_groove_radius_mm", "outer_groove_radius_mm", "ring_material", "ball_material", "width_mm",
+    "inner_ring_mass_kg", "outer_ring_mass_kg", "inner_ring_inertia_kg_mm2", "inner_ring_tilt_inertia_kg_mm2",
+    "cage",
+)
+CAGE_FIELDS = ("pocket_clearance_mm", "land_clearance_mm", "guidance", "mass_kg", "inertia_kg_mm2",
+               "land_width_mm", "material")
+
+
+def _req(d: dict, key: str, prefix: str = ""):
     if key not in d:
-        raise BearingInputError(key, None, "required field of a bearing definition")
+        raise BearingInputError(prefix + key, None, "required field of a bearing definition")
     return d[key]
+
+
+def _num(d: dict, key: str, lo=0.0, hi=None, lo_incl=False, prefix="", default=None, unit=""):
+    """A finite number from field ``key`` (or ``default`` when absent), range-checked under its own name."""
+    v = d.get(key, default) if default is not None else _req(d, key, prefix)
+    if isinstance(v, bool) or not isinstance(v, (int, float, str)):
+        raise BearingInputError(prefix + key, v, "a number")
+    return check_range(prefix + key, v, lo, hi, lo_incl=lo_incl, unit=unit)
+
+
+def _check_fields(d: dict, allowed, prefix=""):
+    import difflib
+
+    for k in d:
+        if k not in allowed:
+            near = difflib.get_close_matches(str(k), allowed, n=1)
+            hint = f"did you mean '{prefix}{near[0]}'?" if near else "unknown field"
+            raise BearingInputError(prefix + str(k), d[k], "one of the bearing-file fields "
+                                    "(docs/bearing_files.md)", hint)
 
 
 def from_dict(d: dict) -> BearingGeometry:
@@ -201,22 +270,24 @@ def from_dict(d: dict) -> BearingGeometry:
     fi/fo or as groove radii inner_groove_radius_mm / outer_groove_radius_mm.
     """
     mm = 1e-3
-    D = float(_req(d, "ball_diameter_mm")) * mm
-    check_range("ball_diameter_mm", D / mm, 0.0, None, lo_incl=False, unit="mm")
+    if not isinstance(d, dict):
+        raise BearingInputError("bearing", d, "a bearing definition (JSON object)")
+    _check_fields(d, BEARING_FIELDS)
+    D = _num(d, "ball_diameter_mm", unit="mm") * mm
     if "fi" in d:
-        fi = float(d["fi"])
+        fi = _num(d, "fi")
     else:
-        fi = float(_req(d, "inner_groove_radius_mm")) * mm / D
+        fi = _num(d, "inner_groove_radius_mm", unit="mm") * mm / D
     if "fo" in d:
-        fo = float(d["fo"])
+        fo = _num(d, "fo")
     else:
-        fo = float(_req(d, "outer_groove_radius_mm")) * mm / D
+        fo = _num(d, "outer_groove_radius_mm", unit="mm") * mm / D
     check_range("fi", fi, 0.5, 1.0, lo_incl=False, hi_incl=False)
     check_range("fo", fo, 0.5, 1.0, lo_incl=False, hi_incl=False)
     A = (fi + fo - 1.0) * D
     if "inner_raceway_diameter_mm" in d and "outer_raceway_diameter_mm" in d:
-        di = float(d["inner_raceway_diameter_mm"]) * mm
-        do = float(d["outer_raceway_diameter_mm"]) * mm
+        di = _num(d, "inner_raceway_diameter_mm", unit="mm") * mm
+        do = _num(d, "outer_raceway_diameter_mm", unit="mm") * mm
         Pd = do - di - 2.0 * D
         if Pd < 0:
             raise BearingInputError("outer_raceway_diameter_mm", do / mm,
@@ -228,11 +299,11 @@ def from_dict(d: dict) -> BearingGeometry:
             raise BearingInputError("diametral clearance", Pd / mm, f"<= 4 A = {4*A/mm:.4f} mm")
         alpha0 = math.acos(c)
     else:
-        dm = float(_req(d, "pitch_diameter_mm")) * mm
+        dm = _num(d, "pitch_diameter_mm", unit="mm") * mm
         if "free_contact_angle_deg" in d:
-            alpha0 = math.radians(float(d["free_contact_angle_deg"]))
+            alpha0 = math.radians(_num(d, "free_contact_angle_deg", 0.0, 60.0, lo_incl=True, unit="deg"))
         elif "diametral_clearance_mm" in d:
-            Pd = float(d["diametral_clearance_mm"]) * mm
+            Pd = _num(d, "diametral_clearance_mm", lo_incl=True, unit="mm") * mm
             check_range("diametral_clearance_mm", Pd / mm, 0.0, 4 * A / mm, unit="mm")
             alpha0 = math.acos(1.0 - Pd / (2.0 * A))
         else:
@@ -240,26 +311,36 @@ def from_dict(d: dict) -> BearingGeometry:
                                     "give free_contact_angle_deg or diametral_clearance_mm")
     ring_mat = get_material(d.get("ring_material", "steel"))
     ball_mat = get_material(d.get("ball_material", "steel"))
-    c = d.get("cage", {})
-    width = float(_req(d, "width_mm")) * mm
+    c = _req(d, "cage")
+    if not isinstance(c, dict):
+        raise BearingInputError("cage", c, "an object with the cage fields (docs/bearing_files.md)")
+    _check_fields(c, CAGE_FIELDS, "cage.")
+    width = _num(d, "width_mm", unit="mm") * mm
     cage = CageData(
-        pocket_clearance=float(c.get("pocket_clearance_mm", 0.02 * D / mm)) * mm,
-        land_clearance=float(c.get("land_clearance_mm", 0.01 * dm / mm)) * mm,
+        pocket_clearance=_num(c, "pocket_clearance_mm", lo_incl=True, prefix="cage.", default=0.02 * D / mm,
+                              unit="mm") * mm,
+        land_clearance=_num(c, "land_clearance_mm", lo_incl=True, prefix="cage.", default=0.01 * dm / mm,
+                            unit="mm") * mm,
         guidance=str(c.get("guidance", "outer")),
-        mass=float(_req(c, "mass_kg")),
-        inertia=float(_req(c, "inertia_kg_mm2")) * 1e-6,
-        land_width=float(c.get("land_width_mm", 0.2 * width / mm)) * mm,
+        mass=_num(c, "mass_kg", prefix="cage.", unit="kg"),
+        inertia=_num(c, "inertia_kg_mm2", prefix="cage.", unit="kg mm^2") * 1e-6,
+        land_width=_num(c, "land_width_mm", prefix="cage.", default=0.2 * width / mm, unit="mm") * mm,
         material=str(c.get("material", "phenolic")),
     )
+    Z = _as_int("number_of_balls", _req(d, "number_of_balls"))
+    if Z >= 3 and dm * math.sin(math.pi / Z) <= D:
+        zmax = int(math.floor(math.pi / math.asin(min(1.0, D / dm))))
+        raise BearingInputError("number_of_balls (Z)", Z, f"Z <= {zmax} for ball_diameter_mm = {D/mm:.4g} on a "
+                                f"pitch diameter of {dm/mm:.4g} mm", "balls do not fit on the pitch circle")
     return BearingGeometry(
         name=str(_req(d, "name")),
-        Z=_as_int("number_of_balls", _req(d, "number_of_balls")),
+        Z=Z,
         D=D, dm=dm, fi=fi, fo=fo, alpha0=alpha0,
         ring_material=ring_mat, ball_material=ball_mat,
-        inner_ring_mass=float(_req(d, "inner_ring_mass_kg")),
-        outer_ring_mass=float(_req(d, "outer_ring_mass_kg")),
-        inner_ring_inertia=float(_req(d, "inner_ring_inertia_kg_mm2")) * 1e-6,
-        inner_ring_tilt_inertia=float(_req(d, "inner_ring_tilt_inertia_kg_mm2")) * 1e-6,
+        inner_ring_mass=_num(d, "inner_ring_mass_kg", unit="kg"),
+        outer_ring_mass=_num(d, "outer_ring_mass_kg", unit="kg"),
+        inner_ring_inertia=_num(d, "inner_ring_inertia_kg_mm2", unit="kg mm^2") * 1e-6,
+        inner_ring_tilt_inertia=_num(d, "inner_ring_tilt_inertia_kg_mm2", unit="kg mm^2") * 1e-6,
         width=width, cage=cage,
         source=str(d.get("source", "")), notes=str(d.get("notes", "")),
     )
