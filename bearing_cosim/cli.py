@@ -1,15 +1,39 @@
 """The `bearing` console script: bearing_core's subcommands plus `simulate` (drive the FMU with fmpy)."""
 from __future__ import annotations
 
+import argparse
 import json
+import re
 import sys
 from pathlib import Path
 
 from bearing_core import cli as core_cli
 
 
+# argparse takes "-1e-3" for an option name (its negative-number pattern has no exponent), so
+# "--step -1e-3" failed with "expected one argument"; numbers in any float notation are values.
+_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.IGNORECASE)
+
+
+def _package_version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("bearing-tribodynamics")
+    except PackageNotFoundError:
+        return "unknown (not installed)"
+
+
+def _accept_negative_numbers(parser: argparse.ArgumentParser):
+    parser._negative_number_matcher = _NEGATIVE_NUMBER
+    for act in parser._actions:
+        if isinstance(act, argparse._SubParsersAction):
+            for sp in act.choices.values():
+                _accept_negative_numbers(sp)
+
+
 def build_parser():
     p = core_cli.build_parser()
+    p.add_argument("--version", action="version", version=f"bearing-tribodynamics {_package_version()}")
     sub = next(a for a in p._actions if a.dest == "cmd")
     s = sub.add_parser("simulate", help="drive the bearing FMU with fmpy through a speed profile "
                                         "(CSV time_s, speed_rpm [, Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm]) or 'seed000'")
@@ -23,9 +47,51 @@ def build_parser():
     s.add_argument("--traction", choices=("lubricated", "coulomb", "kalker"), default="lubricated")
     s.add_argument("--mu", type=core_cli._finite("--mu"), default=0.1)
     s.add_argument("--mu-cage", type=core_cli._finite("--mu-cage"), default=0.1)
+    s.add_argument("--stop-time", type=core_cli._finite("--stop-time"), default=None,
+                   help="end of the run [s] (default: end of the profile; past it the profile's last values are held)")
+    s.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                   help="set any FMU parameter by its modelDescription name, typed from it (repeatable), "
+                        "e.g. --param integrator=rk4 --param thermal=true")
     s.add_argument("--out", default="out")
     s.set_defaults(func=cmd_simulate)
+    _accept_negative_numbers(p)
     return p
+
+
+def fmu_parameters(fmu: str, pairs) -> dict:
+    """Start values from NAME=VALUE strings, typed by the FMU's modelDescription (Real, Integer, Boolean,
+    String, Enumeration by item name or number); unknown names and values that do not parse are errors."""
+    from fmpy import read_model_description
+
+    md = read_model_description(fmu)
+    settable = {v.name: v for v in md.modelVariables if v.causality in ("parameter", "input")
+                or v.variability == "tunable"}
+    out = {}
+    for pair in pairs:
+        if "=" not in pair:
+            raise core_cli._BadArg(f"--param {pair!r} is invalid; allowed: NAME=VALUE")
+        name, value = (x.strip() for x in pair.split("=", 1))
+        if name not in settable:
+            raise core_cli._BadArg(f"--param {name} is not a parameter of {Path(fmu).name}; allowed: "
+                                   + ", ".join(sorted(settable)))
+        v = settable[name]
+        try:
+            if v.type == "Real":
+                out[name] = float(value)
+            elif v.type == "Integer":
+                out[name] = int(value)
+            elif v.type == "Boolean":
+                if value.lower() not in ("true", "false", "1", "0"):
+                    raise ValueError(value)
+                out[name] = value.lower() in ("true", "1")
+            elif v.type == "Enumeration":
+                items = {it.name: it.value for it in (v.declaredType.items if v.declaredType else [])}
+                out[name] = int(items[value]) if value in items else int(value)
+            else:
+                out[name] = value
+        except (ValueError, KeyError):
+            raise core_cli._BadArg(f"--param {name} = {value!r} is invalid; allowed: a {v.type} value") from None
+    return out
 
 
 def cmd_simulate(a) -> int:
@@ -36,9 +102,12 @@ def cmd_simulate(a) -> int:
         raise core_cli._BadArg(f"--step = {a.step} is invalid; allowed: 1e-5 <= step <= 0.1 s")
     if not (0.0 <= a.mu <= 1.0) or not (0.0 <= a.mu_cage <= 1.0):
         raise core_cli._BadArg(f"--mu = {a.mu}, --mu-cage = {a.mu_cage}: allowed 0 <= value <= 1")
+    if a.stop_time is not None and a.stop_time <= 0:
+        raise core_cli._BadArg(f"--stop-time = {a.stop_time} is invalid; allowed: > 0 s")
     params = {"bearing": a.bearing, "traction_model": a.traction, "friction_coefficient": a.mu,
               "cage_friction_coefficient": a.mu_cage}
-    s = simulate(a.fmu, a.profile, (a.fx, a.fy, a.fz, a.mx, a.my), a.step, params, a.out)
+    params.update(fmu_parameters(a.fmu, a.param))
+    s = simulate(a.fmu, a.profile, (a.fx, a.fy, a.fz, a.mx, a.my), a.step, params, a.out, stop_time=a.stop_time)
     print(f"wrote {s['csv']}, {s['plot']} and {Path(a.out) / 'fmu_simulation_summary.json'}")
     print(json.dumps({k: v for k, v in s.items() if k.startswith("final") or k in ("simulated_s", "wall_s")}))
     return 0

@@ -14,13 +14,24 @@ import numpy as np
 RPM = math.pi / 30.0
 from bearing_core.dynamics import PROFILE_LOAD_COLUMNS as LOAD_COLS, read_profile
 
+def _clip_profile(t, n, loads, t_stop):
+    """The profile on [t0, t_stop]: cut (interpolated at t_stop) or extended holding the last values."""
+    keep = t < t_stop
+    tt = np.append(t[keep], t_stop)
+    f = lambda y: np.append(y[keep], np.interp(t_stop, t, y))
+    return tt, f(n), ({k: f(v) for k, v in loads.items()} if loads else loads)
+
+
 def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: float = 1e-3, params=None,
-             out: str = "out", progress: bool = True) -> dict:
-    """Run the FMU through the profile with fmpy; returns the summary dict (files written to out/)."""
+             out: str = "out", progress: bool = True, stop_time: float | None = None) -> dict:
+    """Run the FMU through the profile with fmpy; returns the summary dict (files written to out/).
+    ``stop_time`` [s] ends the run early, or holds the profile's last values past its end."""
     import fmpy
     from fmpy import read_model_description
 
     t, n, prof_loads = read_profile(profile)
+    if stop_time is not None:
+        t, n, prof_loads = _clip_profile(t, n, prof_loads, float(stop_time))
     md = read_model_description(fmu)
     outputs = [v.name for v in md.modelVariables if v.causality == "output"]
     names = ["shaft_speed", "Fx", "Fy", "Fz", "Mx", "My"]
