@@ -31,17 +31,20 @@ def _steel_reduced_modulus(inputs):
 # Hertz contact
 @kind
 def hertz_table(inputs):
-    """Harris's dimensionless a*, b*, delta* from the exact Hertz solution at each curvature difference
-    F(rho) (Harris & Kotzalas Vol. 1 Ch. 6 definitions: a* = (2 k^2 E/pi)^(1/3), b* = (2E/(pi k))^(1/3),
-    delta* = 2K/pi (pi/(2 k^2 E))^(1/3))."""
+    """Harris's dimensionless a*, b*, delta* at each curvature difference F(rho), from the Hertz constants
+    the library uses (hertz.hertz_exact: a = a_coef Q^(1/3), b = b_coef Q^(1/3), Q = K_load delta^1.5),
+    by Harris & Kotzalas's definitions (Vol. 1 Ch. 6): a = a* (3Q/(E' sum_rho))^(1/3), same for b, and
+    delta = delta* (3Q/(E' sum_rho))^(2/3) sum_rho/2."""
     from bearing_core import hertz as hz
     Ep = _steel_reduced_modulus(inputs)
+    s, Q = 150.0, 1000.0           # arbitrary curvature sum [1/m] and load [N]: the stars do not depend on them
+    c = 3.0 * Q / (Ep * s)
     out = {"a_star": [], "b_star": [], "delta_star": []}
     for F in inputs["F_rho"]:
-        hc = hz.hertz_exact(150.0, F, Ep)
-        out["a_star"].append((2.0 * hc.k ** 2 * hc.ell_E / math.pi) ** (1 / 3))
-        out["b_star"].append((2.0 * hc.ell_E / (math.pi * hc.k)) ** (1 / 3))
-        out["delta_star"].append(2.0 * hc.ell_K / math.pi * (math.pi / (2.0 * hc.k ** 2 * hc.ell_E)) ** (1 / 3))
+        hc = hz.hertz_exact(s, F, Ep)
+        out["a_star"].append(hc.a_coef * Q ** (1 / 3) / c ** (1 / 3))
+        out["b_star"].append(hc.b_coef * Q ** (1 / 3) / c ** (1 / 3))
+        out["delta_star"].append((Q / hc.K_load) ** (2 / 3) / (c ** (2 / 3) * s / 2.0))
     out["F_rho"] = list(inputs["F_rho"])
     return out
 
