@@ -8,7 +8,7 @@ used in docs/validation.md.
   seed 002 (Lubricants 2023 11(3) 96), 7008-ma2023 at 5000 rpm: sliding velocity against axial load
   (reduced model), and a combined 100 N axial + 200 N radial case (unloaded zone).
 
-    python bench/seed_studies.py [--out docs/figures] [--quick]
+    python studies/seed_studies.py [--out docs/figures] [--quick]
 """
 from __future__ import annotations
 
