@@ -139,6 +139,8 @@ def build_parser() -> argparse.ArgumentParser:
     va.add_argument("--jobs", type=int, default=1, help="parallel worker processes (default 1)")
     va.add_argument("--out", default="out/validation", help="report directory")
     va.add_argument("--markdown", action="store_true", help="also write report.md (summary table for docs)")
+    va.add_argument("--update-doc", metavar="FILE.md", help="write the summary table into this markdown file "
+                                                             "between its 'bearing validate: quick|full' markers")
     va.add_argument("--list", action="store_true", help="list the cases and exit")
     va.set_defaults(func=cmd_validate)
     return p
@@ -469,7 +471,7 @@ def cmd_presets(a) -> int:
 def cmd_validate(a) -> int:
     import time
 
-    from bearing_validation import counts, load_cases, run_cases, write_report
+    from bearing_validation import counts, load_cases, markdown_table, run_cases, update_doc_section, write_report
 
     if not (1 <= a.jobs <= 64):
         raise _BadArg(f"--jobs = {a.jobs} is invalid; allowed: 1 <= jobs <= 64")
@@ -490,6 +492,10 @@ def cmd_validate(a) -> int:
     wall = time.perf_counter() - t0
     argv = ["bearing validate"] + (["--quick"] if a.quick else []) + [f"--case {n}" for n in a.case]
     paths = write_report(results, a.out, command=" ".join(argv), wall_s=wall, markdown=a.markdown)
+    if a.update_doc:
+        meta = json.loads(paths["json"].read_text())["meta"]
+        update_doc_section(a.update_doc, "quick" if a.quick else ("cases" if a.case else "full"),
+                           markdown_table(results, meta))
     c = counts(results)
     print(f"{len(results)} cases in {wall:.1f} s: {c['PASS']} pass, {c['FAIL']} fail, {c['GAP']} known gap, "
           f"{c['ERROR']} error; report: {paths['html']}")

@@ -5,4 +5,4 @@ kinds.py holds the computation of each kind of case (library calls only, no refe
 runner.py runs and judges the cases; report.py writes report.html / report.json / report.md.
 """
 from .runner import CaseResult, counts, judge, load_cases, run_case, run_cases  # noqa: F401
-from .report import markdown_table, write_report  # noqa: F401
+from .report import markdown_table, update_doc_section, write_report  # noqa: F401

@@ -253,3 +253,19 @@ def write_report(results, out_dir, command="bearing validate", wall_s=0.0, markd
         (out / "report.md").write_text(markdown_table(results, meta), encoding="utf-8")
         paths["markdown"] = out / "report.md"
     return paths
+
+
+def update_doc_section(doc: Path, label: str, text: str) -> None:
+    """Replace the generated block between '<!-- bearing validate: LABEL begin -->' and
+    '<!-- bearing validate: LABEL end -->' in doc (appended at the end if the markers are absent)."""
+    doc = Path(doc)
+    begin, end = f"<!-- bearing validate: {label} begin -->", f"<!-- bearing validate: {label} end -->"
+    body = doc.read_text(encoding="utf-8") if doc.exists() else ""
+    block = f"{begin}\n{text.rstrip()}\n{end}"
+    if begin in body and end in body:
+        pre, rest = body.split(begin, 1)
+        _, post = rest.split(end, 1)
+        body = pre + block + post
+    else:
+        body = body.rstrip() + "\n\n" + block + "\n"
+    doc.write_text(body, encoding="utf-8")
