@@ -441,6 +441,7 @@ def seed000_profile(inputs):
     out["cage_end_rpm_first"] = out["cage_end_rpm"][0]
     out["settle_time_s_first"] = out["settle_time_s"][0]
     out["settled_before_end"] = [s < t_end - 0.15 for s in out["settle_time_s"]]
+    out["peak_ir_ax_growth_last_over_first"] = out["peak_ir_ax_ramp_m_s2"][-1] / out["peak_ir_ax_ramp_m_s2"][0]
     return out
 
 

@@ -148,6 +148,10 @@ def _plot_png(r: CaseResult) -> bytes | None:
     return buf.getvalue()
 
 
+def _closed(r: CaseResult) -> str:
+    return " (now within tolerance: reclassify)" if r.judgement.get("gap_closed") else ""
+
+
 _CSS = """body{font-family:sans-serif;margin:1.5em;max-width:1400px}table{border-collapse:collapse;font-size:13px}
 td,th{border:1px solid #bbb;padding:3px 6px;vertical-align:top}th{background:#eee}
 .PASS{background:#d8f5d8}.FAIL{background:#f8c8c8}.ERROR{background:#f8c8c8}.GAP{background:#fdf0c0}
@@ -172,7 +176,7 @@ def write_html(results, path: Path, meta: dict):
         out.append(f"<tr class='{r.status}'><td><a href='#{r.case['id']}'>{html.escape(r.case['id'])}</a></td>"
                    f"<td>{html.escape(source_text(r.case))}</td><td>{html.escape(r.case['quantity'])}</td>"
                    f"<td>{html.escape(ref)}</td><td>{html.escape(ours)}</td><td>{html.escape(err)}</td>"
-                   f"<td>{html.escape(tol)}</td><td>{r.case['verdict']}: <b>{r.status}</b></td></tr>")
+                   f"<td>{html.escape(tol)}</td><td>{r.case['verdict']}: <b>{r.status}</b>{_closed(r)}</td></tr>")
     out.append("</table>")
     for r in results:
         cs = r.case
@@ -233,7 +237,7 @@ def markdown_table(results, meta: dict) -> str:
     for r in results:
         ref, ours, err, tol = _summary_cells(r)
         cells = [r.case["id"], source_text(r.case), r.case["quantity"], ref, ours, err, tol,
-                 f"{r.case['verdict']}: **{r.status}**"]
+                 f"{r.case['verdict']}: **{r.status}**{_closed(r)}"]
         lines.append("| " + " | ".join(x.replace("|", "/") for x in cells) + " |")
     gaps = [r for r in results if r.case["verdict"] == "known-gap"]
     if gaps:

@@ -149,8 +149,11 @@ def judge(case, ours) -> dict:
         status = "PASS" if checks_ok else "FAIL"
     else:
         status = "GAP"
+    # a known gap that now meets its tolerance and checks is flagged for reclassification
+    gap_closed = bool(v == "known-gap" and within and checks_ok and (rows or checks))
     return {"id": case["id"], "verdict": v, "status": status, "within_tolerance": bool(within),
-            "checks_ok": bool(checks_ok), "rows": rows, "checks": checks, "worst_error_over_tolerance": worst}
+            "checks_ok": bool(checks_ok), "rows": rows, "checks": checks, "worst_error_over_tolerance": worst,
+            "gap_closed": gap_closed}
 
 
 # ------------------------------------------------------------------------------------------------
