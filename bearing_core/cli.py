@@ -490,7 +490,8 @@ def cmd_validate(a) -> int:
 
     results = run_cases(cases, jobs=a.jobs, progress=progress)
     wall = time.perf_counter() - t0
-    argv = ["bearing validate"] + (["--quick"] if a.quick else []) + [f"--case {n}" for n in a.case]
+    argv = (["bearing validate"] + (["--quick"] if a.quick else []) + [f"--case {n}" for n in a.case]
+            + ([f"--jobs {a.jobs}"] if a.jobs > 1 else []))
     paths = write_report(results, a.out, command=" ".join(argv), wall_s=wall, markdown=a.markdown)
     if a.update_doc:
         meta = json.loads(paths["json"].read_text())["meta"]
