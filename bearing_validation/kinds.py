@@ -199,7 +199,7 @@ def _qs_rivera(alpha0_deg, rpm, Fz, control="outer"):
 @kind
 def prl_c_values(inputs):
     """Houpert c-values of the pure rolling lines (spin_friction.analyse), in the paper's mirrored
-    convention (c_paper = -c_ours, order swapped); extreme over the balls and both races."""
+    convention (c_paper = -c_ours, order swapped), every ball, inner then outer race."""
     from bearing_core import spin_friction as sf
     s = sf.analyse(_qs_rivera(inputs["alpha0_deg"], inputs["speed_rpm"], inputs["Fz_N"]))
     c1 = np.concatenate([-s.c2_i, -s.c2_o])
