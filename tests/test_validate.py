@@ -115,3 +115,14 @@ def test_parallel_runner_matches_serial():
     b = run_cases(cases, jobs=2)
     assert [r.case["id"] for r in b] == [c["id"] for c in cases]
     assert [r.ours for r in a] == [r.ours for r in b]
+
+
+def test_update_doc_section_replaces_only_its_block(tmp_path):
+    """--update-doc: the generated table replaces the text between its own markers, nothing else."""
+    from bearing_validation import update_doc_section
+    doc = tmp_path / "v.md"
+    doc.write_text("intro\n<!-- bearing validate: quick begin -->\nold\n<!-- bearing validate: quick end -->\n"
+                   "middle\n<!-- bearing validate: full begin -->\nkeep\n<!-- bearing validate: full end -->\n")
+    update_doc_section(doc, "quick", "| new |")
+    t = doc.read_text()
+    assert "old" not in t and "| new |" in t and "keep" in t and t.startswith("intro\n") and "middle" in t
