@@ -156,19 +156,44 @@ def _table_at_nu_node(z, inu, k):
 
 
 @njit(cache=True)
-def _coef_at_nu_node(r, inu):
-    nu = NU_NODES[inu]
-    if r < 0.1 or r > 10.0:
-        # beyond the table: Kalker's asymptote scaled to meet the table at its end (continuous)
-        r_end = 0.1 if r < 0.1 else 10.0
-        z_end = 0.1 if r < 0.1 else 1.9
-        ax, ay, az = _asymptotes(r, nu)
-        ex, ey, ez = _asymptotes(r_end, nu)
-        return (_table_at_nu_node(z_end, inu, 0) * ax / ex, _table_at_nu_node(z_end, inu, 1) * ay / ey,
-                _table_at_nu_node(z_end, inu, 2) * az / ez)
+def _table_at_nu_node_r(r, inu, k):
+    """Coefficient k at nu node inu, table range 0.1 <= r <= 10 (r clipped to it)."""
+    if r < 0.1:
+        r = 0.1
+    if r > 10.0:
+        r = 10.0
     z = r if r <= 1.0 else 2.0 - 1.0 / r
-    return (_table_at_nu_node(z, inu, 0), _table_at_nu_node(z, inu, 1),
-            _table_at_nu_node(z, inu, 2))
+    return _table_at_nu_node(z, inu, k)
+
+
+@njit(cache=True)
+def inverse_lagrange_nu(nu, nus, cs):
+    """Interpolate a creep coefficient in Poisson's ratio as CONTACT (m_hertz.f90 linrol) does with
+    Kalker's table: the Lagrange polynomial through the nodes (nus[i], 1/cs[i]) evaluated at nu, inverted.
+    1/C is smooth in nu (compliance-like); C itself is not (C11 ~ 1/(1 - nu) in the slender limit).
+    nus, cs: 1-D arrays of equal length (2 nodes: linear in 1/C; 3 nodes: quadratic)."""
+    acc = 0.0
+    n = nus.shape[0]
+    for i in range(n):
+        w = 1.0
+        for j in range(n):
+            if j != i:
+                w *= (nu - nus[j]) / (nus[i] - nus[j])
+        acc += w / cs[i]
+    return 1.0 / acc
+
+
+@njit(cache=True)
+def _table_coefficient(r, nu, k):
+    """Coefficient k from Kalker's table at r in [0.1, 10] (clipped): Catmull-Rom in z at each of the
+    three nu nodes, then quadratic in 1/C over nu (CONTACT linrol)."""
+    c0 = _table_at_nu_node_r(r, 0, k)
+    c1 = _table_at_nu_node_r(r, 1, k)
+    c2 = _table_at_nu_node_r(r, 2, k)
+    # Lagrange weights on the nodes 0, 0.25, 0.5 (no allocation: called per contact evaluation)
+    inv = ((nu - 0.25) * (nu - 0.5) * 8.0 / c0 - nu * (nu - 0.5) * 16.0 / c1
+           + nu * (nu - 0.25) * 8.0 / c2)
+    return 1.0 / inv
 
 
 @njit(cache=True)
@@ -177,22 +202,32 @@ def kalker_coefficients(r, nu):
 
     r = a'/b' [-]: semi-axis in the ROLLING direction over the lateral semi-axis (ball bearing,
     contact_kernels convention: r = b/a < 1); nu [-]: combined Poisson ratio, 0 <= nu <= 0.5
-    (clipped). Table nodes reproduced exactly; Catmull-Rom (C1) in z = r (r <= 1), 2 - 1/r (r > 1)
-    between nodes, linear in nu; beyond r = 0.1 / 10 Kalker's asymptotes, scaled to be continuous.
+    (clipped).
+    * 0.1 <= r <= 10 (the table): nodes reproduced exactly; Catmull-Rom (C1) in z = r (r <= 1),
+      z = 2 - 1/r (r > 1) between the rows; over nu the Lagrange parabola through 1/C at
+      nu = 0, 0.25, 0.5, as CONTACT's linrol (C is not linear in nu: linear interpolation puts C11
+      0.84 % high at r = 1, nu = 0.3).
+    * r < 0.1 or r > 10 (slender ellipses): Kalker's asymptotic expressions (_asymptotes, as in CONTACT
+      linrol) times a correction 1 + k g (g = min(r, 1/r)) with k fixed by the table at g = 0.1, so the
+      coefficient is continuous there and tends to Kalker's asymptote as g -> 0. (CONTACT switches to
+      the bare asymptote at g = 0.101, a jump of up to 5 % in C23 that a time integrator would feel.)
     Linear theory: Fx = -G c^2 C11 xi, Fy = -G c^2 C22 eta - G c^3 C23 phi, c = sqrt(a' b')."""
     if nu < 0.0:
         nu = 0.0
     if nu > 0.5:
         nu = 0.5
-    if nu <= 0.25:
-        i0 = 0
-        w = nu / 0.25
-    else:
-        i0 = 1
-        w = (nu - 0.25) / 0.25
-    a0, b0, c0 = _coef_at_nu_node(r, i0)
-    a1, b1, c1 = _coef_at_nu_node(r, i0 + 1)
-    return ((1.0 - w) * a0 + w * a1, (1.0 - w) * b0 + w * b1, (1.0 - w) * c0 + w * c1)
+    t0 = _table_coefficient(r, nu, 0)
+    t1 = _table_coefficient(r, nu, 1)
+    t2 = _table_coefficient(r, nu, 2)
+    if 0.1 <= r <= 10.0:
+        return t0, t1, t2
+    g = r if r < 0.1 else 1.0 / r
+    r_end = 0.1 if r < 0.1 else 10.0
+    ax, ay, az = _asymptotes(r, nu)
+    ex, ey, ez = _asymptotes(r_end, nu)
+    s = g / 0.1
+    return (ax * (1.0 + (t0 / ex - 1.0) * s), ay * (1.0 + (t1 / ey - 1.0) * s),
+            az * (1.0 + (t2 / ez - 1.0) * s))
 
 
 def combined_elastic(E1, nu1, E2, nu2):

@@ -33,7 +33,7 @@ Notes
 * The seed's Eq. 23 names E "the effective elastic modulus" and gives E = 1.12e5 MPa, which is about
   E* = E'/2 for steel (E' = 2.26e11 Pa for 206 GPa / 0.3). With E'/2 in place of E', U and W double and G
   halves: h_min grows by 2^(0.68 - 0.49 - 0.073) = 1.084 (+8.4 %). The functions here take E' as an
-  argument; pass SEED003_E_FILM to reproduce the seed as printed (bench/wear_study.py reports both).
+  argument; pass SEED003_E_FILM to reproduce the seed as printed (studies/wear_study.py reports both).
 * Exponent checks: h_c ~ U^0.67 G^0.53 W^-0.067 and h_min ~ U^0.68 G^0.49 W^-0.073 at fixed k
   (tests/test_film.py). In dimensional terms h ~ u^0.68 eta0^0.68 alpha^0.49 Q^-0.073.
 * The numba kernels (``*_nb``) do no input checks; the Python wrapper ``film_thickness`` does.

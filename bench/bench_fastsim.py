@@ -142,7 +142,7 @@ def shapes(pressure, n_ref=200):
 def seed000_rtf():
     import sys
     from pathlib import Path
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "studies"))
     from kalker_studies import run
     d, wall = run(0.1, 3000.0, t_end=2.0, grid=12)
     return {"seed000_kalker_mu0.1_wall_s": wall, "seed000_kalker_mu0.1_real_time_factor": wall / 2.0}

@@ -361,7 +361,7 @@ def test_vibration_grows_as_preload_falls_seed000_table3():
     """Seed 000 Table 3 (mu = 0.001): the inner-ring vibration grows 528x from 100 % to 25 % MOL, from
     balls detaching from the inner race and hitting it again. MOL here: Fx 1 kN, Fz 3 kN (the paper
     states none); 25 % stepped down from the 50 % equilibrium (no quasi-static equilibrium at 25 %).
-    Measured (bench/seed000_table3_floor.py): 0.37 and 47.3 m/s^2 RMS, 127x, ball 0's inner contact open
+    Measured (studies/seed000_table3_floor.py): 0.37 and 47.3 m/s^2 RMS, 127x, ball 0's inner contact open
     51 % of the time at 25 %. Tolerance: the growth must be of the paper's order, >= 20x (a factor 25
     below the paper), with inner contacts opening at 25 % and not at 100 %."""
     rms100, open100 = _held_ax_rms(3000.0)

@@ -17,7 +17,7 @@ held; held longer where a run needs it), no change to bearing_core:
             mu = 0.001 and 0.1, to 1.4 s; peak and RMS |ir_ax| in 0.5-1.4 s.
   damping   table3 at 25 and 100 % MOL, mu = 0.001, without support damping, with less contact damping.
 
-    python bench/seed000_hypotheses.py [--quick] [--groups recovery,match,cage,table3,damping] [--rerun]
+    python studies/seed000_hypotheses.py [--quick] [--groups recovery,match,cage,table3,damping] [--rerun]
 
 --quick: two 0.6 s runs (a check that everything runs, < 1 min). Raw records are cached (npz) under
 out/seed000_hypotheses/ and reused unless --rerun. Numbers: docs/figures/seed000_hypotheses.json; figures

@@ -7,7 +7,7 @@ rtol 1e-4, 1e-5 and 1e-6 and prints the cage speed at 1.0, 1.5 and 2.0 s, so tha
 read as integration error (it shrinks with rtol towards one value) or as sensitivity of the skid (it does
 not).
 
-    python bench/skid_convergence.py [--t-end 2.0] [--rtols 1e-4,1e-5,1e-6] [--integrators adaptive,auto]
+    python studies/skid_convergence.py [--t-end 2.0] [--rtols 1e-4,1e-5,1e-6] [--integrators adaptive,auto]
 
 Writes docs/figures/skid_convergence.json (and prints a table). One process; 1-10 min per run.
 """

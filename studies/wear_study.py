@@ -3,7 +3,7 @@ Figs. 5-10), sliding speed over a contact ellipse (Fig. 12), sliding at the elli
 (Fig. 13), and raceway wear depth over hours (not in the seed). Writes the figures docs/figures/seed003_wear_*.png and the numbers to
 out/seed003_wear_study.json (quoted in docs/wear.md), with a summary on stdout.
 
-    python bench/wear_study.py [--out docs/figures] [--json out/seed003_wear_study.json]
+    python studies/wear_study.py [--out docs/figures] [--json out/seed003_wear_study.json]
 
 Loads the seed does not state: the axial preload of Figs. 5-10 (Fz = 500 N, the preload the seed names for
 Fig. 12) and the load levels of Figs. 6-10 (ours: Fx 100/300/500 N, M 1/3/5 N m). Speed 10000 rpm for

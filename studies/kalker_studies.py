@@ -12,7 +12,7 @@ figures docs/figures/seed000_kalker_*.png and the numbers (JSON) used in docs/ka
       (w_spin (D/2) / |u_roll|) of ball 0 at the inner and outer contacts; set to 0 while the contact is
       open (as the paper does: "the spinning ratio is therefore considered zero").
 
-    python bench/kalker_studies.py [--quick] [--out docs/figures] [--cache out/kalker_studies] [--grid 12]
+    python studies/kalker_studies.py [--quick] [--out docs/figures] [--cache out/kalker_studies] [--grid 12]
 
 --quick: 0.7 s of the profile, Fz = 3000 N only (a check that everything runs, ~30 s). Full: six 2 s runs,
 about 30-70 s wall each on one core; raw records are cached (npz) and reused unless --rerun.

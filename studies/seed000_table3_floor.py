@@ -17,7 +17,7 @@ and the Fx 1 kN / Fz 3 kN set of docs/kalker.md:
            50 % MOL equilibrium and the axial load is stepped down at t = 0. Where the tribological
            start does not converge the run starts from Jones-Harris (the "start" key says which).
 
-    python bench/seed000_table3_floor.py [--quick]
+    python studies/seed000_table3_floor.py [--quick]
 
 Writes docs/figures/seed000_table3_floor.json and docs/figures/seed000_table3_floor_psd.png.
 One process, about 4 min (--quick: VC only and one 0.05 s run).

@@ -1,0 +1,533 @@
+"""Runner kinds: the computation behind each validation case.
+
+A kind is a function ``kind(inputs: dict) -> dict`` that calls the bearing_core library with the case's
+inputs and returns "ours": named scalars or lists whose names match the case's ``reference`` keys, plus
+any series the case checks for a trend or plots. No published value lives here: references, tolerances
+and verdict kinds are in the case files (bearing_validation/cases/*.json). Units: SI unless a key says
+otherwise (``_rpm``, ``_deg``, ``_mm``...).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+RPM = math.pi / 30.0
+KINDS = {}
+
+
+def kind(fn):
+    KINDS[fn.__name__] = fn
+    return fn
+
+
+def _steel_reduced_modulus(inputs):
+    from bearing_core import hertz as hz
+    E, nu = inputs.get("E_Pa", 206e9), inputs.get("nu", 0.3)
+    return hz.reduced_modulus(E, nu, E, nu)
+
+
+# ------------------------------------------------------------------------------------------------
+# Hertz contact
+@kind
+def hertz_table(inputs):
+    """Harris's dimensionless a*, b*, delta* at each curvature difference F(rho), from the Hertz constants
+    the library uses (hertz.hertz_exact: a = a_coef Q^(1/3), b = b_coef Q^(1/3), Q = K_load delta^1.5),
+    by Harris & Kotzalas's definitions (Vol. 1 Ch. 6): a = a* (3Q/(E' sum_rho))^(1/3), same for b, and
+    delta = delta* (3Q/(E' sum_rho))^(2/3) sum_rho/2."""
+    from bearing_core import hertz as hz
+    Ep = _steel_reduced_modulus(inputs)
+    s, Q = 150.0, 1000.0           # arbitrary curvature sum [1/m] and load [N]: the stars do not depend on them
+    c = 3.0 * Q / (Ep * s)
+    out = {"a_star": [], "b_star": [], "delta_star": []}
+    for F in inputs["F_rho"]:
+        hc = hz.hertz_exact(s, F, Ep)
+        out["a_star"].append(hc.a_coef * Q ** (1 / 3) / c ** (1 / 3))
+        out["b_star"].append(hc.b_coef * Q ** (1 / 3) / c ** (1 / 3))
+        out["delta_star"].append((Q / hc.K_load) ** (2 / 3) / (c ** (2 / 3) * s / 2.0))
+    out["F_rho"] = list(inputs["F_rho"])
+    return out
+
+
+@kind
+def hertz_curvature(inputs):
+    """Curvature sum [1/mm] and difference [-] at the inner and outer contacts (contact_curvature)."""
+    from bearing_core import hertz as hz
+    D, dm, f = inputs["D_mm"] * 1e-3, inputs["dm_mm"] * 1e-3, inputs["r_groove_mm"] / inputs["D_mm"]
+    al = math.radians(inputs.get("alpha_deg", 0.0))
+    _, _, si, Fi = hz.contact_curvature(D, dm, f, al, True)
+    _, _, so, Fo = hz.contact_curvature(D, dm, f, al, False)
+    return {"sum_rho_i_per_mm": si * 1e-3, "F_rho_i": Fi, "sum_rho_o_per_mm": so * 1e-3, "F_rho_o": Fo}
+
+
+# ------------------------------------------------------------------------------------------------
+# quasi-static model
+@kind
+def quasistatic(inputs):
+    """Jones-Harris quasi-static solution of one operating point; ball 0's speeds, angles and loads."""
+    from bearing_core.geometry import load_preset
+    from bearing_core.quasistatic import solve_quasistatic
+    g = load_preset(inputs["bearing"])
+    r = solve_quasistatic(g, inputs["speed_rpm"] * RPM, tuple(inputs["loads_N_Nm"]),
+                          control=inputs.get("control", "outer"))
+    return {"ball_spin_rpm": abs(float(r.omega_R[0])) / RPM, "orbital_rpm": float(r.omega_m[0]) / RPM,
+            "alpha_i_deg": math.degrees(r.alpha_i[0]), "alpha_o_deg": math.degrees(r.alpha_o[0]),
+            "Q_i_N": float(r.Q_i[0]), "Q_o_N": float(r.Q_o[0]), "spin_roll_i": float(r.spin_roll_i[0]),
+            "residual": float(r.residual)}
+
+
+@kind
+def thrust_closed_form(inputs):
+    """Zero-speed pure thrust: the 5-DOF model against Harris & Kotzalas's thrust equation
+    Fa = Z Kn A^1.5 sin(a) (cos a0 / cos a - 1)^1.5 (Vol. 1 Ch. 7), Kn the series constant of the two
+    contacts. Returns the relative differences in loaded contact angle and axial approach per load."""
+    from scipy.optimize import brentq
+    from bearing_core.geometry import load_preset
+    from bearing_core.quasistatic import QuasiStaticModel
+    g = load_preset(inputs["bearing"])
+    m = QuasiStaticModel(g)
+    A, a0 = g.A, g.alpha0
+    da, dz_err, alpha = [], [], []
+    for Fa in inputs["Fa_N"]:
+        def f(a):
+            Ki = m.hz.K(np.array([a]), True)[0]
+            Ko = m.hz.K(np.array([a]), False)[0]
+            Kn = (Ki ** (-2 / 3) + Ko ** (-2 / 3)) ** -1.5
+            return g.Z * Kn * A ** 1.5 * math.sin(a) * (math.cos(a0) / math.cos(a) - 1) ** 1.5 - Fa
+        a = brentq(f, a0 + 1e-9, math.radians(89))
+        dz = A * math.cos(a0) * math.tan(a) - A * math.sin(a0)
+        r = m.solve(0.0, (0, 0, Fa, 0, 0))
+        da.append(abs(r.alpha_i[0] / a - 1))
+        dz_err.append(abs(r.u[2] / dz - 1))
+        alpha.append(math.degrees(r.alpha_i[0]))
+    return {"alpha_rel_error": max(da), "axial_approach_rel_error": max(dz_err), "alpha_deg": alpha,
+            "Fa_N": list(inputs["Fa_N"])}
+
+
+# ------------------------------------------------------------------------------------------------
+# Kalker / FASTSIM
+@kind
+def kalker_nu_leave_one_out(inputs):
+    """Kalker's nu = 0.25 column predicted from the nu = 0 and nu = 0.5 columns by the interpolation rule
+    of fastsim (Lagrange in 1/C over nu), at the table rows g (a'/b' <= 1: case A, > 1: case B).
+    Also the same prediction linear in C, for comparison."""
+    from bearing_core import fastsim as fs
+    out = {}
+    for k, name in enumerate(("C11", "C22", "C23")):
+        pred, lin = [], []
+        for r in inputs["a_over_b"]:
+            c0 = fs._table_at_nu_node_r(r, 0, k)
+            c2 = fs._table_at_nu_node_r(r, 2, k)
+            pred.append(float(fs.inverse_lagrange_nu(0.25, np.array([0.0, 0.5]), np.array([c0, c2]))))
+            lin.append(0.5 * (c0 + c2))
+        out[name] = pred
+        out[name + "_linear_in_C"] = lin
+    out["a_over_b"] = list(inputs["a_over_b"])
+    return out
+
+
+@kind
+def kalker_coefficients(inputs):
+    """fastsim.kalker_coefficients at the given a'/b' and nu."""
+    from bearing_core import fastsim as fs
+    C = [fs.kalker_coefficients(r, inputs["nu"]) for r in inputs["a_over_b"]]
+    return {"C11": [c[0] for c in C], "C22": [c[1] for c in C], "C23": [c[2] for c in C],
+            "a_over_b": list(inputs["a_over_b"])}
+
+
+@kind
+def kalker_asymptotes(inputs):
+    """Relative difference of fastsim.kalker_coefficients from Kalker's slender-ellipse asymptotic
+    expressions (Kalker 1967; closed forms as in CONTACT linrol) at very small / large a'/b'."""
+    from bearing_core import fastsim as fs
+    err = 0.0
+    for nu in inputs["nu"]:
+        for r in inputs["a_over_b"]:
+            got = np.array(fs.kalker_coefficients(r, nu))
+            asym = np.array(fs._asymptotes(r, nu))
+            err = max(err, float(np.max(np.abs(got / asym - 1))))
+    return {"max_rel_difference": err}
+
+
+@kind
+def fastsim_linear_limit(inputs):
+    """FASTSIM at a small creepage against Kalker's linear theory with the same coefficients:
+    F_t = -G c^2 C11 xi, F_m = -G c^2 C22 eta, F_m = sign(u) G c^3 C23 phi. Returns FASTSIM / linear."""
+    from bearing_core import fastsim as fs
+    G, nu = fs.combined_elastic(206e9, 0.3, 206e9, 0.3)
+    Q, mu, n, u = inputs["Q_N"], inputs["mu"], inputs["grid"], inputs["u_roll_m_s"]
+    out = {"Ft_over_linear": [], "Fm_over_linear": [], "spin_over_linear": []}
+    for a_mm, b_mm in inputs["ellipses_a_b_mm"]:
+        a, b = a_mm * 1e-3, b_mm * 1e-3
+        C11, C22, C23 = fs.kalker_coefficients(b / a, nu)
+        c = math.sqrt(a * b)
+        xi = inputs["creepage"]
+        Ft = fs.fastsim_traction(a, b, Q, mu, G, nu, xi * abs(u), 0.0, 0.0, u, n, n, fs.PRESSURE_PARABOLIC)[0]
+        Fm = fs.fastsim_traction(a, b, Q, mu, G, nu, 0.0, xi * abs(u), 0.0, u, n, n, fs.PRESSURE_PARABOLIC)[1]
+        phi = xi / c
+        Fs = fs.fastsim_traction(a, b, Q, mu, G, nu, 0.0, 0.0, phi * abs(u), u, n, n, fs.PRESSURE_PARABOLIC)[1]
+        out["Ft_over_linear"].append(Ft / (-G * c * c * C11 * xi))
+        out["Fm_over_linear"].append(Fm / (-G * c * c * C22 * xi))
+        out["spin_over_linear"].append(Fs / (math.copysign(1.0, u) * G * c ** 3 * C23 * phi))
+    return out
+
+
+@kind
+def fastsim_case(inputs):
+    """FASTSIM in Kalker's frame (fastsim_kalker): F_y/(mu F_n) and F_x/(mu F_n) for each traction bound."""
+    from bearing_core import fastsim as fs
+    out = {}
+    for name in inputs["pressures"]:
+        p = fs.PRESSURE_PARABOLIC if name == "parabolic" else fs.PRESSURE_HERTZ
+        Fx, Fy, _ = fs.fastsim_kalker(inputs["a_mm"] * 1e-3, inputs["b_mm"] * 1e-3, inputs["Fn_N"], inputs["mu"],
+                                      inputs["G_Pa"], inputs["nu"], inputs["xi"], inputs["eta"],
+                                      inputs["phi_rad_per_m"], inputs["grid"], inputs["grid"], p)
+        out[f"Fy_over_muFn_{name}"] = Fy / (inputs["mu"] * inputs["Fn_N"])
+        out[f"Fx_over_muFn_{name}"] = Fx / (inputs["mu"] * inputs["Fn_N"])
+    return out
+
+
+# ------------------------------------------------------------------------------------------------
+# seed 004: pure rolling lines and spin torque
+def _qs_rivera(alpha0_deg, rpm, Fz, control="outer"):
+    from bearing_core.geometry import load_preset
+    from bearing_core.quasistatic import solve_quasistatic
+    g = load_preset("7008-rivera2021", alpha0=math.radians(alpha0_deg))
+    return solve_quasistatic(g, rpm * RPM, (0, 0, Fz, 0, 0), control=control, stiffness=False)
+
+
+@kind
+def prl_c_values(inputs):
+    """Houpert c-values of the pure rolling lines (spin_friction.analyse), in the paper's mirrored
+    convention (c_paper = -c_ours, order swapped), every ball, inner then outer race."""
+    from bearing_core import spin_friction as sf
+    s = sf.analyse(_qs_rivera(inputs["alpha0_deg"], inputs["speed_rpm"], inputs["Fz_N"]))
+    c1 = np.concatenate([-s.c2_i, -s.c2_o])
+    c2 = np.concatenate([-s.c1_i, -s.c1_o])
+    return {"c1": c1.tolist(), "c2": c2.tolist()}
+
+
+@kind
+def prl_counts(inputs):
+    """Number of pure rolling lines on the inner and outer race per speed (all balls must agree, else -1).
+    E_model 'eq15': seed 004 Eq. 15 and Houpert's c-values; 'kinematic': exact spin-to-roll ratio and the
+    zero crossings of the exact slip profile."""
+    from bearing_core import spin_friction as sf
+    out = {"n_inner": [], "n_outer": [], "speed_rpm": list(inputs["speeds_rpm"])}
+    for rpm in inputs["speeds_rpm"]:
+        r = _qs_rivera(inputs["alpha0_deg"], rpm, inputs["Fz_N"], control=inputs.get("control", "outer"))
+        if inputs["E_model"] == "eq15":
+            s = sf.analyse(r, E_model="eq15")
+            ni, no = s.nh_i, s.nh_o
+        else:
+            s = sf.analyse(r)
+            ni, no = s.n_i, s.n_o
+        out["n_inner"].append(int(ni[0]) if np.all(ni == ni[0]) else -1)
+        out["n_outer"].append(int(no[0]) if np.all(no == no[0]) else -1)
+    return out
+
+
+@kind
+def spin_torque_strip_vs_full(inputs):
+    """Bearing spin torque (seed 004 Eq. 24) from the c-values (Eqs. 22-23) over the full integration
+    (Eq. 19), minus 1, per speed; and both torques [N m]."""
+    from bearing_core import spin_friction as sf
+    out = {"Ms_c_over_full_minus_1": [], "Ms_full_Nm": [], "Ms_c_Nm": [], "speed_rpm": list(inputs["speeds_rpm"])}
+    for rpm in inputs["speeds_rpm"]:
+        s = sf.analyse(_qs_rivera(inputs["alpha0_deg"], rpm, inputs["Fz_N"]), mu=inputs["mu"])
+        out["Ms_c_over_full_minus_1"].append(s.Ms_c / s.Ms_full - 1)
+        out["Ms_full_Nm"].append(s.Ms_full)
+        out["Ms_c_Nm"].append(s.Ms_c)
+    return out
+
+
+# ------------------------------------------------------------------------------------------------
+# seed 001 (churning, oils)
+def _seed001_bearing(b):
+    from bearing_core.geometry import from_dict
+    return from_dict(dict(
+        name="seed001-qj1044-estimate", ball_diameter_mm=b["ball_diameter_mm"], number_of_balls=b["number_of_balls"],
+        pitch_diameter_mm=b["pitch_diameter_mm"], free_contact_angle_deg=b["free_contact_angle_deg"], fi=b["fi"],
+        fo=b["fo"], width_mm=b["width_mm"], inner_ring_mass_kg=5.0, outer_ring_mass_kg=7.0,
+        inner_ring_inertia_kg_mm2=1.5e5, inner_ring_tilt_inertia_kg_mm2=8e4,
+        cage=dict(mass_kg=2.0, inertia_kg_mm2=4e4, guidance="outer", land_clearance_mm=1.0, material="brass")))
+
+
+@kind
+def churning_share(inputs):
+    """Churning (cage + balls + inner ring, seed 001 Eqs. 12-17) over churning plus race spin loss (Coulomb
+    spin moment 3/8 mu Q a E(e), Harris & Kotzalas Vol. 2) from the quasi-static model, per axial load."""
+    from scipy.special import ellipe
+    from bearing_core import churning as ch
+    from bearing_core.quasistatic import solve_quasistatic
+    g = _seed001_bearing(inputs["bearing_estimate"])
+    w = inputs["speed_rpm"] * RPM
+    shares = []
+    for Fa in inputs["Fa_N"]:
+        r = solve_quasistatic(g, w, (inputs["Fr_N"], 0.0, Fa, 0.0, 0.0), control="outer", stiffness=False)
+        c = ch.churning_losses(g, inputs["oil"], inputs["oil_temperature_C"] + 273.15, w, float(np.mean(r.omega_m)),
+                               oil_fraction=inputs.get("oil_fraction", 1.0))
+        churn = c["Q_ch_c"] + c["Q_ch_b"] + c["Q_ch_s"]
+        spin = 0.0
+        for Q, a, b, s in ((r.Q_i, r.a_i, r.b_i, r.spin_i), (r.Q_o, r.a_o, r.b_o, r.spin_o)):
+            for q, aa, bb, ss in zip(Q, a, b, s):
+                if q > 0:
+                    spin += 3 / 8 * inputs["mu_spin"] * q * aa * ellipe(1 - (bb / aa) ** 2) * abs(ss)
+        shares.append(churn / (churn + spin))
+    return {"churning_share": shares, "min_churning_share": min(shares), "max_churning_share": max(shares),
+            "Fa_N": list(inputs["Fa_N"])}
+
+
+@kind
+def oil_viscosity(inputs):
+    """Dynamic viscosity [mPa s] of library oils at the given temperature [degC]."""
+    from bearing_core import lubricants as L
+    return {"eta_mPa_s": [float(L.get_oil(n).eta(inputs["temperature_C"] + 273.15) * 1e3) for n in inputs["oils"]]}
+
+
+@kind
+def film_rolling_ball(inputs):
+    """Hamrock-Dowson minimum film of a ball rolling down an inclined oiled plate (Stachowiak & Batchelor's
+    conventions: R' = d/4 as Rx = Ry, U from v/2, E' = E/(1 - nu^2)); v = sqrt(10/7 g s sin(theta))."""
+    from bearing_core import film
+    d, g = inputs["d_mm"] * 1e-3, 9.81
+    th = math.radians(inputs["incline_deg"])
+    W = inputs["rho_kg_m3"] * math.pi * d ** 3 / 6.0 * g * math.cos(th)
+    Ep = inputs["E_Pa"] / (1.0 - inputs["nu"] ** 2)
+    h = []
+    for s in inputs["distance_m"]:
+        v = math.sqrt(10.0 / 7.0 * g * s * math.sin(th))
+        h.append(film.film_thickness(v / 2.0, inputs["eta0_Pa_s"], inputs["alpha_per_Pa"], d / 4.0, d / 4.0, Ep,
+                                     W).h_min * 1e6)
+    return {"h_min_um": h, "distance_m": list(inputs["distance_m"])}
+
+
+# ------------------------------------------------------------------------------------------------
+# seed 003 wear trends
+@kind
+def wear_speed_sweep(inputs):
+    """Wear coefficient k and h_min per loaded ball against speed (wear.operating_point_wear), and the
+    largest contact-centre sliding speed. Monotonicity flags over the balls loaded at every speed."""
+    from bearing_core import wear
+    from bearing_core.geometry import load_preset
+    g = load_preset(inputs["bearing"])
+    ks = {"inner": [], "outer": []}
+    hs = {"inner": [], "outer": []}
+    qs = {"inner": [], "outer": []}
+    vmax = {"inner": [], "outer": []}
+    for n in inputs["speeds_rpm"]:
+        op = wear.operating_point_wear(g, n * RPM, tuple(inputs["loads_N_Nm"]))
+        for race in ks:
+            ks[race].append(op[race].k)
+            hs[race].append(op[race].h_min)
+            qs[race].append(op[race].states.Q)
+            s = op[race].states
+            vmax[race].append(float(np.max(np.hypot(s.vs_t, s.vs_m))))
+    out = {"speed_rpm": list(inputs["speeds_rpm"])}
+    for race in ks:
+        loaded = np.all(np.array(qs[race]) > 0, axis=0)
+        dk = np.diff(np.array(ks[race])[:, loaded], axis=0)
+        dh = np.diff(np.array(hs[race])[:, loaded], axis=0)
+        out[f"k_{race}_falls_with_speed"] = bool(np.all(dk < 0))
+        out[f"hmin_{race}_rises_with_speed"] = bool(np.all(dh > 0))
+        out[f"k_{race}_mean"] = [float(np.mean(np.array(k)[loaded])) for k in ks[race]]
+        out[f"sliding_{race}_max_m_s"] = vmax[race]
+        out[f"loaded_balls_{race}"] = int(loaded.sum())
+    out["inner_sliding_above_outer"] = bool(all(a > b for a, b in zip(vmax["inner"], vmax["outer"])))
+    return out
+
+
+@kind
+def wear_radial_force_sweep(inputs):
+    """Seed 003 Fig. 6 quantities: k at the force direction and opposite, per radial force; the number of
+    local minima of k_i around the ring; its depth (max - min)."""
+    from bearing_core import wear
+    from bearing_core.geometry import load_preset
+    g = load_preset(inputs["bearing"])
+    runs = [wear.operating_point_wear(g, inputs["speed_rpm"] * RPM, (F, 0, inputs["Fz_N"], 0, 0))
+            for F in inputs["Fx_N"]]
+    psi = np.degrees(runs[0]["qs"].psi)
+    j0 = int(np.argmin(np.abs(((psi - 0.0) + 180) % 360 - 180)))
+    j180 = int(np.argmin(np.abs(((psi - 180.0) + 180) % 360 - 180)))
+    ki = np.array([r["inner"].k for r in runs])
+    ko = np.array([r["outer"].k for r in runs])
+    minima = [int(np.sum((x < np.roll(x, 1)) & (x < np.roll(x, -1)))) for x in ki]
+    return {"Fx_N": list(inputs["Fx_N"]), "k_inner_at_force": ki[:, j0].tolist(),
+            "k_outer_at_force": ko[:, j0].tolist(), "k_outer_opposite": ko[:, j180].tolist(),
+            "k_inner_local_minima": minima, "k_inner_depth": [float(np.ptp(x)) for x in ki],
+            "k_max_at_force_direction": [bool(int(np.argmax(ki[i])) == j0 and int(np.argmax(ko[i])) == j0)
+                                         for i in range(len(runs))]}
+
+
+@kind
+def wear_moment_zones(inputs):
+    """Seed 003 Fig. 7: local maxima (bearing zones) of k_i around the ring under a moment M_y."""
+    from bearing_core import wear
+    from bearing_core.geometry import load_preset
+    g = load_preset(inputs["bearing"])
+    runs = [wear.operating_point_wear(g, inputs["speed_rpm"] * RPM, (0, 0, inputs["Fz_N"], 0, M))
+            for M in inputs["My_Nm"]]
+    psi = np.degrees(runs[0]["qs"].psi)
+    ki = np.array([r["inner"].k for r in runs])
+    x = ki[-1]
+    peaks = np.where((x >= np.roll(x, 1)) & (x > np.roll(x, -1)))[0]
+    dist = np.abs(((psi[peaks][:, None] - np.array([0.0, 180.0])[None, :]) + 180) % 360 - 180)
+    jmax = int(np.argmax(x))
+    return {"bearing_zones": int(len(peaks)), "zone_azimuths_deg": psi[peaks].tolist(),
+            "zones_within_one_pitch_of_0_and_180": bool(np.all(dist.min(axis=1) < 360.0 / g.Z)),
+            "k_inner_max": ki[:, jmax].tolist(), "My_Nm": list(inputs["My_Nm"])}
+
+
+@kind
+def wear_ellipse_sliding(inputs):
+    """Seed 003 Fig. 12: asymmetry of the strip wear q(x) along the major axis, inner and outer race
+    (max |q(x) - q(-x)| / max q over the balls)."""
+    from bearing_core import wear
+    from bearing_core.geometry import load_preset
+    g = load_preset(inputs["bearing"])
+    op = wear.operating_point_wear(g, inputs["speed_rpm"] * RPM, tuple(inputs["loads_N_Nm"]))
+    asym = {}
+    for race in ("inner", "outer"):
+        vals = [float(np.max(np.abs(q - q[::-1])) / np.max(q)) for q in op[race].q if np.max(q) > 0]
+        asym[race] = vals
+    return {"inner_min_asymmetry": min(asym["inner"]), "outer_max_asymmetry": max(asym["outer"])}
+
+
+# ------------------------------------------------------------------------------------------------
+# dynamics (slow: full run only)
+def _seed000_profile(t_end):
+    from bearing_core.dynamics import SEED000_PROFILE
+    ts = [p[0] for p in SEED000_PROFILE]
+    ns = [p[1] for p in SEED000_PROFILE]
+    return [p for p in SEED000_PROFILE if p[0] < t_end] + [(t_end, float(np.interp(t_end, ts, ns)))]
+
+
+def _settle_time(t, cage, tol=0.01):
+    """First time after which the cage speed stays within tol of its mean over the last 0.1 s."""
+    final = cage[t > t[-1] - 0.1].mean()
+    bad = np.where(np.abs(cage / final - 1) > tol)[0]
+    return float(t[bad[-1]]) if len(bad) else float(t[0])
+
+
+@kind
+def seed000_profile(inputs):
+    """Seed 000 acceleration profile (1000 rpm to 0.5 s, 10,000 rpm/s to 10,000 rpm at 1.4 s, held), full
+    16-ball model, per axial load: cage speed at the end, settle time (1 % band), CSR over the spin-free
+    theoretical CSR (Eq. 26) at the end and its minimum after 0.5 s, peak |a_x| of the inner ring in the
+    ramp (0.5-1.4 s); plus the cage-speed curves for the plot."""
+    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict, simulate_profile
+    from bearing_core.geometry import load_preset
+    mu = inputs["mu"]
+    t_end = inputs.get("t_end_s", 2.0)
+    out = {"Fz_N": list(inputs["Fz_N"]), "cage_end_rpm": [], "settle_time_s": [], "csr_over_theory_end": [],
+           "min_csr_over_theory_after_ramp_start": [], "peak_ir_ax_ramp_m_s2": [], "curves": {}}
+    for fz in inputs["Fz_N"]:
+        opts = dict(traction=inputs["traction"], mu=mu, mu_pocket=mu, mu_land=mu, reduced="full")
+        opts.update(inputs.get("options", {}))
+        m = DynamicModel(load_preset(inputs["bearing"]), DynamicsOptions(**opts))
+        m.initialize(inputs["start_rpm"] * RPM, (inputs["Fx_N"], 0.0, fz, 0.0, 0.0))
+        d = records_to_dict(simulate_profile(m, _seed000_profile(t_end), record_dt=2e-3))
+        t = d["t"]
+        tail = t > t[-1] - 0.1
+        ramp = t > 0.5
+        out["cage_end_rpm"].append(float(d["cage_speed"][tail].mean() / RPM))
+        out["settle_time_s"].append(_settle_time(t, d["cage_speed"]))
+        theo = d["pure_rolling_cage_speed"]
+        out["csr_over_theory_end"].append(float((d["cage_speed"][tail] / theo[tail]).mean()))
+        out["min_csr_over_theory_after_ramp_start"].append(float(np.min(d["cage_speed"][ramp] / theo[ramp])))
+        win = (t > 0.5) & (t < 1.4)
+        out["peak_ir_ax_ramp_m_s2"].append(float(np.max(np.abs(d["ir_ax"][win]))))
+        out["curves"][f"Fz {fz:g} N"] = {"t_s": t[::5].tolist(), "cage_rpm": (d["cage_speed"][::5] / RPM).tolist()}
+    out["cage_end_rpm_first"] = out["cage_end_rpm"][0]
+    out["settle_time_s_first"] = out["settle_time_s"][0]
+    out["settled_before_end"] = [s < t_end - 0.15 for s in out["settle_time_s"]]
+    out["peak_ir_ax_growth_last_over_first"] = out["peak_ir_ax_ramp_m_s2"][-1] / out["peak_ir_ax_ramp_m_s2"][0]
+    return out
+
+
+@kind
+def held_speed_vibration(inputs):
+    """7218B held at a constant speed (Seed 000 Table 3 analogue): RMS inner-ring x acceleration over the
+    second half of the run and the share of time ball 0's inner contact is open, per axial load
+    (25 % stepped down from a higher-load equilibrium where given)."""
+    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+    from bearing_core.geometry import load_preset
+    mu = inputs["mu"]
+    out = {"preload_pct": list(inputs["preload_pct"]), "rms_ir_ax_m_s2": [], "ball0_inner_open_share": []}
+    for pct, start_pct in zip(inputs["preload_pct"], inputs["start_pct"]):
+        fz = inputs["MOL_Fz_N"] * pct / 100.0
+        fz0 = inputs["MOL_Fz_N"] * start_pct / 100.0
+        m = DynamicModel(load_preset(inputs["bearing"]),
+                         DynamicsOptions(traction=inputs["traction"], mu=mu, mu_pocket=mu, mu_land=mu,
+                                         reduced="full", integrator="auto"))
+        m.initialize(inputs["speed_rpm"] * RPM, (inputs["Fx_N"], 0.0, fz0, 0.0, 0.0), start="jones-harris")
+        if fz0 != fz:
+            m.set_inputs(loads=(inputs["Fx_N"], 0.0, fz, 0.0, 0.0))
+        T = inputs["t_end_s"]
+        d = records_to_dict(m.advance(T, record_dt=1e-5))
+        w = d["t"] >= T / 2
+        out["rms_ir_ax_m_s2"].append(float(d["ir_ax"][w].std()))
+        out["ball0_inner_open_share"].append(float(np.mean(d["ball0_Q_i"][w] <= 0.0)))
+    r = out["rms_ir_ax_m_s2"]
+    out["growth_lowest_over_full_preload"] = r[0] / r[-1]
+    out["inner_open_share_lowest"] = out["ball0_inner_open_share"][0]
+    out["inner_open_share_full"] = out["ball0_inner_open_share"][-1]
+    return out
+
+
+@kind
+def microslip(inputs):
+    """Adhesion / slip map of ball 0's contact after a short transient with Kalker traction
+    (postprocess.microslip_map): adhesion fraction, and whether the stick zone lies at the leading edge."""
+    from bearing_core.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.geometry import load_preset
+    from bearing_core.postprocess import microslip_map
+    m = DynamicModel(load_preset(inputs["bearing"]), DynamicsOptions(traction="kalker", mu=inputs["mu"], rtol=1e-6))
+    m.initialize(inputs["speed_rpm"] * RPM, tuple(inputs["loads_N_Nm"]))
+    m.advance(inputs["t_end_s"])
+    out = {}
+    for race in ("outer", "inner"):
+        mp = microslip_map(m, 0, race)
+        lead = -np.sign(mp["u_roll"])
+        inside = (mp["T"] / mp["b"]) ** 2 + (mp["M"] / mp["a"]) ** 2 < 1
+        stick = mp["T"][inside & ~mp["slip"]] * lead
+        slip = mp["T"][inside & mp["slip"]] * lead
+        out[f"adhesion_fraction_{race}"] = float(mp["adhesion_fraction"])
+        out[f"stick_at_leading_edge_{race}"] = bool(len(stick) > 0 and len(slip) > 0 and stick.mean() > slip.mean())
+    return out
+
+
+@kind
+def seed002_unloaded_zone(inputs):
+    """7008-ma2023 under a radial plus axial load (tilt held): does an unloaded inner-contact zone open
+    (minimum inner load exactly 0 over the late half), per radial load; reaction errors."""
+    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+    from bearing_core.geometry import load_preset
+    out = {"Fr_N": list(inputs["Fr_N"]), "unloaded_zone": [], "reaction_rel_error": []}
+    for fr in inputs["Fr_N"]:
+        m = DynamicModel(load_preset(inputs["bearing"]), DynamicsOptions(traction="lubricated", fixed_tilt=True))
+        m.initialize(inputs["speed_rpm"] * RPM, (fr, 0.0, inputs["Fa_N"], 0.0, 0.0))
+        d = records_to_dict(m.advance(inputs["t_end_s"], record_dt=1e-4))
+        late = d["t"] > d["t"][-1] / 2
+        out["unloaded_zone"].append(bool(np.all(d["Q_i_min"][late] == 0.0)))
+        out["reaction_rel_error"].append(float(max(abs(-d["Fx"][late].mean() / fr - 1),
+                                                   abs(-d["Fz"][late].mean() / inputs["Fa_N"] - 1))))
+    out["max_reaction_rel_error"] = max(out["reaction_rel_error"])
+    return out
+
+
+@kind
+def seed002_sliding_in_oil(inputs):
+    """7008-ma2023 with ball drag in an oil-air mixture and churning: inner contact-centre slip [mm/s] of
+    ball 0 after a fixed time, per axial load."""
+    from bearing_core.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.geometry import load_preset
+    slip = []
+    for fz in inputs["Fa_N"]:
+        m = DynamicModel(load_preset(inputs["bearing"]),
+                         DynamicsOptions(churning=True, oil_fraction=inputs["oil_fraction"]))
+        m.initialize(inputs["speed_rpm"] * RPM, (0.0, 0.0, fz, 0.0, 0.0))
+        m.advance(inputs["t_end_s"])
+        slip.append(float(abs(m.ball_details()["slip_i"][0]) * 1e3))
+    return {"Fa_N": list(inputs["Fa_N"]), "slip_inner_mm_s": slip,
+            "slip_ratio_lightest_over_heaviest": slip[0] / slip[-1]}
