@@ -607,7 +607,7 @@ class _Cluster:
             import os
             n = self.workers or os.cpu_count() or 1
             self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                        dashboard_address=None, host="127.0.0.1")
+                                        dashboard_address=":0", host="127.0.0.1")
             self.client = Client(self.cluster)
         self._own = True
         return self.client

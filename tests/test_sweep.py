@@ -1,0 +1,258 @@
+"""Sweeps on Dask (bearing_core.sweep, `bearing sweep`): determinism across worker counts and schedulers, failing
+points, worker loss, resume from the cache, the minimum-preload bisection, and spec validation.
+
+Most tests use the Jones-Harris quasi-static model on 7008-ma2023 and tiny grids (cheap); the preload bisection
+uses the quasi-static tribological model."""
+import math
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("distributed")
+import pandas as pd  # noqa: E402
+
+from bearing_core import sweep as S  # noqa: E402
+from bearing_core.cli import main  # noqa: E402
+from bearing_core.errors import BearingInputError  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+BEARING = "7008-ma2023"
+META = ["eval_wall_s", "cached"]
+
+
+def _grid_spec(model="quasistatic", **opts):
+    return S.SweepSpec(model=model, base={"bearing": BEARING},
+                       grid={"speed_rpm": [2000.0, 12000.0], "fz_N": [300.0, 1200.0], "fx_N": [0.0, 400.0]},
+                       options=dict(control="outer", **opts))
+
+
+def _values(df):
+    return df.drop(columns=META)
+
+
+@pytest.fixture(scope="module")
+def client2():
+    from distributed import Client, LocalCluster
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
+                      host="127.0.0.1") as cl, Client(cl) as c:
+        yield c
+
+
+class ExternalCluster:
+    """`dask scheduler` and two `dask worker` processes (no nanny) on 127.0.0.1, started as subprocesses."""
+
+    def __init__(self, tmp: Path, n_workers: int = 2):
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), str(HERE)]))
+        bindir = Path(sys.executable).parent
+        self.sfile = tmp / "scheduler.json"
+        self.procs = [subprocess.Popen([str(bindir / "dask"), "scheduler", "--host", "127.0.0.1", "--port", "0",
+                                        "--no-dashboard", "--scheduler-file", str(self.sfile)], env=env,
+                                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+        t0 = time.time()
+        while not self.sfile.is_file():
+            if time.time() - t0 > 60:
+                raise RuntimeError("dask scheduler did not start")
+            time.sleep(0.1)
+        self.workers = [subprocess.Popen([str(bindir / "dask"), "worker", "--scheduler-file", str(self.sfile),
+                                          "--nthreads", "1", "--no-nanny", "--host", "127.0.0.1", "--no-dashboard"],
+                                         env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                        for _ in range(n_workers)]
+        self.procs += self.workers
+        import json
+        self.address = json.loads(self.sfile.read_text())["address"]
+        from distributed import Client
+        with Client(self.address, timeout="30s") as c:
+            c.wait_for_workers(n_workers, timeout=60)
+
+    def close(self):
+        for p in reversed(self.procs):
+            if p.poll() is None:
+                p.terminate()
+        for p in self.procs:
+            try:
+                p.wait(10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.wait()
+
+
+def test_identical_results_on_1_and_2_workers_and_an_external_scheduler(client2, tmp_path):
+    """The same 8-point grid (speed x Fz x Fx) on a 1-worker and a 2-worker local cluster and on a scheduler
+    with two worker processes started separately: identical values (bit for bit), in point order."""
+    spec = _grid_spec()
+    d1 = S.run_sweep(spec, workers=1, progress=False)
+    d2 = S.run_sweep(spec, client=client2, progress=False)
+    assert len(client2.scheduler_info()["workers"]) == 2
+    ext = ExternalCluster(tmp_path)
+    try:
+        d3 = S.run_sweep(spec, scheduler=ext.address, progress=False)
+    finally:
+        ext.close()
+    assert len(d1) == 8 and (d1["status"] == "ok").all()
+    assert list(d1["point_index"]) == list(range(8))
+    pd.testing.assert_frame_equal(_values(d1), _values(d2), check_exact=True)
+    pd.testing.assert_frame_equal(_values(d1), _values(d3), check_exact=True)
+    # grid order: the last grid dimension varies fastest
+    assert list(d1["fx_N"][:2]) == [0.0, 400.0] and list(d1["speed_rpm"][:4]) == [2000.0] * 4
+
+
+def test_failing_point_is_recorded_and_the_others_complete(client2):
+    spec = S.SweepSpec(model="sweep_helpers:RaisingQuasiStatic", base={"bearing": BEARING, "speed_rpm": 6000.0},
+                       grid={"fz_N": [200.0, 666.0, 900.0]})
+    df = S.run_sweep(spec, client=client2, progress=False)
+    assert list(df["status"]) == ["ok", "failed", "ok"]
+    assert "deliberate failure" in df["error"][1]
+    assert df["cage_speed_rpm"][0] > 0 and df["cage_speed_rpm"][2] > 0 and math.isnan(df["cage_speed_rpm"][1])
+
+
+def test_killing_a_worker_mid_sweep_still_completes(tmp_path):
+    """12 points of 0.4 s each on two external workers; one worker is killed (SIGKILL) after the first results
+    arrive: the scheduler re-runs its tasks on the other worker and every point completes."""
+    ext = ExternalCluster(tmp_path)
+    try:
+        spec = S.SweepSpec(model="sweep_helpers:SlowQuasiStatic", base={"bearing": BEARING, "fz_N": 500.0},
+                           grid={"speed_rpm": np.linspace(1000, 12000, 12).tolist()}, options={"sleep_s": 0.4})
+        cache = tmp_path / "cache"
+        box = {}
+        th = threading.Thread(target=lambda: box.update(df=S.run_sweep(spec, scheduler=ext.address, cache_dir=cache,
+                                                                       retries=2, progress=False)))
+        th.start()
+        t0 = time.time()
+        while len(list(cache.glob("*.json"))) < 2 and time.time() - t0 < 60:
+            time.sleep(0.05)
+        ext.workers[0].send_signal(signal.SIGKILL)
+        th.join(120)
+        assert not th.is_alive()
+        df = box["df"]
+        assert ext.workers[0].wait(5) == -signal.SIGKILL
+        assert (df["status"] == "ok").all(), df[["status", "error"]]
+        ref = S.run_point("quasistatic", {}, spec.points()[-1])
+        assert df["cage_speed_rpm"].iloc[-1] == ref["cage_speed_rpm"]
+    finally:
+        ext.close()
+
+
+def test_resumed_sweep_recomputes_nothing_that_finished(client2, tmp_path):
+    spec = _grid_spec()
+    cache = tmp_path / "cache"
+    first = S.run_sweep(spec, client=client2, cache_dir=cache, progress=False)
+    assert first.attrs["computed"] == 8 and len(list(cache.glob("*.json"))) == 8
+    # an interrupted sweep: three finished points lost
+    for f in sorted(cache.glob("*.json"))[:3]:
+        f.unlink()
+    again = S.run_sweep(spec, client=client2, cache_dir=cache, progress=False)
+    assert again.attrs["computed"] == 3 and int((~again["cached"]).sum()) == 3
+    pd.testing.assert_frame_equal(_values(first), _values(again), check_exact=True)
+    third = S.run_sweep(spec, client=client2, cache_dir=cache, progress=False)
+    assert third.attrs["computed"] == 0 and third["cached"].all()
+    # another model option is another point
+    other = S.run_sweep(_grid_spec().__class__(model="quasistatic", base=spec.base, grid=spec.grid,
+                                               options={"control": "inner"}),
+                        client=client2, cache_dir=cache, progress=False)
+    assert other.attrs["computed"] == 8
+
+
+def test_min_preload_brackets_a_directly_checked_point(client2):
+    """Quasi-static tribological model, 7008-ma2023 at 15,000 rpm, lubricated traction with ball drag in an
+    oil-air mixture of oil fraction 0.5 (the drag the traction must overcome): the bisection's minimum preload
+    P is checked directly, outside the bisection: at 0.9 P the bearing skids (cage speed ratio < 0.95), at
+    1.03 P it does not. Also: the curve's bracket ratios straddle the criterion."""
+    base = {"bearing": BEARING, "traction": "lubricated", "oil_fraction": 0.5}
+    spec = S.SweepSpec(model="tribo", base=base)
+    df = S.min_preload_curve(spec, [15000.0], lo=20.0, hi=200.0, rtol=0.03, client=client2, progress=False)
+    r = df.iloc[0]
+    assert r["status"] == "ok", r["error"]
+    P = r["min_preload_N"]
+    assert 20.0 < r["preload_skidding_N"] < P < 200.0 and P - r["preload_skidding_N"] <= 0.03 * P
+    assert r["ratio_at_skidding_preload"] < 0.95 <= r["ratio_at_min_preload"]
+    pt = dict(S.SweepSpec(base=dict(base, speed_rpm=15000.0)).points()[0])
+    # direct checks, on the same workers (their compiled kernels are loaded already)
+    below, above = (client2.submit(S.run_point, "tribo", {}, dict(pt, preload_N=f * P), pure=False).result()
+                    ["cage_speed_ratio"] for f in (0.9, 1.03))
+    assert S.skid_state(below) == "skidding" and S.skid_state(above) != "skidding", (below, above)
+
+
+def test_pure_rolling_cage_speed_equal_angles_is_the_textbook_formula():
+    """Harris & Kotzalas, Rolling Bearing Analysis 5th ed. Vol. 1 Ch. 8 (cage speed, outer ring fixed):
+    omega_c = omega_i / 2 (1 - D cos(alpha) / dm) when both contact angles equal alpha. 7008-ma2023 geometry,
+    alpha = 15 and 40 deg; tolerance 1e-12 relative."""
+    from bearing_core.geometry import load_preset
+    g = load_preset(BEARING)
+    for a in (math.radians(15.0), math.radians(40.0)):
+        w = 1000.0
+        ref = 0.5 * w * (1.0 - g.D * math.cos(a) / g.dm)
+        assert S.pure_rolling_cage_speed(w, [a] * 3, [a] * 3, g.D, g.dm) == pytest.approx(ref, rel=1e-12)
+    assert S.skid_state(0.94) == "skidding" and S.skid_state(1.06) == "over-skidding"
+    assert S.skid_state(0.97) == "pure rolling" and S.skid_state(float("nan")) == ""
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--grid", "speed_rmp=0:100:3"], ["speed_rmp", "speed_rpm"]),                    # unknown variable
+    (["--grid", "speed_rpm=0:1000:0"], ["speed_rpm", "empty"]),                       # empty range
+    (["--grid", "fz_N=100,nan"], ["fz_N", "finite"]),                                 # NaN
+    (["--grid", "speed_rpm=-500,1000"], ["speed_rpm", "-500"]),                       # negative speed
+    (["--model", "tribo", "--grid", "speed_rpm=0,1000"], ["speed_rpm", "tribo"]),     # zero speed, needs rolling
+    (["--grid", "speed_rpm=1000,2000", "--grid", "mu=0.1,0.2"], ["mu", "quasistatic"]),  # no effect on the model
+    (["--set", "bearing=nope", "--grid", "fz_N=100,200"], ["bearing", "nope"]),        # unknown preset
+    (["--min-preload", "1000,2000", "--preload-range", "50:10", "--model", "tribo"], ["preload"]),
+])
+def test_bad_specs_fail_before_any_work(args, words, tmp_path, capsys):
+    out = tmp_path / "o"
+    t0 = time.perf_counter()
+    rc = main(["sweep", "--out", str(out), "--no-progress", *args])
+    err = capsys.readouterr().err
+    assert rc == 2, err
+    assert all(w in err for w in words), err
+    assert not out.exists()            # nothing written, no cluster started
+    assert time.perf_counter() - t0 < 5.0
+
+
+def test_points_file_errors(tmp_path):
+    f = tmp_path / "p.csv"
+    f.write_text("speed_rpm,fz_N\n")
+    with pytest.raises(BearingInputError, match="no points"):
+        S.read_points_csv(f)
+    f.write_text("speed_rpm,fz_N,colour\n1000,100,red\n")
+    with pytest.raises(BearingInputError, match="colour"):
+        S.read_points_csv(f)
+
+
+def test_cli_legacy_speed_sweep_and_point_list(client2, tmp_path, capsys):
+    """Today's flags still give quasistatic_sweep_<bearing>.csv (same columns) and the tidy table; a CSV list of
+    points runs with the same engine; a grid over speed x preload writes the NetCDF and the maps."""
+    out = tmp_path / "o"
+    addr = client2.scheduler.address
+    rc = main(["sweep", "--bearing", BEARING, "--fz", "500", "--speed-max-rpm", "12000", "--points", "3",
+               "--out", str(out), "--scheduler", addr, "--no-progress"])
+    assert rc == 0, capsys.readouterr().err
+    legacy = pd.read_csv(out / f"quasistatic_sweep_{BEARING}.csv")
+    assert list(legacy.columns) == ["speed_rpm", "cage_speed_rpm", "cage_shaft_ratio", "alpha_i_deg", "alpha_o_deg",
+                                    "Q_i_N", "Q_o_N", "omega_R_rpm", "spin_roll_i", "spin_roll_o", "p_max_i_Pa",
+                                    "dz_m", "dx_m"]
+    assert list(legacy["speed_rpm"]) == [0.0, 6000.0, 12000.0]
+    tidy = pd.read_parquet(out / "sweep.parquet")
+    assert np.allclose(tidy["cage_speed_rpm"], legacy["cage_speed_rpm"], rtol=1e-12)
+    assert (out / f"quasistatic_sweep_{BEARING}.png").is_file() and (out / "sweep.nc").is_file()
+
+    pts = tmp_path / "points.csv"
+    pts.write_text("speed_rpm,fz_N,bearing\n3000,400,7008-ma2023\n9000,800,7218B\n")
+    rc = main(["sweep", "--points-file", str(pts), "--out", str(tmp_path / "p"), "--scheduler", addr, "--no-progress"])
+    assert rc == 0
+    d = pd.read_csv(tmp_path / "p" / "sweep.csv")
+    assert list(d["bearing"]) == ["7008-ma2023", "7218B"] and (d["status"] == "ok").all()
+
+    import xarray as xr
+    rc = main(["sweep", "--bearing", BEARING, "--grid", "speed_rpm=2000:12000:3", "--grid", "preload_N=100,400",
+               "--out", str(tmp_path / "g"), "--scheduler", addr, "--no-progress"])
+    assert rc == 0
+    ds = xr.open_dataset(tmp_path / "g" / "sweep.nc", engine="scipy")
+    assert ds["cage_speed_rpm"].dims == ("speed_rpm", "preload_N") and ds["cage_speed_rpm"].shape == (3, 2)
+    assert (tmp_path / "g" / "sweep_skid_map.png").is_file()
