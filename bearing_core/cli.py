@@ -271,9 +271,9 @@ points:
   --set VAR=VALUE fixes a variable for all points. Variables (units in the names):
     {variables}
 models (--model): quasistatic (Jones-Harris), tribo (quasi-static tribological: traction, friction, ball drag in
-  the oil-air mixture), dynamic (the dynamic model held at each point's speed and load until steady: window means
-  of cage speed and friction torque change by less than --steady-tol between consecutive --window-s windows, at
-  most --max-time-s simulated; column 'steady'), profile (the dynamic model through --profile), fmu (the FMU
+  the oil-air mixture), dynamic (the dynamic model held at each point's speed and load until steady: between
+  consecutive --window-s windows the window mean of the cage speed changes by less than --steady-tol and that of
+  the friction torque by less than --torque-tol, at most --max-time-s simulated; column 'steady'), profile (the dynamic model through --profile), fmu (the FMU
   --fmu through fmpy: one instance per worker, reset between points, same steadiness criterion).
 
 skid criterion:
@@ -323,6 +323,8 @@ def _add_sweep_parser(sub):
     sw.add_argument("--max-time-s", type=_finite("--max-time-s"), default=1.0, help="dynamic: longest run [s]")
     sw.add_argument("--steady-tol", type=_finite("--steady-tol"), default=2e-3,
                     help="dynamic: relative change between windows counted as steady [-]")
+    sw.add_argument("--torque-tol", type=_finite("--torque-tol"), default=0.05,
+                    help="dynamic: relative change of the window-mean friction torque counted as steady [-]")
     sw.add_argument("--start", choices=("jones-harris", "tribological"), default="jones-harris",
                     help="dynamic/profile: initial state")
     sw.add_argument("--integrator", choices=("adaptive", "implicit", "auto", "rk4"), default=None)
@@ -390,7 +392,7 @@ def sweep_spec_from_args(a):
     if a.model == "quasistatic":
         opts["control"] = a.control
     if a.model in ("dynamic", "fmu"):
-        opts.update(window_s=a.window_s, max_time_s=a.max_time_s, steady_tol=a.steady_tol)
+        opts.update(window_s=a.window_s, max_time_s=a.max_time_s, steady_tol=a.steady_tol, torque_tol=a.torque_tol)
     if a.model in ("dynamic", "profile"):
         opts["start"] = a.start
         if a.integrator:
