@@ -877,6 +877,9 @@ def plot_maps(df, spec: SweepSpec, out_dir, stem: str = "sweep", skid=(0.05, 0.0
             a.plot(X[fail], Y[fail], "kx", ms=8, label="failed point")
             a.legend(loc="upper right")
         fig.colorbar(pc, ax=a, label=label)
+        yv = np.asarray(sub[ys].values, float)
+        if yv.min() > 0 and yv.max() / yv.min() >= 8.0:     # loads spanning a decade: log axis
+            a.set_yscale("log")
         a.set_xlabel("inner-ring speed [rpm]")
         a.set_ylabel(ys.replace("_N", " [N]").replace("_Nm", " [N m]"))
         a.set_title(f"{spec.model}: {label}" + (f"\n{note}" if note else ""), fontsize=10)
