@@ -673,7 +673,7 @@ def _run_tasks(tasks, cache_dir, client, retries, progress, desc):
 def run_sweep(spec: SweepSpec, cache_dir=None, scheduler=None, workers=None, client=None, retries: int = 2,
               progress: bool = True, skid=(0.05, 0.05)):
     """Validate, then evaluate every point of spec on Dask; returns a pandas DataFrame ordered by
-    point_index: the point's variables, status, error, the model outputs, skid_state, eval_wall_s and
+    point_index: the point's variables that the model uses, status, error, the model outputs, skid_state, eval_wall_s and
     cached (True where the result came from the cache). Attribute df.attrs['computed']: points evaluated
     in this run."""
     import pandas as pd
@@ -688,9 +688,10 @@ def run_sweep(spec: SweepSpec, cache_dir=None, scheduler=None, workers=None, cli
               (spec.model, opts, p, skid)) for p in pts]
     with _Cluster(scheduler, workers, client) as cl:
         res, computed = _run_tasks(tasks, cache, cl, retries, progress, f"sweep ({spec.model})")
+    uses = set(get_evaluator(spec.model).uses)
     rows = []
-    for i, (p, r) in enumerate(zip(pts, res)):
-        rows.append(dict({"point_index": i}, **p, **r))
+    for i, (p, r) in enumerate(zip(pts, res)):   # the variables the model uses, then its outputs
+        rows.append(dict({"point_index": i}, **{k: v for k, v in p.items() if k in uses}, **r))
     df = pd.DataFrame(rows)
     df.attrs["computed"] = computed
     return df
