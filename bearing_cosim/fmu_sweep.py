@@ -1,7 +1,7 @@
 """The bearing FMU as a sweep model (`bearing sweep --model fmu --fmu FILE`), driven by fmpy.
 
 One FMU instance per worker process: the FMU is unpacked once per process (the first point that needs it) and
-instantiated once; between points it is reset with fmi2Reset, its parameters are set again, and it is
+instantiated once (again only after a point failed inside the FMU); between points it is reset with fmi2Reset, its parameters are set again, and it is
 initialised at the point's speed and loads. The run then steps (communication step options['step_s'], default
 1e-3 s) in windows of options['window_s'] until steady by the criterion of bearing_core.sweep.DynamicWindow:
 between two consecutive windows the window mean of the cage speed changes by less than options['steady_tol'] and
@@ -155,4 +155,16 @@ class FMUEvaluator(DynamicWindow):
 
     def __call__(self, point, options):
         with _LOCK:
-            return _instance(options["fmu"]).run(point, options)
+            inst = _instance(options["fmu"])
+            try:
+                return inst.run(point, options)
+            except Exception:
+                # an FMU left in an error state is not reused: the next point unpacks a fresh one
+                for k, v in list(_INSTANCES.items()):
+                    if v is inst:
+                        del _INSTANCES[k]
+                try:
+                    inst.close()
+                except Exception:
+                    pass
+                raise
