@@ -64,13 +64,13 @@ class _Instance:
 
     def run(self, point: dict, options: dict) -> dict:
         f = self.fmu
+        b = str(point["bearing"])
+        if b.lower().endswith(".json"):
+            raise BearingInputError("bearing", b, "a preset name for the FMU model (it takes no bearing file)")
         if self.used:
             f.reset()                      # fmi2Reset: back to the instantiated state, parameters settable
         self.used = True
         self.points += 1
-        b = str(point["bearing"])
-        if b.lower().endswith(".json"):
-            raise BearingInputError("bearing", b, "a preset name for the FMU model (it takes no bearing file)")
         pc, lc = point["pocket_clearance_mm"], point["land_clearance_mm"]
         params = {"bearing": b, "traction_model": point["traction"], "friction_coefficient": point["mu"],
                   "cage_friction_coefficient": point["mu_cage"], "oil": point["oil"],
@@ -158,6 +158,8 @@ class FMUEvaluator(DynamicWindow):
             inst = _instance(options["fmu"])
             try:
                 return inst.run(point, options)
+            except BearingInputError:
+                raise                      # refused before the FMU was touched
             except Exception:
                 # an FMU left in an error state is not reused: the next point unpacks a fresh one
                 for k, v in list(_INSTANCES.items()):
