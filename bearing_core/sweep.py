@@ -241,6 +241,10 @@ class SweepSpec:
                     raise BearingInputError(f"grid {k}", vals, "at least one value (an empty range has no points)")
         elif len(self.points_list) == 0:
             raise BearingInputError("points", [], "at least one point")
+        else:
+            for p in self.points_list:
+                for k in p:
+                    _variable(k)
         pts = self.points()
         n_max = int(self.options.get("max_points", 1_000_000))
         if len(pts) > n_max:
