@@ -3,6 +3,8 @@ number of points.
 
     PYTHONPATH=$PWD python bench/bench_sweep.py [--models quasistatic,tribo] [--sizes 8,16,32,64]
                                                  [--workers 1,2] [--json docs/figures/bench_sweep.json]
+                                                 [--png docs/figures/bench_sweep.png]
+    PYTHONPATH=$PWD python bench/bench_sweep.py --plot-only docs/figures/bench_sweep.json --png FILE
 
 Per model and worker count: one LocalCluster of single-threaded processes (its start-up is timed apart), one
 warm-up sweep (workers import bearing_core and load the compiled kernels), then sweeps of N points (no cache),
@@ -30,7 +32,12 @@ def main():
     ap.add_argument("--sizes", default="8,16,32,64")
     ap.add_argument("--workers", default="1,2")
     ap.add_argument("--json", default=None)
+    ap.add_argument("--png", default=None, help="plot of wall time against points")
+    ap.add_argument("--plot-only", default=None, metavar="JSON", help="only plot a previous run's JSON")
     a = ap.parse_args()
+    if a.plot_only:
+        plot(json.loads(Path(a.plot_only).read_text())["rows"], a.png)
+        return
     from distributed import Client, LocalCluster
     import numpy as np
     from bearing_core import sweep as S
@@ -64,6 +71,32 @@ def main():
                           f"(cluster start {t_start:.1f} s, load {la:.1f})", flush=True)
     if a.json:
         Path(a.json).write_text(json.dumps({"machine": f"{os.cpu_count()} CPUs", "rows": rows}, indent=1))
+    if a.png:
+        plot(rows, a.png)
+
+
+def plot(rows, path):
+    """Wall time against the number of points, per model and worker count."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
+    keys = sorted({(r["model"], r["workers"]) for r in rows})
+    for (m, w) in keys:
+        rr = [r for r in rows if r["model"] == m and r["workers"] == w]
+        ax.plot([r["points"] for r in rr], [r["wall_s"] for r in rr], "o-" if w == 1 else "s--",
+                label=f"{m}, {w} worker{'s' if w > 1 else ''}")
+    ax.set_xlabel("points")
+    ax.set_ylabel("wall time [s]")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    la = [r["loadavg_1min"] for r in rows]
+    ax.set_title(f"sweep wall time (2-core machine, load average {min(la):.0f}-{max(la):.0f} during the run)",
+                 fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 
 if __name__ == "__main__":
