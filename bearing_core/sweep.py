@@ -809,8 +809,8 @@ def to_dataset(df, spec: SweepSpec):
                              for x in col], dtype=str)
         data[c] = (dims, vals.reshape(shape))
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(model=spec.model, options=json.dumps(_canonical(spec.options)),
-                    base=json.dumps(_canonical(spec.base)), code_version=code_version())
+    ds.attrs.update(model=spec.model, options=json.dumps(spec.options, default=str),
+                    base=json.dumps(spec.base, default=str), code_version=code_version())
     return ds
 
 
