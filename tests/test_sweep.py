@@ -181,9 +181,10 @@ def test_min_preload_brackets_a_directly_checked_point(client2):
 
 
 def test_pure_rolling_cage_speed_equal_angles_is_the_textbook_formula():
-    """Harris & Kotzalas, Rolling Bearing Analysis 5th ed. Vol. 1 Ch. 8 (cage speed, outer ring fixed):
-    omega_c = omega_i / 2 (1 - D cos(alpha) / dm) when both contact angles equal alpha. 7008-ma2023 geometry,
-    alpha = 15 and 40 deg; tolerance 1e-12 relative."""
+    """Harris & Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 1, the chapter on rolling-bearing kinematics
+    (cage speed with the outer ring fixed; chapter recalled from memory, the formula is the standard epicyclic
+    result): omega_c = omega_i / 2 (1 - D cos(alpha) / dm) when both contact angles equal alpha. 7008-ma2023
+    geometry, alpha = 15 and 40 deg; tolerance 1e-12 relative."""
     from bearing_core.geometry import load_preset
     g = load_preset(BEARING)
     for a in (math.radians(15.0), math.radians(40.0)):
