@@ -306,3 +306,21 @@ def test_profile_model_ends_where_the_dynamic_window_settles(client2, tmp_path):
                                 options={"window_s": 0.02, "max_time_s": 0.2}), client=client2, progress=False).iloc[0]
     assert d["status"] == "ok" and d["steady"]
     assert p["cage_speed_rpm"] == pytest.approx(d["cage_speed_rpm"], rel=5e-3)
+
+
+def test_cache_key_follows_content_of_a_bearing_file(tmp_path):
+    """A bearing given as a file is keyed by its content: the same content under another name gives the same key,
+    an edited file another key; the code version and the model options are part of the key."""
+    import json
+    from bearing_core.geometry import preset_data
+    d = preset_data(BEARING)
+    f1, f2 = tmp_path / "a.json", tmp_path / "b.json"
+    f1.write_text(json.dumps(d))
+    f2.write_text(json.dumps(d))
+    p1, p2 = (S.SweepSpec(base={"bearing": str(f), "speed_rpm": 1000.0}).validate()[0] for f in (f1, f2))
+    k = S.point_key(p1, "quasistatic", {}, "v1")
+    assert k == S.point_key(p2, "quasistatic", {}, "v1")
+    assert k != S.point_key(p1, "quasistatic", {}, "v2") and k != S.point_key(p1, "quasistatic", {"control": "inner"}, "v1")
+    f1.write_text(json.dumps(dict(d, number_of_balls=d["number_of_balls"] - 1)))
+    assert k != S.point_key(p1, "quasistatic", {}, "v1")
+    assert S.resolve_geometry(p1).Z == d["number_of_balls"] - 1
