@@ -47,30 +47,36 @@ def client2():
 
 
 class ExternalCluster:
-    """`dask scheduler` and two `dask worker` processes (no nanny) on 127.0.0.1, started as subprocesses."""
+    """`dask scheduler` and two `dask worker` processes (no nanny) on 127.0.0.1, started as subprocesses. The
+    processes start in the background; ready() waits for them."""
 
     def __init__(self, tmp: Path, n_workers: int = 2):
         env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), str(HERE)]))
         bindir = Path(sys.executable).parent
+        self.n = n_workers
         self.sfile = tmp / "scheduler.json"
         self.procs = [subprocess.Popen([str(bindir / "dask"), "scheduler", "--host", "127.0.0.1", "--port", "0",
                                         "--no-dashboard", "--scheduler-file", str(self.sfile)], env=env,
                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
-        t0 = time.time()
-        while not self.sfile.is_file():
-            if time.time() - t0 > 60:
-                raise RuntimeError("dask scheduler did not start")
-            time.sleep(0.1)
         self.workers = [subprocess.Popen([str(bindir / "dask"), "worker", "--scheduler-file", str(self.sfile),
                                           "--nthreads", "1", "--no-nanny", "--host", "127.0.0.1", "--no-dashboard"],
                                          env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
                         for _ in range(n_workers)]
         self.procs += self.workers
+        self.address = None
+
+    def ready(self):
         import json
-        self.address = json.loads(self.sfile.read_text())["address"]
         from distributed import Client
-        with Client(self.address, timeout="30s") as c:
-            c.wait_for_workers(n_workers, timeout=60)
+        t0 = time.time()
+        while not self.sfile.is_file():
+            if time.time() - t0 > 90:
+                raise RuntimeError("dask scheduler did not start")
+            time.sleep(0.1)
+        self.address = json.loads(self.sfile.read_text())["address"]
+        with Client(self.address, timeout="60s") as c:
+            c.wait_for_workers(self.n, timeout=90)
+        return self
 
     def close(self):
         for p in reversed(self.procs):
@@ -84,18 +90,23 @@ class ExternalCluster:
                 p.wait()
 
 
-def test_identical_results_on_1_and_2_workers_and_an_external_scheduler(client2, tmp_path):
+@pytest.fixture(scope="module")
+def external(tmp_path_factory):
+    """One external cluster for the module: the determinism test uses both workers, the worker-loss test (after
+    it in this file) kills one."""
+    ext = ExternalCluster(tmp_path_factory.mktemp("dask"))
+    yield ext
+    ext.close()
+
+
+def test_identical_results_on_1_and_2_workers_and_an_external_scheduler(client2, external):
     """The same 8-point grid (speed x Fz x Fx) on a 1-worker and a 2-worker local cluster and on a scheduler
     with two worker processes started separately: identical values (bit for bit), in point order."""
     spec = _grid_spec()
-    d1 = S.run_sweep(spec, workers=1, progress=False)
+    d1 = S.run_sweep(spec, workers=1, progress=False)      # while the external cluster starts
     d2 = S.run_sweep(spec, client=client2, progress=False)
     assert len(client2.scheduler_info()["workers"]) == 2
-    ext = ExternalCluster(tmp_path)
-    try:
-        d3 = S.run_sweep(spec, scheduler=ext.address, progress=False)
-    finally:
-        ext.close()
+    d3 = S.run_sweep(spec, scheduler=external.ready().address, progress=False)
     assert len(d1) == 8 and (d1["status"] == "ok").all()
     assert list(d1["point_index"]) == list(range(8))
     pd.testing.assert_frame_equal(_values(d1), _values(d2), check_exact=True)
@@ -113,31 +124,28 @@ def test_failing_point_is_recorded_and_the_others_complete(client2):
     assert df["cage_speed_rpm"][0] > 0 and df["cage_speed_rpm"][2] > 0 and math.isnan(df["cage_speed_rpm"][1])
 
 
-def test_killing_a_worker_mid_sweep_still_completes(tmp_path):
-    """12 points of 0.4 s each on two external workers; one worker is killed (SIGKILL) after the first results
-    arrive: the scheduler re-runs its tasks on the other worker and every point completes."""
-    ext = ExternalCluster(tmp_path)
-    try:
-        spec = S.SweepSpec(model="sweep_helpers:SlowQuasiStatic", base={"bearing": BEARING, "fz_N": 500.0},
-                           grid={"speed_rpm": np.linspace(1000, 12000, 12).tolist()}, options={"sleep_s": 0.4})
-        cache = tmp_path / "cache"
-        box = {}
-        th = threading.Thread(target=lambda: box.update(df=S.run_sweep(spec, scheduler=ext.address, cache_dir=cache,
-                                                                       retries=2, progress=False)))
-        th.start()
-        t0 = time.time()
-        while len(list(cache.glob("*.json"))) < 2 and time.time() - t0 < 60:
-            time.sleep(0.05)
-        ext.workers[0].send_signal(signal.SIGKILL)
-        th.join(120)
-        assert not th.is_alive()
-        df = box["df"]
-        assert ext.workers[0].wait(5) == -signal.SIGKILL
-        assert (df["status"] == "ok").all(), df[["status", "error"]]
-        ref = S.run_point("quasistatic", {}, spec.points()[-1])
-        assert df["cage_speed_rpm"].iloc[-1] == ref["cage_speed_rpm"]
-    finally:
-        ext.close()
+def test_killing_a_worker_mid_sweep_still_completes(external, tmp_path):
+    """10 points of 0.3 s each on the two external workers; one worker is killed (SIGKILL) after the first
+    results arrive: the scheduler re-runs its tasks on the other worker and every point completes."""
+    ext = external.ready()
+    spec = S.SweepSpec(model="sweep_helpers:SlowQuasiStatic", base={"bearing": BEARING, "fz_N": 500.0},
+                       grid={"speed_rpm": np.linspace(1000, 12000, 10).tolist()}, options={"sleep_s": 0.3})
+    cache = tmp_path / "cache"
+    box = {}
+    th = threading.Thread(target=lambda: box.update(df=S.run_sweep(spec, scheduler=ext.address, cache_dir=cache,
+                                                                   retries=2, progress=False)))
+    th.start()
+    t0 = time.time()
+    while len(list(cache.glob("*.json"))) < 2 and time.time() - t0 < 60:
+        time.sleep(0.05)
+    ext.workers[0].send_signal(signal.SIGKILL)
+    th.join(120)
+    assert not th.is_alive()
+    df = box["df"]
+    assert ext.workers[0].wait(5) == -signal.SIGKILL
+    assert (df["status"] == "ok").all(), df[["status", "error"]]
+    ref = S.run_point("quasistatic", {}, spec.points()[-1])
+    assert df["cage_speed_rpm"].iloc[-1] == ref["cage_speed_rpm"]
 
 
 def test_resumed_sweep_recomputes_nothing_that_finished(client2, tmp_path):
