@@ -9,6 +9,7 @@ import argparse
 import json
 import math
 import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -58,15 +59,7 @@ def build_parser() -> argparse.ArgumentParser:
     q.add_argument("--json", action="store_true", help="print one JSON object")
     q.set_defaults(func=cmd_quasistatic)
 
-    sw = sub.add_parser("sweep", help="quasi-static speed sweep: CSV and plots of contact angles, loads, "
-                                      "ball speeds and the pure-rolling cage speed")
-    sw.add_argument("--bearing", required=True)
-    _add_loads(sw)
-    sw.add_argument("--speed-max-rpm", type=_finite("--speed-max-rpm"), default=15000.0)
-    sw.add_argument("--points", type=int, default=16)
-    sw.add_argument("--control", choices=("outer", "inner", "hybrid"), default="outer")
-    sw.add_argument("--out", default="out", help="output folder (created)")
-    sw.set_defaults(func=cmd_sweep)
+    _add_sweep_parser(sub)
 
     dy = sub.add_parser("dynamics", help="transient tribo-dynamic run through a speed profile: CSV, plots, "
                                           "summary JSON")
@@ -283,37 +276,200 @@ def _tribo_quasistatic(a, g) -> int:
     return 0
 
 
+SWEEP_EPILOG = """\
+points:
+  Without --grid / --points-file: the speed grid 0 .. --speed-max-rpm in --points steps (the quasi-static speed
+  sweep, also written as quasistatic_sweep_<bearing>.csv/.png). --grid VAR=START:STOP:NUM or VAR=A,B,C
+  (repeatable; the Cartesian product, dims in the order given); --points-file CSV (one column per variable);
+  --set VAR=VALUE fixes a variable for all points. Variables (units in the names):
+    {variables}
+models (--model): quasistatic (Jones-Harris), tribo (quasi-static tribological: traction, friction, ball drag in
+  the oil-air mixture), dynamic (the dynamic model held at each point's speed and load until steady: between
+  consecutive --window-s windows the window mean of the cage speed changes by less than --steady-tol and that of
+  the friction torque by less than --torque-tol, at most --max-time-s simulated; column 'steady'), profile (the dynamic model through --profile), fmu (the FMU
+  --fmu through fmpy: one instance per worker, reset between points, same steadiness criterion).
+
+skid criterion:
+  S = cage speed / pure-rolling cage speed, the pure-rolling value from Harris & Kotzalas (outer raceway control,
+  pure rolling at both contact centres) at the model's own contact angles, averaged over the loaded balls.
+  skidding: S < 1 - --skid-threshold; over-skidding: S > 1 + --overskid-threshold (defaults 0.05: an engineering
+  tolerance, not a published constant). --min-preload SPEEDS finds, per speed, the smallest axial preload
+  (constant-force, added to Fz) with S >= 1 - skid-threshold by bisection between --preload-range LO:HI
+  (LO must skid, HI must not) to a relative width --preload-rtol.
+
+execution:
+  Dask distributed: a local cluster of single-threaded worker processes (--workers, default one per CPU), or
+  --scheduler ADDRESS of an existing cluster. A point that raises is recorded (status 'failed', error) and the
+  others go on; a task whose worker dies is retried (--retries). Finished points are cached in --cache (default
+  OUT/sweep_cache) under the hash of the point, model, options and code version: re-running resumes.
+outputs (OUT/): sweep.csv, sweep.parquet, sweep.nc (grids), sweep_skid_map.png, sweep_torque_map.png,
+  sweep_heat_map.png (grids over speed_rpm and a load), min_preload.csv/.png."""
+
+
+def _add_sweep_parser(sub):
+    from .sweep import MODEL_NAMES, VARIABLES
+    sw = sub.add_parser(
+        "sweep", help="operating maps on Dask: grids or point lists over speed, loads, preload, oil, friction, "
+                      "clearances, bearing; skid, torque and heat maps; minimum-preload curve",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=SWEEP_EPILOG.format(variables="\n    ".join(f"{v.name}: {v.doc}" for v in VARIABLES.values())))
+    sw.add_argument("--bearing", default=None, help="preset name or bearing JSON file (default: the points' or 7218B)")
+    _add_loads(sw)
+    sw.add_argument("--speed-max-rpm", type=_finite("--speed-max-rpm"), default=15000.0,
+                    help="top of the default speed grid [rpm]")
+    sw.add_argument("--points", type=int, default=16, help="number of speeds of the default speed grid")
+    sw.add_argument("--control", choices=("outer", "inner", "hybrid"), default="outer",
+                    help="raceway control of the quasistatic model")
+    sw.add_argument("--out", default="out", help="output folder (created)")
+    sw.add_argument("--model", choices=MODEL_NAMES, default="quasistatic", help="model evaluating each point")
+    sw.add_argument("--grid", action="append", default=[], metavar="VAR=SPEC", help="grid dimension (repeatable)")
+    sw.add_argument("--points-file", default=None, help="CSV list of points (columns: variable names)")
+    sw.add_argument("--set", action="append", default=[], metavar="VAR=VALUE", help="fixed value of a variable")
+    sw.add_argument("--speed-rpm", type=_finite("--speed-rpm"), default=None,
+                    help="fixed speed when the grid does not vary speed_rpm [rpm]")
+    sw.add_argument("--traction", choices=("lubricated", "coulomb", "kalker"), default=None)
+    sw.add_argument("--mu", type=_finite("--mu"), default=None, help="ball-race friction coefficient [-]")
+    sw.add_argument("--mu-cage", type=_finite("--mu-cage"), default=None, help="pocket/land friction coefficient [-]")
+    sw.add_argument("--oil-fraction", type=_finite("--oil-fraction"), default=None,
+                    help="oil volume fraction of the oil-air mixture [-]")
+    sw.add_argument("--window-s", type=_finite("--window-s"), default=0.02, help="dynamic: window length [s]")
+    sw.add_argument("--max-time-s", type=_finite("--max-time-s"), default=1.0, help="dynamic: longest run [s]")
+    sw.add_argument("--steady-tol", type=_finite("--steady-tol"), default=2e-3,
+                    help="dynamic: relative change between windows counted as steady [-]")
+    sw.add_argument("--torque-tol", type=_finite("--torque-tol"), default=0.05,
+                    help="dynamic: relative change of the window-mean friction torque counted as steady [-]")
+    sw.add_argument("--start", choices=("jones-harris", "tribological"), default="jones-harris",
+                    help="dynamic/profile: initial state")
+    sw.add_argument("--integrator", choices=("adaptive", "implicit", "auto", "rk4"), default=None)
+    sw.add_argument("--profile", default="seed000", help="profile model: 'seed000' or CSV time_s, speed_rpm")
+    sw.add_argument("--fmu", default="dist/BearingFMU.fmu", help="fmu model: the FMU file")
+    sw.add_argument("--skid-threshold", type=_finite("--skid-threshold"), default=0.05,
+                    help="skidding when cage speed / pure-rolling cage speed < 1 - this [-]")
+    sw.add_argument("--overskid-threshold", type=_finite("--overskid-threshold"), default=0.05,
+                    help="over-skidding when cage speed / pure-rolling cage speed > 1 + this [-]")
+    sw.add_argument("--min-preload", default=None, metavar="SPEEDS",
+                    help="minimum-preload curve at these speeds [rpm]: START:STOP:NUM or A,B,C")
+    sw.add_argument("--preload-range", default="1:5000", metavar="LO:HI", help="bisection bracket [N]")
+    sw.add_argument("--preload-rtol", type=_finite("--preload-rtol"), default=0.02,
+                    help="bisection ends when the bracket is narrower than this fraction [-]")
+    sw.add_argument("--scheduler", default=None, metavar="ADDRESS", help="existing dask scheduler (tcp://host:port)")
+    sw.add_argument("--workers", type=int, default=None, help="local cluster size (default: CPUs)")
+    sw.add_argument("--retries", type=int, default=2, help="re-runs of a task whose worker failed")
+    sw.add_argument("--cache", default=None, help="cache folder (default OUT/sweep_cache)")
+    sw.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
+    sw.add_argument("--no-progress", action="store_true", help="no progress bar")
+    sw.set_defaults(func=cmd_sweep)
+    return sw
+
+
+def sweep_spec_from_args(a):
+    """SweepSpec of the `bearing sweep` arguments (validated later, before any work)."""
+    from .sweep import SweepSpec, parse_assignment, parse_values, read_points_csv, VARIABLES
+    from .errors import BearingInputError
+    base = {}
+    if a.bearing is not None:
+        base["bearing"] = a.bearing
+    for nm, key in (("fx", "fx_N"), ("fy", "fy_N"), ("fz", "fz_N"), ("mx", "mx_Nm"), ("my", "my_Nm")):
+        if getattr(a, nm) != 0.0:
+            base[key] = getattr(a, nm)
+    for nm, key in (("traction", "traction"), ("mu", "mu"), ("mu_cage", "mu_cage"), ("oil_fraction", "oil_fraction"),
+                    ("speed_rpm", "speed_rpm")):
+        if getattr(a, nm) is not None:
+            base[key] = getattr(a, nm)
+    for s in a.set:
+        k, v = parse_assignment(s)
+        vals = parse_values(k, v)
+        if len(vals) != 1:
+            raise BearingInputError(f"--set {k}", v, "one value")
+        base[k] = vals[0]
+    grid = {}
+    for s in a.grid:
+        k, v = parse_assignment(s)
+        if k in grid:
+            raise BearingInputError("--grid", k, "each variable once")
+        grid[k] = parse_values(k, v)
+    if a.points_file and grid:
+        raise BearingInputError("--points-file", a.points_file, "either --grid or --points-file, not both")
+    pts = read_points_csv(a.points_file) if a.points_file else None
+    legacy = not grid and pts is None and a.min_preload is None
+    if legacy:
+        if not (0 <= a.speed_max_rpm <= 190000):
+            raise _BadArg(f"--speed-max-rpm = {a.speed_max_rpm} is invalid; allowed: 0 <= value <= 190000 rpm")
+        if not (2 <= a.points <= 1000):
+            raise _BadArg(f"--points = {a.points} is invalid; allowed: 2 <= points <= 1000")
+        grid = {"speed_rpm": np.linspace(0.0, a.speed_max_rpm, a.points).tolist()}
+    for k in grid:
+        if k in base:
+            raise BearingInputError(k, base[k], "set either by --grid or as a fixed value, not both")
+    opts = {}
+    if a.model == "quasistatic":
+        opts["control"] = a.control
+    if a.model in ("dynamic", "fmu"):
+        opts.update(window_s=a.window_s, max_time_s=a.max_time_s, steady_tol=a.steady_tol, torque_tol=a.torque_tol)
+    if a.model in ("dynamic", "profile"):
+        opts["start"] = a.start
+        if a.integrator:
+            opts["integrator"] = a.integrator
+    if a.model == "profile":
+        opts["profile"] = a.profile
+    if a.model == "fmu":
+        opts["fmu"] = str(Path(a.fmu).resolve())
+    return SweepSpec(model=a.model, base=base, grid=grid, points_list=pts, options=opts), legacy
+
+
 def cmd_sweep(a) -> int:
-    from pathlib import Path
-    from .geometry import load_preset
-    from .quasistatic import QuasiStaticModel
+    from .sweep import min_preload_curve, parse_values, plot_maps, plot_min_preload, run_sweep, write_results
+    from .errors import check_range
     from .postprocess import write_csv, plot_quasistatic_sweep
 
-    if not (0 <= a.speed_max_rpm <= 190000):
-        raise _BadArg(f"--speed-max-rpm = {a.speed_max_rpm} is invalid; allowed: 0 <= value <= 190000 rpm")
-    if not (2 <= a.points <= 1000):
-        raise _BadArg(f"--points = {a.points} is invalid; allowed: 2 <= points <= 1000")
-    g = load_preset(a.bearing)
-    model = QuasiStaticModel(g, a.control)
-    loads = (a.fx, a.fy, a.fz, a.mx, a.my)
-    rows, u = [], None
-    for n in np.linspace(0.0, a.speed_max_rpm, a.points):
-        r = model.solve(n * RPM, loads, u0=u, stiffness=False)
-        u = r.u
-        j = int(np.argmax(r.Q_i))  # most loaded ball
-        rows.append({"speed_rpm": n, "cage_speed_rpm": r.cage_speed / RPM,
-                     "cage_shaft_ratio": r.cage_speed / (n * RPM) if n > 0 else float("nan"),
-                     "alpha_i_deg": float(np.degrees(r.alpha_i[j])), "alpha_o_deg": float(np.degrees(r.alpha_o[j])),
-                     "Q_i_N": float(r.Q_i[j]), "Q_o_N": float(r.Q_o[j]),
-                     "omega_R_rpm": float(r.omega_R[j] / RPM), "spin_roll_i": float(r.spin_roll_i[j]),
-                     "spin_roll_o": float(r.spin_roll_o[j]), "p_max_i_Pa": float(r.p_i[j]),
-                     "dz_m": float(r.u[2]), "dx_m": float(r.u[0])})
+    spec, legacy = sweep_spec_from_args(a)
+    check_range("--skid-threshold", a.skid_threshold, 0.0, 1.0)
+    check_range("--overskid-threshold", a.overskid_threshold, 0.0, 10.0)
+    if a.workers is not None and not 1 <= a.workers <= 512:
+        raise _BadArg(f"--workers = {a.workers} is invalid; allowed: 1 <= workers <= 512")
+    if not 0 <= a.retries <= 20:
+        raise _BadArg(f"--retries = {a.retries} is invalid; allowed: 0 <= retries <= 20")
+    skid = (a.skid_threshold, a.overskid_threshold)
     out = Path(a.out)
-    out.mkdir(parents=True, exist_ok=True)
-    csv = out / f"quasistatic_sweep_{g.name}.csv"
-    write_csv(csv, rows)
-    png = plot_quasistatic_sweep(rows, out / f"quasistatic_sweep_{g.name}.png", title=f"{g.name}, loads {loads}")
-    print(f"wrote {csv} and {png}")
+    cache = None if a.no_cache else (Path(a.cache) if a.cache else out / "sweep_cache")
+    run = dict(cache_dir=cache, scheduler=a.scheduler, workers=a.workers, retries=a.retries,
+               progress=not a.no_progress, skid=skid)
+    if a.min_preload is not None:
+        speeds = parse_values("speed_rpm", a.min_preload)
+        try:
+            lo, hi = (float(x) for x in a.preload_range.split(":"))
+        except ValueError:
+            raise _BadArg(f"--preload-range = {a.preload_range!r} is invalid; allowed: LO:HI in N")
+        df = min_preload_curve(spec, speeds, lo, hi, a.preload_rtol, **run)
+        out.mkdir(parents=True, exist_ok=True)
+        df.to_csv(out / "min_preload.csv", index=False)
+        png = plot_min_preload(df, out / "min_preload.png",
+                               title=f"{spec.model}, skidding when cage speed ratio < {1 - skid[0]:g}")
+        print(f"wrote {out / 'min_preload.csv'} and {png}; {df.attrs['computed']} speeds computed, "
+              f"{int((df['status'] != 'ok').sum())} not bracketed or failed")
+        return 0
+    df = run_sweep(spec, **run)
+    paths = write_results(df, spec, out)
+    paths += plot_maps(df, spec, out, skid=skid)
+    nfail = int((df["status"] != "ok").sum())
+    if legacy and spec.model == "quasistatic":
+        keys = ("speed_rpm", "cage_speed_rpm", "cage_shaft_ratio", "alpha_i_deg", "alpha_o_deg", "Q_i_N", "Q_o_N",
+                "omega_R_rpm", "spin_roll_i", "spin_roll_o", "p_max_i_Pa", "dz_m", "dx_m")
+        ok = df[df["status"] == "ok"]
+        if len(ok):
+            from .sweep import resolve_geometry
+            name = resolve_geometry(spec.points()[0]).name
+            rows = [{k: float(r[k]) for k in keys} for _, r in ok.iterrows()]
+            loads = tuple(float(x) for x in (a.fx, a.fy, a.fz, a.mx, a.my))
+            csv = write_csv(out / f"quasistatic_sweep_{name}.csv", rows)
+            png = plot_quasistatic_sweep(rows, out / f"quasistatic_sweep_{name}.png", title=f"{name}, loads {loads}")
+            paths = [csv, png] + paths
+    print("wrote " + ", ".join(str(p) for p in paths))
+    print(f"{len(df)} points ({df.attrs['computed']} computed, {len(df) - df.attrs['computed']} from the cache), "
+          f"{nfail} failed")
+    if nfail:
+        for _, r in df[df["status"] != "ok"].head(5).iterrows():
+            print(f"  point {r['point_index']} failed: {r['error']}")
     return 0
 
 

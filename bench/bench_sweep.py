@@ -1,0 +1,103 @@
+"""Sweep throughput on Dask: points per minute with 1 and 2 local workers, and how the wall time grows with the
+number of points.
+
+    PYTHONPATH=$PWD python bench/bench_sweep.py [--models quasistatic,tribo] [--sizes 8,16,32,64]
+                                                 [--workers 1,2] [--json docs/figures/bench_sweep.json]
+                                                 [--png docs/figures/bench_sweep.png]
+    PYTHONPATH=$PWD python bench/bench_sweep.py --plot-only docs/figures/bench_sweep.json --png FILE
+
+Per model and worker count: one LocalCluster of single-threaded processes (its start-up is timed apart), one
+warm-up sweep (workers import bearing_core and load the compiled kernels), then sweeps of N points (no cache),
+each point solved from scratch. Points: 7008-ma2023, speeds evenly spaced over 3000-18,000 rpm, preload 100 N,
+lubricated traction with ball drag (oil fraction 0.5). Reported: wall time, points per minute, the mean cost of
+one point inside the worker (eval_wall_s) and the per-point overhead (wall x workers / N - mean point cost). The
+load average is printed: on a shared machine other processes take cores from the workers.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--models", default="quasistatic,tribo")
+    ap.add_argument("--sizes", default="8,16,32,64")
+    ap.add_argument("--workers", default="1,2")
+    ap.add_argument("--json", default=None)
+    ap.add_argument("--png", default=None, help="plot of wall time against points")
+    ap.add_argument("--plot-only", default=None, metavar="JSON", help="only plot a previous run's JSON")
+    a = ap.parse_args()
+    if a.plot_only:
+        plot(json.loads(Path(a.plot_only).read_text())["rows"], a.png)
+        return
+    from distributed import Client, LocalCluster
+    import numpy as np
+    from bearing_core import sweep as S
+
+    sizes = [int(s) for s in a.sizes.split(",")]
+    rows = []
+    for model in a.models.split(","):
+        base = {"bearing": "7008-ma2023", "preload_N": 100.0}
+        if model != "quasistatic":
+            base.update(traction="lubricated", oil_fraction=0.5)
+        for nw in [int(w) for w in a.workers.split(",")]:
+            t0 = time.perf_counter()
+            with LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, dashboard_address=":0",
+                              host="127.0.0.1") as cl, Client(cl) as c:
+                t_start = time.perf_counter() - t0
+                warm = S.SweepSpec(model=model, base=base, grid={"speed_rpm": [5000.0] * 1 + [7000.0] * (nw > 1)})
+                S.run_sweep(warm, client=c, progress=False)
+                for n in sizes:
+                    spec = S.SweepSpec(model=model, base=base, grid={"speed_rpm": np.linspace(3000, 18000, n).tolist()})
+                    la = os.getloadavg()[0]
+                    t1 = time.perf_counter()
+                    df = S.run_sweep(spec, client=c, progress=False)
+                    wall = time.perf_counter() - t1
+                    cost = float(df["eval_wall_s"].mean())
+                    r = {"model": model, "workers": nw, "points": n, "wall_s": wall, "points_per_min": 60 * n / wall,
+                         "mean_point_s": cost, "overhead_per_point_s": wall * nw / n - cost,
+                         "failed": int((df["status"] != "ok").sum()), "cluster_start_s": t_start, "loadavg_1min": la}
+                    rows.append(r)
+                    print(f"{model:12s} workers {nw}  N {n:4d}  wall {wall:7.2f} s  {r['points_per_min']:8.1f} pt/min  "
+                          f"point {cost:6.3f} s  overhead {r['overhead_per_point_s']:+.3f} s/pt  "
+                          f"(cluster start {t_start:.1f} s, load {la:.1f})", flush=True)
+    if a.json:
+        Path(a.json).write_text(json.dumps({"machine": f"{os.cpu_count()} CPUs", "rows": rows}, indent=1))
+    if a.png:
+        plot(rows, a.png)
+
+
+def plot(rows, path):
+    """Wall time against the number of points, per model and worker count."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
+    keys = sorted({(r["model"], r["workers"]) for r in rows})
+    for (m, w) in keys:
+        rr = [r for r in rows if r["model"] == m and r["workers"] == w]
+        ax.plot([r["points"] for r in rr], [r["wall_s"] for r in rr], "o-" if w == 1 else "s--",
+                label=f"{m}, {w} worker{'s' if w > 1 else ''}")
+    ax.set_xlabel("points")
+    ax.set_ylabel("wall time [s]")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    la = [r["loadavg_1min"] for r in rows]
+    ax.set_title(f"sweep wall time (2-core machine, load average {min(la):.0f}-{max(la):.0f} during the run)",
+                 fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+if __name__ == "__main__":
+    main()
