@@ -399,6 +399,12 @@ def from_dict(d: dict) -> BearingGeometry:
     )
     offs = {k: (_num(d, k, lo_incl=True, unit="mm") * mm if k in d else 0.0)
             for k in ("inner_groove_offset_mm", "outer_groove_offset_mm", "bore_diameter_mm", "outside_diameter_mm")}
+    for k, f in (("inner_groove_offset_mm", fi), ("outer_groove_offset_mm", fo)):
+        check_range(k, offs[k] / mm, 0.0, (f - 0.5) * D / mm, unit="mm")
+    if offs["inner_groove_offset_mm"] + offs["outer_groove_offset_mm"] >= A:
+        raise BearingInputError("inner_groove_offset_mm + outer_groove_offset_mm",
+                                (offs["inner_groove_offset_mm"] + offs["outer_groove_offset_mm"]) / mm,
+                                f"< A = (fi + fo - 1) D = {A / mm:.4f} mm")
     split = d.get("split_inner_ring", False)
     if not isinstance(split, bool):
         raise BearingInputError("split_inner_ring", split, "true | false")
