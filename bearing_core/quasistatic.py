@@ -604,9 +604,76 @@ class FourPointQuasiStaticModel(QuasiStaticModel):
     def _ring_force(self, st):
         return _ring_forces4(self.g, self.psi, st["ai4"], st["Qi4"], st["Fi4"])
 
+    def _solve_balls(self, u, omega, X0, outer_ctrl, tol=1e-10, maxit=60):
+        """As QuasiStaticModel._solve_balls; balls that the Newton iteration leaves out of equilibrium
+        (a lightly loaded ball whose equilibrium contact angles are far from its start) are restarted
+        from the minimum of their contact + centrifugal potential."""
+        X, st, ok = super()._solve_balls(u, omega, X0, outer_ctrl, tol, maxit)
+        if ok:
+            return X, st, ok
+        scale = max(1.0, 0.5 * self.g.ball_mass * self.g.dm * omega ** 2)
+        bad = np.hypot(st["Rr"], st["Rz"]) >= tol * (scale + max(st["Qi"].max(), st["Qo"].max(), 0.0))
+        Xe = X.copy()
+        Cr, Cz = self._centres(u)
+        for j in np.flatnonzero(bad):
+            Xe[j] = self._potential_minimum(X[j], Cr[j], Cz[j], float(st["Fc"][j]))
+        return super()._solve_balls(u, omega, Xe, outer_ctrl, tol, maxit)
+
+    def _potential_minimum(self, x0, Cr, Cz, Fc):
+        """Ball centre [m] minimising sum_k (2/5) K_k delta_k^2.5 - Fc Xr over the valid arcs (Hertz
+        contacts of one ball; K at the free contact angle), from x0 (scipy Nelder-Mead, 1e-4 um)."""
+        from scipy.optimize import minimize
+
+        g = self.g
+        eo, ei = g.outer_groove_offset, g.inner_groove_offset
+        Ki = float(self.hz.K(np.array([g.alpha0]), inner=True)[0])
+        Ko = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
+        cen = [(0.0, 0.0, Ko, g.fo, 1, eo), (0.0, 2 * eo, Ko, g.fo, 2, eo),
+               (Cr[0], Cz[0], Ki, g.fi, -1, ei), (Cr[1], Cz[1], Ki, g.fi, -2, ei)]
+        um = 1e-6
+
+        def pot(y):
+            xr, xz = x0[0] + y[0] * um, x0[1] + y[1] * um
+            e = -Fc * (xr - x0[0])
+            for cr, cz, K, f, kind, off in cen:
+                vr, vz = xr - cr, xz - cz
+                L = math.hypot(vr, vz)
+                sn = vz / L if kind > 0 else -vz / L        # sin of the contact angle
+                valid = f * g.D * sn >= off if abs(kind) == 1 else f * g.D * sn < -off
+                d = L - (f - 0.5) * g.D
+                if valid and d > 0:
+                    e += 0.4 * K * d ** 2.5
+            return e
+
+        res = minimize(pot, np.zeros(2), method="Nelder-Mead",
+                       options={"xatol": 1e-4, "fatol": 1e-14, "initial_simplex": [[0, 0], [20, 0], [0, 20]],
+                                "maxiter": 2000})
+        return x0 + res.x * um
+
     def _x_start(self, u):
-        """Initial ball positions: on the line of centres of the more compressed diagonal pair with equal
-        deflections (the mean of both pairs when both are compressed)."""
+        """Initial ball positions: per ball the candidate with the smaller force residual among (a) the
+        line of centres of the more compressed diagonal pair with equal deflections (the mean of both
+        pairs when both are compressed) and, at speed, (b) the seat in the outer arch: on the outer groove
+        mid-plane, pressed into both outer arcs by the centrifugal force."""
+        X = self._x_start_pairs(u)
+        g = self.g
+        if self._omega > 0 and g.outer_groove_offset > 0:
+            wm = 0.5 * self._omega * (1.0 - g.D / g.dm)
+            Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
+            eo, ro = g.outer_groove_offset, (g.fo - 0.5) * g.D
+            K0 = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
+            sa = eo / ro                                     # sin of the arch contact angle of a seated ball
+            lo = ro + (Fc / (2.0 * K0 * math.sqrt(max(1.0 - sa * sa, 1e-6)))) ** (2.0 / 3.0)
+            Xs = np.tile([math.sqrt(max(lo * lo - eo * eo, 0.0)), eo], (g.Z, 1))
+            Cr, Cz = self._centres(u)
+            oc = np.ones(g.Z, dtype=bool)
+            s1 = self._ball_state(X, Cr, Cz, self._omega, oc)
+            s2 = self._ball_state(Xs, Cr, Cz, self._omega, oc)
+            better = np.hypot(s2["Rr"], s2["Rz"]) < np.hypot(s1["Rr"], s1["Rz"])
+            X[better] = Xs[better]
+        return X
+
+    def _x_start_pairs(self, u):
         g = self.g
         Cr, Cz = self._centres(u)
         Oz = np.array([0.0, 2.0 * g.outer_groove_offset])

@@ -111,12 +111,17 @@ def test_centred_ball_touches_four_arcs_at_zero_clearance():
     assert np.max(np.abs(st["di4"])) < 1e-15 and np.max(np.abs(st["do4"])) < 1e-15
 
 
-def test_combined_load_equilibrium_and_four_contacts():
-    """Combined radial, axial and moment load on the QJ1044 at 1,200 rpm: the inner ring is in
-    equilibrium (ring reaction + loads = 0 to 1e-8 of the load, all five components); the balls opposite
-    the radial load carry three or four contacts, the others two."""
-    loads = np.array([8000.0, 0.0, 2000.0, 0.0, 300.0])
-    r = solve_quasistatic(QJ, 1200 * RPM, loads, stiffness=False)
+@pytest.mark.parametrize("rpm, loads", [
+    (1200, (8000.0, 0.0, 2000.0, 0.0, 300.0)),
+    (1800, (1000.0, 0.0, 4000.0, 0.0, 0.0)),     # seed 001 test matrix: ~1 kN radial, light axial load
+    (600, (1000.0, 0.0, 2000.0, 0.0, 0.0)),
+])
+def test_combined_load_equilibrium_and_four_contacts(rpm, loads):
+    """Combined radial, axial (and moment) load on the QJ1044 at speed: the inner ring is in
+    equilibrium (ring reaction + loads = 0 to 1e-8 of the load, all five components); the balls at the
+    radial load carry three or four contacts, the others two."""
+    loads = np.array(loads)
+    r = solve_quasistatic(QJ, rpm * RPM, loads, stiffness=False)
     scale = np.array([1.0, 1.0, 1.0, 1 / (0.5 * QJ.dm), 1 / (0.5 * QJ.dm)])
     assert np.max(np.abs((r.ring_reaction() + loads) * scale)) < 1e-8 * np.linalg.norm(loads[:3])
     assert r.contacts_per_ball.max() >= 3 and r.contacts_per_ball.min() <= 2
