@@ -181,9 +181,22 @@ def cmd_quasistatic(a) -> int:
         raise _BadArg(f"--speed-rpm = {a.speed_rpm} is invalid; allowed: 0 <= speed <= 190000 rpm")
     g = load_preset(a.bearing)
     if a.traction is not None:
+        g.require_two_point("tribological quasi-static model (--traction)")
         return _tribo_quasistatic(a, g)
     res = solve_quasistatic(g, a.speed_rpm * RPM, (a.fx, a.fy, a.fz, a.mx, a.my), control=a.control)
     d = quasistatic_dict(res)
+    if g.is_four_point:
+        from .quasistatic import CONTACT_NAMES
+        d["four_point"] = {
+            "contacts": list(CONTACT_NAMES),
+            "inner_groove_offset_mm": g.inner_groove_offset * 1e3,
+            "outer_groove_offset_mm": g.outer_groove_offset * 1e3,
+            "axial_play_mm": g.axial_play * 1e3, "radial_play_mm": g.radial_play * 1e3,
+            "contact_angle_zero_clearance_deg": math.degrees(g.contact_angle_zero_clearance),
+            "alpha_deg": np.degrees(res.alpha_c).tolist(), "Q_N": res.Q_c.tolist(),
+            "delta_m": res.delta_c.tolist(), "a_m": res.a_c.tolist(), "b_m": res.b_c.tolist(),
+            "p_max_Pa": res.p_c.tolist(), "contacts_per_ball": res.contacts_per_ball.tolist(),
+        }
     if a.json:
         print(json.dumps(d))
         return 0
@@ -193,6 +206,28 @@ def cmd_quasistatic(a) -> int:
     print(f"displacement  dx {u[0]*1e6:.3f} um  dy {u[1]*1e6:.3f} um  dz {u[2]*1e6:.3f} um  "
           f"tx {u[3]*1e3:.4f} mrad  ty {u[4]*1e3:.4f} mrad")
     print(f"pure-rolling cage speed {d['cage_speed_rpm']:.1f} rpm   equilibrium residual {res.residual:.1e}")
+    if g.is_four_point:
+        fp = d["four_point"]
+        print(f"four-point contact: groove offsets inner {fp['inner_groove_offset_mm']:.4f} mm, outer "
+              f"{fp['outer_groove_offset_mm']:.4f} mm; axial play {fp['axial_play_mm']:.4f} mm, radial play "
+              f"{fp['radial_play_mm']:.4f} mm, contact angle at zero clearance "
+              f"{fp['contact_angle_zero_clearance_deg']:.2f} deg")
+        print("contacts: i1/o1 = diagonal pair carrying +Fz on the inner ring, i2/o2 = its mirror image")
+        nm = ("i1", "i2", "o1", "o2")
+        hdr = f"{'ball':>4} {'psi':>6} " + " ".join(f"{'a_'+n:>7}" for n in nm) + " " + \
+            " ".join(f"{'Q_'+n:>9}" for n in nm) + " " + " ".join(f"{'p_'+n:>6}" for n in nm) + f" {'w_m':>8}"
+        print(hdr)
+        print(f"{'':>4} {'deg':>6} " + " ".join(f"{'deg':>7}" for _ in nm) + " " + " ".join(f"{'N':>9}" for _ in nm)
+              + " " + " ".join(f"{'GPa':>6}" for _ in nm) + f" {'rpm':>8}")
+        for j in range(g.Z):
+            print(f"{j:4d} {d['psi_deg'][j]:6.1f} " + " ".join(f"{np.degrees(x):7.3f}" for x in res.alpha_c[j]) + " "
+                  + " ".join(f"{x:9.2f}" for x in res.Q_c[j]) + " " + " ".join(f"{x/1e9:6.3f}" for x in res.p_c[j])
+                  + f" {d['omega_m_rpm'][j]:8.1f}")
+        if res.stiffness is not None:
+            print("stiffness matrix (rows Fx,Fy,Fz [N], Mx,My [N m]; cols dx,dy,dz [m], tx,ty [rad]):")
+            for row in res.stiffness:
+                print("  " + " ".join(f"{v:12.4e}" for v in row))
+        return 0
     hdr = (f"{'ball':>4} {'psi':>6} {'a_i':>7} {'a_o':>7} {'Q_i':>9} {'Q_o':>9} {'p_i':>7} {'p_o':>7} "
            f"{'w_m':>8} {'w_R':>9} {'beta':>6} {'s/r_i':>7} {'s/r_o':>7}")
     print(hdr)

@@ -8,6 +8,20 @@ Internal-geometry relations follow Harris & Kotzalas, Rolling Bearing Analysis, 
   Pd = do - di - 2 D                          diametral clearance (Eq. 2.1)
   cos(alpha0) = 1 - Pd / (2 A)                free contact angle (Eq. 2.9)
   di = dm - D - Pd/2,  do = dm + D + Pd/2     raceway (groove bottom) diameters
+
+Four-point-contact (gothic-arch) bearings, e.g. QJ with a split inner ring (Harris & Kotzalas Vol. 1
+Ch. 1-2 'split-ring / gothic-arch' bearings; Amasorrain, Sagartzazu, Damian, Mech. Mach. Theory 38
+(2003) 479-496; Leblanc & Nelias, ASME J. Tribol. 129 (2007) 801-808): each ring groove is two circular
+arcs of radius f D whose curvature centres lie at +-e (inner_groove_offset, outer_groove_offset) from
+the ring's groove mid-plane, each arc on the side of the mid-plane opposite to its centre. The fields
+above describe one diagonal pair of arcs exactly as a two-point bearing (free contact angle alpha0 when
+the rings are pushed axially until that pair touches, A, Pd of that pair); the other pair is its mirror
+image about the ring mid-planes. Hence, with e_s = e_i + e_o:
+  axial play          Pa = 2 (A sin(alpha0) - e_s)        (< 0: preloaded, all four contacts loaded)
+  radial play         Pd4 = 2 (sqrt(A^2 - e_s^2) - A cos(alpha0))
+  contact angle at zero clearance  sin(alpha_z) = e_s / A    (all four arcs touch a centred ball)
+and the zero-clearance gothic arch of contact angle alpha_z has e_k = (f_k - 1/2) D sin(alpha_z).
+Zero offsets give the two-point (single-arc) bearing.
 """
 from __future__ import annotations
 
@@ -58,6 +72,11 @@ class BearingGeometry:
     inner_ring_mass, outer_ring_mass [kg]; inner_ring_inertia: polar inertia of the inner ring
     about its axis [kg m^2]; inner_ring_tilt_inertia: about a diameter [kg m^2]; cage: CageData;
     width: bearing width [m]; name, source: provenance strings.
+    inner_groove_offset, outer_groove_offset: axial distance of each of the two curvature centres of a
+    gothic-arch groove from the ring's groove mid-plane [m] (0: single-arc groove, two-point bearing);
+    split_inner_ring: the inner ring is made of two halves clamped together (QJ construction; the
+    halves act as one rigid ring in the models); bore, outside_diameter: boundary dimensions d, D_o [m]
+    (0: not given; needed for fits, bearing_core.ring_fits).
     """
 
     name: str
@@ -77,6 +96,11 @@ class BearingGeometry:
     cage: CageData
     source: str = ""
     notes: str = ""
+    inner_groove_offset: float = 0.0
+    outer_groove_offset: float = 0.0
+    split_inner_ring: bool = False
+    bore: float = 0.0
+    outside_diameter: float = 0.0
 
     def __post_init__(self):
         self.validate()
@@ -106,6 +130,18 @@ class BearingGeometry:
         self.cage.validate(self.D)
         if self.inner_raceway_diameter <= 0:
             raise BearingInputError("dm", self.dm, "large enough for a positive inner raceway diameter")
+        for nm, f in (("inner_groove_offset", self.fi), ("outer_groove_offset", self.fo)):
+            check_range(nm, getattr(self, nm), 0.0, (f - 0.5) * self.D, unit="m")
+        es = self.inner_groove_offset + self.outer_groove_offset
+        if es >= self.A:
+            raise BearingInputError("inner_groove_offset + outer_groove_offset", es,
+                                    f"< A = (fi + fo - 1) D = {self.A:.6g} m")
+        if not isinstance(self.split_inner_ring, bool):
+            raise BearingInputError("split_inner_ring", self.split_inner_ring, "true | false")
+        check_range("bore", self.bore, 0.0, self.inner_raceway_diameter, hi_incl=False, unit="m")
+        if self.outside_diameter != 0.0:
+            check_range("outside_diameter", self.outside_diameter, self.outer_raceway_diameter, None,
+                        lo_incl=False, unit="m")
 
     # ---- derived quantities (Harris & Kotzalas Ch. 2) --------------------------------------
     @property
@@ -154,6 +190,39 @@ class BearingGeometry:
         """Radius of the locus of inner groove curvature centres, dm/2 + (fi - 0.5) D cos(alpha0) [m]
         (Harris & Kotzalas Vol. 2 Ch. 1; seed 003 Eq. 2)."""
         return 0.5 * self.dm + (self.fi - 0.5) * self.D * math.cos(self.alpha0)
+
+    # ---- four-point contact (gothic arch), see the module docstring ----------------------------
+    @property
+    def is_four_point(self) -> bool:
+        """True for a gothic-arch (four-point-contact) bearing: a non-zero groove offset."""
+        return self.inner_groove_offset > 0.0 or self.outer_groove_offset > 0.0
+
+    @property
+    def axial_play(self) -> float:
+        """Axial internal play of a four-point bearing, 2 (A sin(alpha0) - e_i - e_o) [m] (< 0: preload)."""
+        return 2.0 * (self.A * math.sin(self.alpha0) - self.inner_groove_offset - self.outer_groove_offset)
+
+    @property
+    def radial_play(self) -> float:
+        """Diametral (radial) play of the centred four-point bearing [m] (equals Pd at zero offsets)."""
+        es = self.inner_groove_offset + self.outer_groove_offset
+        return 2.0 * (math.sqrt(self.A ** 2 - es ** 2) - self.A * math.cos(self.alpha0))
+
+    @property
+    def contact_angle_zero_clearance(self) -> float:
+        """Contact angle at which all four arcs touch a centred ball, asin((e_i + e_o) / A) [rad]."""
+        return math.asin((self.inner_groove_offset + self.outer_groove_offset) / self.A)
+
+    def require_two_point(self, model: str):
+        """Raise BearingInputError for a four-point bearing in a model that handles two-point contact
+        only (it would silently ignore the second arc of each groove)."""
+        if self.is_four_point:
+            nm, v = (("inner_groove_offset_mm", self.inner_groove_offset) if self.inner_groove_offset > 0
+                     else ("outer_groove_offset_mm", self.outer_groove_offset))
+            raise BearingInputError(nm, round(v * 1e3, 6), "0 (two-point bearing)",
+                                    f"{self.name} is a four-point-contact bearing; the {model} handles "
+                                    "two-point angular-contact bearings only (use the quasi-static model: "
+                                    "bearing_core.quasistatic.solve_quasistatic)")
 
     def with_overrides(self, **kw) -> "BearingGeometry":
         """A copy with some fields replaced (validated again)."""
@@ -231,7 +300,8 @@ BEARING_FIELDS = (
     "free_contact_angle_deg", "diametral_clearance_mm", "inner_raceway_diameter_mm", "outer_raceway_diameter_mm",
     "fi", "fo", "inner_groove_radius_mm", "outer_groove_radius_mm", "ring_material", "ball_material", "width_mm",
     "inner_ring_mass_kg", "outer_ring_mass_kg", "inner_ring_inertia_kg_mm2", "inner_ring_tilt_inertia_kg_mm2",
-    "cage",
+    "cage", "inner_groove_offset_mm", "outer_groove_offset_mm", "split_inner_ring", "bore_diameter_mm",
+    "outside_diameter_mm",
 )
 CAGE_FIELDS = ("pocket_clearance_mm", "land_clearance_mm", "guidance", "mass_kg", "inertia_kg_mm2",
                "land_width_mm", "material")
@@ -327,6 +397,17 @@ def from_dict(d: dict) -> BearingGeometry:
         land_width=_num(c, "land_width_mm", prefix="cage.", default=0.2 * width / mm, unit="mm") * mm,
         material=str(c.get("material", "phenolic")),
     )
+    offs = {k: (_num(d, k, lo_incl=True, unit="mm") * mm if k in d else 0.0)
+            for k in ("inner_groove_offset_mm", "outer_groove_offset_mm", "bore_diameter_mm", "outside_diameter_mm")}
+    for k, f in (("inner_groove_offset_mm", fi), ("outer_groove_offset_mm", fo)):
+        check_range(k, offs[k] / mm, 0.0, (f - 0.5) * D / mm, unit="mm")
+    if offs["inner_groove_offset_mm"] + offs["outer_groove_offset_mm"] >= A:
+        raise BearingInputError("inner_groove_offset_mm + outer_groove_offset_mm",
+                                (offs["inner_groove_offset_mm"] + offs["outer_groove_offset_mm"]) / mm,
+                                f"< A = (fi + fo - 1) D = {A / mm:.4f} mm")
+    split = d.get("split_inner_ring", False)
+    if not isinstance(split, bool):
+        raise BearingInputError("split_inner_ring", split, "true | false")
     Z = _as_int("number_of_balls", _req(d, "number_of_balls"))
     if Z >= 3 and dm * math.sin(math.pi / Z) <= D:
         zmax = int(math.floor(math.pi / math.asin(min(1.0, D / dm))))
@@ -343,6 +424,8 @@ def from_dict(d: dict) -> BearingGeometry:
         inner_ring_tilt_inertia=_num(d, "inner_ring_tilt_inertia_kg_mm2", unit="kg mm^2") * 1e-6,
         width=width, cage=cage,
         source=str(d.get("source", "")), notes=str(d.get("notes", "")),
+        inner_groove_offset=offs["inner_groove_offset_mm"], outer_groove_offset=offs["outer_groove_offset_mm"],
+        split_inner_ring=split, bore=offs["bore_diameter_mm"], outside_diameter=offs["outside_diameter_mm"],
     )
 
 

@@ -34,6 +34,7 @@ from . import kinematics as kin
 from .errors import BearingInputError, ConvergenceError, check_range
 from .geometry import BearingGeometry
 from .hertz_tables import HertzInterp
+from .ring_fits import operating_geometry
 
 K_REG = 1e-3  # N/m, tension spring of separated contacts (see module docstring)
 LOAD_NAMES = ("Fx", "Fy", "Fz", "Mx", "My")
@@ -132,11 +133,15 @@ def _ring_forces(g, psi, alpha_i, Q_i_eff, Fi):
 class QuasiStaticModel:
     """Jones-Harris 5-DOF quasi-static model of one bearing (outer ring fixed, inner ring turning)."""
 
+    FOUR_POINT = False      # FourPointQuasiStaticModel handles gothic-arch grooves
+
     def __init__(self, geometry: BearingGeometry, control: str = "outer", n_table: int = 361,
                  mu_gyro: float = 0.1, fixed_tilt: bool = False):
         """mu_gyro: Coulomb limit of the friction that resists the gyroscopic moment [-]; fixed_tilt: the
         inner ring cannot tilt (a rigid shaft held by other bearings): tx = ty = 0 and Mx, My are
         reactions, not loads."""
+        if not self.FOUR_POINT:
+            geometry.require_two_point("two-point quasi-static model (QuasiStaticModel)")
         self.mu_gyro = check_range("mu_gyro", mu_gyro, 0.0, 1.0)
         self.fixed_tilt = bool(fixed_tilt)
         if control not in kin.CONTROL_MODES:
@@ -278,8 +283,11 @@ class QuasiStaticModel:
         if not ok:
             # retry from the geometric start (the warm start may sit in a bad basin)
             X, st, ok = self._solve_balls(u, omega, self._x_start(u), outer_ctrl, maxit=200)
-        Fb = _ring_forces(self.g, self.psi, st["ai"], st["Qi"], st["Fi"])
-        return Fb, X, st, ok
+        return self._ring_force(st), X, st, ok
+
+    def _ring_force(self, st):
+        """(Fx, Fy, Fz, Mx, My) of the balls on the inner ring from a ball state [N, N m]."""
+        return _ring_forces(self.g, self.psi, st["ai"], st["Qi"], st["Fi"])
 
     # ---- the 5-DOF solve ---------------------------------------------------------------------
     def solve(self, omega: float, loads, u0=None, tol: float = 1e-10, maxit: int = 100,
@@ -414,7 +422,7 @@ class QuasiStaticModel:
         a_i, b_i, p_i, _ = self.hz.ab_E(st["ai"], Qi, inner=True)
         a_o, b_o, p_o, _ = self.hz.ab_E(st["ao"], Qo, inner=False)
         si, ri_, so, ro_ = kin.contact_spin_roll(omega, st["wm"], st["wR"], st["beta"], st["ai"], st["ao"])
-        Fb = _ring_forces(g, self.psi, st["ai"], st["Qi"], st["Fi"])
+        Fb = self._ring_force(st)
         act = slice(0, 3) if self.fixed_tilt else slice(0, 5)
         resid = float(np.linalg.norm((loads + Fb)[act]) / max(np.linalg.norm(loads[act]), 1e-12))
         return QuasiStaticResult(
@@ -441,10 +449,308 @@ class QuasiStaticModel:
         return Kmat
 
 
+# =============================================================================================
+# Four-point-contact (gothic-arch) bearings
+# =============================================================================================
+CONTACT_NAMES = ("inner 1", "inner 2", "outer 1", "outer 2")
+
+
+@dataclass
+class FourPointResult(QuasiStaticResult):
+    """Quasi-static solution of a four-point-contact bearing. The two-point fields (alpha_i, Q_i, a_i, ...,
+    alpha_o, Q_o, ...) hold each ring's dominant (most loaded) contact; alpha_i/alpha_o used in the ball
+    kinematics are the weighted angles of FourPointQuasiStaticModel; the per-contact arrays have shape (Z, 4) in CONTACT_NAMES order: 'inner 1' / 'outer 1' are
+    the arcs of the diagonal pair that carries +Fz on the inner ring (contact angles > 0), 'inner 2' /
+    'outer 2' their mirror images (contact angles < 0). Separated contacts have Q = 0, delta <= 0."""
+
+    Q_c: np.ndarray | None = None        # contact loads [N]
+    alpha_c: np.ndarray | None = None    # contact angles [rad]
+    delta_c: np.ndarray | None = None    # deflections [m]
+    a_c: np.ndarray | None = None        # Hertz semi-axes [m]
+    b_c: np.ndarray | None = None
+    p_c: np.ndarray | None = None        # maximum Hertz pressure [Pa]
+    F_c: np.ndarray | None = None        # friction force resisting the gyroscopic moment [N]
+    weight_c: np.ndarray | None = None   # share of each contact in its ring's kinematics (see the model)
+
+    @property
+    def contacts_per_ball(self) -> np.ndarray:
+        """Number of loaded contacts of each ball (0..4)."""
+        return np.sum(self.Q_c > 0, axis=1)
+
+    def ring_reaction(self) -> np.ndarray:
+        """(Fx, Fy, Fz, Mx, My) that the balls exert on the inner ring [N, N m]."""
+        return _ring_forces4(self.geometry, self.psi, self.alpha_c[:, :2], self.Q_c[:, :2], self.F_c[:, :2])
+
+
+def _ring_forces4(g, psi, alpha_i, Q_i, Fi):
+    """Force and moment of the balls on the inner ring of a gothic-arch bearing. alpha_i, Q_i, Fi: (Z, 2)
+    contact angles, loads (incl. regularisation) and gyroscopic friction forces of inner arcs 1 and 2 [rad,
+    N]. Each contact force acts through its arc centre, at radius Ri and height +-e_i from the inner ring
+    mid-plane (the tilt reference); a friction force has the extra arm fi D about that centre (as in
+    _ring_forces, which this equals for e_i = 0)."""
+    nir, niz = -np.cos(alpha_i), -np.sin(alpha_i)
+    zc = np.array([g.inner_groove_offset, -g.inner_groove_offset])
+    fr = Q_i * nir - Fi * niz
+    fz = Q_i * niz + Fi * nir
+    Fr = fr.sum(axis=1)
+    Fz_ = fz.sum(axis=1)
+    m = g.Ri * Fz_ - (fr * zc).sum(axis=1) + g.ri * Fi.sum(axis=1)
+    c, s = np.cos(psi), np.sin(psi)
+    return np.array([np.sum(Fr * c), np.sum(Fr * s), np.sum(Fz_), np.sum(m * s), -np.sum(m * c)])
+
+
+class FourPointQuasiStaticModel(QuasiStaticModel):
+    """Jones-Harris quasi-static model of a four-point-contact (gothic-arch) ball bearing; reduces to
+    QuasiStaticModel for zero groove offsets.
+
+    Geometry (bearing_core.geometry module docstring): relative to the curvature centre O_o1 of outer
+    arc 1 the other centres are O_o2 = (0, 2 e_o), O_i1 = C = (A cos a0 + dr_1, A sin a0 + da) and
+    O_i2 = (A cos a0 + dr_2, A sin a0 - 2 e_i + da), with da as in the two-point model and
+    dr_k = dr - z_k (tx sin psi - ty cos psi), z_k = +-e_i the height of the inner centre above the inner
+    ring mid-plane. Each arc k gives a Hertz contact, delta_k = |X - O_k| - (f - 1/2) D,
+    Q_k = K(alpha_k) delta_k^1.5, only where its contact point lies on the arc's own side of the groove
+    mid-plane (f D sin(alpha) >= e for arcs 1, < -e for arcs 2: a groove of two arcs meeting at the
+    mid-plane; at e = 0 exactly one arc of each ring counts, the single-arc groove). The ball equilibrium
+    sums all contacts (Amasorrain et al. 2003, Eqs. for the four contact loads; Leblanc & Nelias 2007).
+
+    Speed effects as in the two-point model: centrifugal force on every ball; the ball kinematics (raceway
+    control, attitude angle, gyroscopic moment) are those of the two-point model with, for each ring, the
+    load-weighted mean contact angle sum_k w_k alpha_k, w_k = Q_k / sum Q (see _weights), and the friction
+    force resisting the gyroscopic moment is shared between that ring's contacts by the same weights. With
+    one loaded contact per ring this is the two-point model exactly. With three or four loaded contacts a
+    ball cannot roll without sliding on all of them; that sliding (Leblanc & Nelias 2007) and its friction
+    are not resolved here (a stated simplification), only the contact loads and angles."""
+
+    FOUR_POINT = True
+
+    def _centres(self, u):
+        g = self.g
+        c, s = np.cos(self.psi), np.sin(self.psi)
+        tilt = u[3] * s - u[4] * c
+        dr = u[0] * c + u[1] * s
+        da = u[2] + g.Ri * tilt
+        ei = g.inner_groove_offset
+        Cr0 = g.A * math.cos(g.alpha0) + dr
+        Cz1 = g.A * math.sin(g.alpha0) + da
+        Cr = np.stack([Cr0 - ei * tilt, Cr0 + ei * tilt], axis=1)
+        Cz = np.stack([Cz1, Cz1 - 2.0 * ei], axis=1)
+        return Cr, Cz
+
+    def _ball_state(self, X, Cr, Cz, omega, outer_ctrl, kin_frozen=None):
+        g = self.g
+        eo, ei = g.outer_groove_offset, g.inner_groove_offset
+        Xr, Xz = X[:, 0:1], X[:, 1:2]
+        # outer arcs 1, 2: centres (0, 0), (0, 2 e_o)
+        vz = np.concatenate([Xz, Xz - 2.0 * eo], axis=1)
+        vr = np.broadcast_to(Xr, vz.shape)
+        lo = np.hypot(vr, vz)
+        nor, noz = vr / lo, vz / lo
+        d_o = lo - (g.fo - 0.5) * g.D
+        ao = np.arctan2(noz, nor)
+        so = g.fo * g.D * noz
+        val_o = np.stack([so[:, 0] >= eo, so[:, 1] < -eo], axis=1)
+        # inner arcs 1, 2
+        dvr, dvz = Xr - Cr, Xz - Cz
+        li = np.hypot(dvr, dvz)
+        nir, niz = dvr / li, dvz / li
+        d_i = li - (g.fi - 0.5) * g.D
+        ai = np.arctan2(-niz, -nir)
+        si = -g.fi * g.D * niz
+        val_i = np.stack([si[:, 0] >= ei, si[:, 1] < -ei], axis=1)
+        Ki = self.hz.K(ai, inner=True)
+        Ko = self.hz.K(ao, inner=False)
+        Qi = np.where(val_i, np.where(d_i > 0, Ki * np.abs(d_i) ** 1.5, K_REG * d_i), 0.0)
+        Qo = np.where(val_o, np.where(d_o > 0, Ko * np.abs(d_o) ** 1.5, K_REG * d_o), 0.0)
+        wi, wo = self._weights(Qi, d_i, val_i), self._weights(Qo, d_o, val_o)
+        ai_e, ao_e = np.sum(wi * ai, axis=1), np.sum(wo * ao, axis=1)
+        di_e = np.max(np.where(val_i, d_i, -np.inf), axis=1)
+        if self.control == "inner":
+            outer_ctrl = np.zeros(g.Z, dtype=bool)
+        elif self.control == "hybrid":
+            outer_ctrl = outer_ctrl | (di_e <= 0)
+        if kin_frozen is None:
+            beta, wm, wR = kin.kinematics(omega, ai_e, ao_e, g.D, g.dm, self.control, outer_ctrl)
+        else:
+            beta, wm, wR = kin_frozen
+        Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
+        Mg = g.ball_inertia * wm * wR * np.sin(beta) * -1.0
+        lam_i = _lambda_i(self.control, outer_ctrl)
+        lam_o = 2.0 - lam_i
+        Qi_s = np.sum(np.maximum(Qi, 0.0), axis=1)
+        Qo_s = np.sum(np.maximum(Qo, 0.0), axis=1)
+        Fi = _coulomb_bound(lam_i * Mg / g.D, self.mu_gyro * Qi_s)
+        Fo = _coulomb_bound(lam_o * Mg / g.D, self.mu_gyro * Qo_s)
+        Fi4, Fo4 = wi * Fi[:, None], wo * Fo[:, None]
+        Rr = np.sum(-Qi * nir + Fi4 * niz, axis=1) + np.sum(-Qo * nor + Fo4 * noz, axis=1) + Fc
+        Rz = np.sum(-Qi * niz - Fi4 * nir, axis=1) + np.sum(-Qo * noz - Fo4 * nor, axis=1)
+        rows = np.arange(g.Z)
+        ki, ko = np.argmax(wi, axis=1), np.argmax(wo, axis=1)
+        return dict(Rr=Rr, Rz=Rz, Qi=Qi[rows, ki], Qo=Qo[rows, ko], d_i=d_i[rows, ki], d_o=d_o[rows, ko],
+                    ai=ai_e, ao=ao_e, beta=beta, wm=wm, wR=wR, Fc=Fc, Mg=Mg, lam_i=lam_i, outer_ctrl=outer_ctrl,
+                    Fi=Fi, Fo=Fo, Qi4=Qi, Qo4=Qo, ai4=ai, ao4=ao, di4=d_i, do4=d_o, ki=ki, ko=ko, Fi4=Fi4,
+                    Fo4=Fo4, wi=wi, wo=wo)
+
+    def _weights(self, Q, d, valid):
+        """Share w_k of each arc of one ring in the ball kinematics and the gyroscopic friction: the
+        contact loads Q_k (plus 1e-9 N times a softmax of the deflections over 1e-6 D, which decides for
+        unloaded balls and keeps w continuous); 0 on invalid arcs. A ring with one loaded contact gets
+        w = 1 there: the two-point model exactly."""
+        g = self.g
+        dm_ = np.max(np.where(valid, d, -np.inf), axis=1, keepdims=True)
+        soft = np.where(valid, np.exp(np.minimum(0.0, d - dm_) / (1e-6 * g.D)), 0.0)
+        w = np.where(valid, np.maximum(Q, 0.0), 0.0) + 1e-9 * soft
+        return w / np.sum(w, axis=1, keepdims=True)
+
+    def _ring_force(self, st):
+        return _ring_forces4(self.g, self.psi, st["ai4"], st["Qi4"], st["Fi4"])
+
+    def _solve_balls(self, u, omega, X0, outer_ctrl, tol=1e-10, maxit=60):
+        """As QuasiStaticModel._solve_balls; balls that the Newton iteration leaves out of equilibrium
+        (a lightly loaded ball whose equilibrium contact angles are far from its start) are restarted
+        from the minimum of their contact + centrifugal potential."""
+        X, st, ok = super()._solve_balls(u, omega, X0, outer_ctrl, tol, maxit)
+        if ok:
+            return X, st, ok
+        scale = max(1.0, 0.5 * self.g.ball_mass * self.g.dm * omega ** 2)
+        bad = np.hypot(st["Rr"], st["Rz"]) >= tol * (scale + max(st["Qi"].max(), st["Qo"].max(), 0.0))
+        Xe = X.copy()
+        Cr, Cz = self._centres(u)
+        for j in np.flatnonzero(bad):
+            Xe[j] = self._potential_minimum(X[j], Cr[j], Cz[j], float(st["Fc"][j]))
+        return super()._solve_balls(u, omega, Xe, outer_ctrl, tol, maxit)
+
+    def _potential_minimum(self, x0, Cr, Cz, Fc):
+        """Ball centre [m] minimising sum_k (2/5) K_k delta_k^2.5 - Fc Xr over the valid arcs (Hertz
+        contacts of one ball; K at the free contact angle), from x0 (scipy Nelder-Mead, 1e-4 um)."""
+        from scipy.optimize import minimize
+
+        g = self.g
+        eo, ei = g.outer_groove_offset, g.inner_groove_offset
+        Ki = float(self.hz.K(np.array([g.alpha0]), inner=True)[0])
+        Ko = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
+        cen = [(0.0, 0.0, Ko, g.fo, 1, eo), (0.0, 2 * eo, Ko, g.fo, 2, eo),
+               (Cr[0], Cz[0], Ki, g.fi, -1, ei), (Cr[1], Cz[1], Ki, g.fi, -2, ei)]
+        um = 1e-6
+
+        def pot(y):
+            xr, xz = x0[0] + y[0] * um, x0[1] + y[1] * um
+            e = -Fc * (xr - x0[0])
+            for cr, cz, K, f, kind, off in cen:
+                vr, vz = xr - cr, xz - cz
+                L = math.hypot(vr, vz)
+                sn = vz / L if kind > 0 else -vz / L        # sin of the contact angle
+                valid = f * g.D * sn >= off if abs(kind) == 1 else f * g.D * sn < -off
+                d = L - (f - 0.5) * g.D
+                if valid and d > 0:
+                    e += 0.4 * K * d ** 2.5
+            return e
+
+        res = minimize(pot, np.zeros(2), method="Nelder-Mead",
+                       options={"xatol": 1e-4, "fatol": 1e-14, "initial_simplex": [[0, 0], [20, 0], [0, 20]],
+                                "maxiter": 2000})
+        return x0 + res.x * um
+
+    def _x_start(self, u):
+        """Initial ball positions: per ball the candidate with the smaller force residual among (a) the
+        line of centres of the more compressed diagonal pair with equal deflections (the mean of both
+        pairs when both are compressed) and, at speed, (b) the seat in the outer arch: on the outer groove
+        mid-plane, pressed into both outer arcs by the centrifugal force."""
+        X = self._x_start_pairs(u)
+        g = self.g
+        if self._omega > 0 and g.outer_groove_offset > 0:
+            wm = 0.5 * self._omega * (1.0 - g.D / g.dm)
+            Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
+            eo, ro = g.outer_groove_offset, (g.fo - 0.5) * g.D
+            K0 = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
+            sa = eo / ro                                     # sin of the arch contact angle of a seated ball
+            lo = ro + (Fc / (2.0 * K0 * math.sqrt(max(1.0 - sa * sa, 1e-6)))) ** (2.0 / 3.0)
+            Xs = np.tile([math.sqrt(max(lo * lo - eo * eo, 0.0)), eo], (g.Z, 1))
+            Cr, Cz = self._centres(u)
+            oc = np.ones(g.Z, dtype=bool)
+            s1 = self._ball_state(X, Cr, Cz, self._omega, oc)
+            s2 = self._ball_state(Xs, Cr, Cz, self._omega, oc)
+            better = np.hypot(s2["Rr"], s2["Rz"]) < np.hypot(s1["Rr"], s1["Rz"])
+            X[better] = Xs[better]
+        return X
+
+    def _x_start_pairs(self, u):
+        g = self.g
+        Cr, Cz = self._centres(u)
+        Oz = np.array([0.0, 2.0 * g.outer_groove_offset])
+        vr, vz = Cr, Cz - Oz
+        L = np.hypot(vr, vz)
+        ro, ri = (g.fo - 0.5) * g.D, (g.fi - 0.5) * g.D
+        d = 0.5 * (L - (ro + ri))
+        t = (ro + d) / np.maximum(L, 1e-300)
+        Xr, Xz = vr * t, Oz + vz * t
+        both = np.all(d > 0, axis=1)
+        k = np.argmax(d, axis=1)
+        rows = np.arange(g.Z)
+        X = np.stack([np.where(both, 0.5 * (Xr[:, 0] + Xr[:, 1]), Xr[rows, k]),
+                      np.where(both, 0.5 * (Xz[:, 0] + Xz[:, 1]), Xz[rows, k])], axis=1)
+        free = d[rows, k] < 0
+        if self._omega > 0 and free.any():
+            wm = 0.5 * self._omega * (1.0 - g.D / g.dm)
+            Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
+            K0 = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
+            kf = k[free]
+            ao = np.arctan2(vz[free, kf], vr[free, kf])
+            lo = ro + (Fc / K0) ** (2.0 / 3.0)
+            X[free, 0] = lo * np.cos(ao)
+            X[free, 1] = Oz[kf] + lo * np.sin(ao)
+        return X
+
+    def _u_guess(self, loads):
+        u = super()._u_guess(loads)
+        g = self.g
+        if g.is_four_point:
+            s = 0.5 * g.axial_play          # from 'pair 1 just touching' (u = 0) to the centred ring
+            Fr = math.hypot(loads[0], loads[1])
+            if Fr >= abs(loads[2]) * math.tan(g.alpha0):
+                # radial load dominant: ring near axially centred, radial play taken up (both pairs)
+                u[2] = -s
+                if Fr > 0:
+                    u[0] += 0.5 * max(g.radial_play, 0.0) * loads[0] / Fr
+                    u[1] += 0.5 * max(g.radial_play, 0.0) * loads[1] / Fr
+            else:
+                u[2] = -s + math.copysign(abs(s) + abs(u[2]), loads[2])
+        return u
+
+    def _result(self, omega, loads, u, X, st, outer_ctrl, it):
+        res = super()._result(omega, loads, u, X, st, outer_ctrl, it)
+        rows = np.arange(self.g.Z)
+        res.alpha_i, res.alpha_o = st["ai4"][rows, st["ki"]], st["ao4"][rows, st["ko"]]
+        res.a_i, res.b_i, res.p_i, _ = self.hz.ab_E(res.alpha_i, res.Q_i, inner=True)
+        res.a_o, res.b_o, res.p_o, _ = self.hz.ab_E(res.alpha_o, res.Q_o, inner=False)
+        Qi, Qo = np.maximum(st["Qi4"], 0.0), np.maximum(st["Qo4"], 0.0)
+        a_i, b_i, p_i, _ = self.hz.ab_E(st["ai4"], Qi, inner=True)
+        a_o, b_o, p_o, _ = self.hz.ab_E(st["ao4"], Qo, inner=False)
+        kw = {f: getattr(res, f) for f in res.__dataclass_fields__}
+        return FourPointResult(
+            **kw, Q_c=np.concatenate([Qi, Qo], axis=1), alpha_c=np.concatenate([st["ai4"], st["ao4"]], axis=1),
+            delta_c=np.concatenate([st["di4"], st["do4"]], axis=1), a_c=np.concatenate([a_i, a_o], axis=1),
+            b_c=np.concatenate([b_i, b_o], axis=1), p_c=np.concatenate([p_i, p_o], axis=1),
+            F_c=np.concatenate([st["Fi4"], st["Fo4"]], axis=1), weight_c=np.concatenate([st["wi"], st["wo"]], axis=1))
+
+
+
+def quasistatic_model(geometry: BearingGeometry, control: str = "outer", **kw) -> QuasiStaticModel:
+    """The quasi-static model for this bearing: FourPointQuasiStaticModel for a gothic-arch
+    (four-point-contact) bearing, QuasiStaticModel otherwise; keywords as QuasiStaticModel."""
+    cls = FourPointQuasiStaticModel if geometry.is_four_point else QuasiStaticModel
+    return cls(geometry, control, **kw)
+
+
 def solve_quasistatic(geometry: BearingGeometry, omega: float, loads, control: str = "outer",
-                      stiffness: bool = True, mu_gyro: float = 0.1) -> QuasiStaticResult:
-    """Convenience wrapper: QuasiStaticModel(geometry, control).solve(omega, loads).
+                      stiffness: bool = True, mu_gyro: float = 0.1, fits=None,
+                      temperatures=None) -> QuasiStaticResult:
+    """Convenience wrapper: quasistatic_model(geometry, control).solve(omega, loads).
 
     omega: inner-ring speed [rad/s] (>= 0); loads: (Fx, Fy, Fz, Mx, My) [N, N m] applied to the inner
-    ring; control: 'outer' | 'inner' | 'hybrid'."""
-    return QuasiStaticModel(geometry, control, mu_gyro=mu_gyro).solve(omega, loads, stiffness=stiffness)
+    ring; control: 'outer' | 'inner' | 'hybrid'. fits (bearing_core.ring_fits.RingFits) and/or
+    temperatures (ring_fits.OperatingTemperatures): solve the operating geometry
+    ring_fits.operating_geometry(geometry, omega, fits, temperatures) (centrifugal, thermal and fit growth
+    of the rings; result.geometry is that geometry)."""
+    if fits is not None or temperatures is not None:
+        geometry = operating_geometry(geometry, omega, fits, temperatures)
+    return quasistatic_model(geometry, control, mu_gyro=mu_gyro).solve(omega, loads, stiffness=stiffness)
