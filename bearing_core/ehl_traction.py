@@ -40,7 +40,7 @@ per contact; names of the parameter slots in contact_kernels.P_*):
    fraction f(Lambda) of the local pressure, the asperities the rest at the boundary friction
    coefficient mu_bl (regularised mu_bl tanh(|v| / v_bl)); f from Zhou & Hoeprich's fit
    f = 1.21 Lambda^0.64 / (1 + 0.37 Lambda^1.26) (recalled, check against the source), normalised by
-   its maximum (0.986 at Lambda = 3.03) and held at 1 beyond, so that it reaches full film smoothly.
+   its maximum (1.0026 at Lambda = 2.258) and held at 1 beyond, so that it reaches full film smoothly.
 9. EHL rolling resistance [HK07]: the hydrodynamic rolling force
      F_R = 2.86 E' Rx^2 k^0.348 G^0.022 U^0.66 W^0.47     (Harris & Kotzalas Vol. 2 Ch. 5, the fit of
    Houpert's / Hamrock's numerical results; recalled, check against the source), with the Hamrock-Dowson
@@ -76,7 +76,7 @@ from .film import hd_central_film_nb, hd_groups_nb
 
 ROELANDS_P0 = 1.96e8       # Pa [R66]
 ROELANDS_LN_ETA_INF = 9.67  # -ln(6.31e-5 Pa s) [R66]
-_ZH_LAM_PEAK = 3.03        # argmax of the Zhou-Hoeprich fit
+_ZH_LAM_PEAK = (0.64 / (0.37 * 1.26 - 0.37 * 0.64)) ** (1.0 / 1.26)   # argmax of the Zhou-Hoeprich fit, 2.258
 _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 
 # layout of the rheology part of the traction parameter array (float64); indices continue those of
@@ -98,7 +98,7 @@ def roelands_ln_factor(p, lne, z):
 @njit(cache=True)
 def fluid_fraction(lam):
     """Fraction of the load carried by the fluid film [-] at film parameter lam [-]: the Zhou-Hoeprich
-    fit [ZH91] 1.21 lam^0.64 / (1 + 0.37 lam^1.26) normalised by its maximum, 1 for lam >= 3.03."""
+    fit [ZH91] 1.21 lam^0.64 / (1 + 0.37 lam^1.26) normalised by its maximum, 1 for lam >= 2.258."""
     if lam >= _ZH_LAM_PEAK:
         return 1.0
     if lam <= 0.0:
