@@ -243,3 +243,24 @@ def test_rolling_resistance_in_quasistatic_tribological_model():
             PR += E.hydrodynamic_rolling_force(abs(u), eta0, alpha, Rx, ellipticity_nb(Rx, Ry, 0), Ep, Q) * abs(u)
     dP = q[True].losses["P_drive"] - q[False].losses["P_drive"]
     assert dP == pytest.approx(PR, rel=0.02)
+
+
+def test_roughness_is_a_geometry_parameter():
+    """Rq of balls and raceways live in the bearing geometry (defaults 0.03 / 0.08 um, typical precision
+    finishes) and set the composite roughness of the EHL traction; DynamicsOptions.roughness > 0 overrides
+    both; out-of-range values raise BearingInputError naming the field."""
+    import dataclasses
+    from bearing_core.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.errors import BearingInputError
+    from bearing_core.geometry import load_preset
+    g = load_preset("7218B")
+    assert (g.ball_roughness, g.race_roughness) == (0.03e-6, 0.08e-6)
+    tp = DynamicModel(g, DynamicsOptions(traction="lubricated"))._ehl_params(T40)
+    assert tp[E.R_RQ] == pytest.approx(math.hypot(0.03e-6, 0.08e-6))
+    assert tp[E.R_LUBMODEL] == ck.TRACTION_EHL
+    tp2 = DynamicModel(g, DynamicsOptions(traction="lubricated", roughness=0.2e-6))._ehl_params(T40)
+    assert tp2[E.R_RQ] == pytest.approx(math.sqrt(2) * 0.2e-6)
+    with pytest.raises(BearingInputError, match="race_roughness"):
+        dataclasses.replace(g, race_roughness=-1e-7)
+    with pytest.raises(BearingInputError, match="mu_boundary"):
+        DynamicModel(g, DynamicsOptions(mu_boundary=1.5))
