@@ -72,7 +72,7 @@ def build_parser() -> argparse.ArgumentParser:
     dy.add_argument("--mu", type=_finite("--mu"), default=0.1, help="Coulomb friction coefficient [-]")
     dy.add_argument("--mu-cage", type=_finite("--mu-cage"), default=0.1,
                     help="ball-pocket and cage-land friction coefficient [-]")
-    dy.add_argument("--integrator", choices=("adaptive", "implicit", "auto", "rk4"), default="adaptive")
+    dy.add_argument("--integrator", choices=("adaptive", "implicit", "auto", "rk4"), default="auto")
     dy.add_argument("--start", choices=("jones-harris", "tribological"), default="jones-harris",
                     help="initial state: Jones-Harris quasi-static or the quasi-static tribological model")
     dy.add_argument("--reduced", choices=("auto", "full", "axisymmetric"), default="auto")

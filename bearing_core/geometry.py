@@ -76,7 +76,10 @@ class BearingGeometry:
     gothic-arch groove from the ring's groove mid-plane [m] (0: single-arc groove, two-point bearing);
     split_inner_ring: the inner ring is made of two halves clamped together (QJ construction; the
     halves act as one rigid ring in the models); bore, outside_diameter: boundary dimensions d, D_o [m]
-    (0: not given; needed for fits, bearing_core.ring_fits).
+    (0: not given; needed for fits, bearing_core.ring_fits). ball_roughness, race_roughness: rms
+    surface roughness Rq [m] of the balls and raceways (film parameter, mixed lubrication). Defaults
+    0.03 um and 0.08 um: typical finishes of precision bearing balls (0.02-0.05 um Rq) and superfinished
+    raceways (0.05-0.1 um Rq) (Harris & Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 2 Ch. 4; recalled).
     """
 
     name: str
@@ -101,6 +104,8 @@ class BearingGeometry:
     split_inner_ring: bool = False
     bore: float = 0.0
     outside_diameter: float = 0.0
+    ball_roughness: float = 0.03e-6
+    race_roughness: float = 0.08e-6
 
     def __post_init__(self):
         self.validate()
@@ -116,6 +121,8 @@ class BearingGeometry:
         check_range("fi", self.fi, 0.5, 1.0, lo_incl=False, hi_incl=False)
         check_range("fo", self.fo, 0.5, 1.0, lo_incl=False, hi_incl=False)
         check_range("alpha0", self.alpha0, 0.0, math.radians(60.0), unit="rad")
+        check_range("ball_roughness", self.ball_roughness, 0.0, 5e-6, unit="m")
+        check_range("race_roughness", self.race_roughness, 0.0, 5e-6, unit="m")
         # Balls must fit the pitch circle: chord between neighbouring ball centres > D.
         chord = self.dm * math.sin(math.pi / self.Z)
         if chord <= self.D:
@@ -301,7 +308,7 @@ BEARING_FIELDS = (
     "fi", "fo", "inner_groove_radius_mm", "outer_groove_radius_mm", "ring_material", "ball_material", "width_mm",
     "inner_ring_mass_kg", "outer_ring_mass_kg", "inner_ring_inertia_kg_mm2", "inner_ring_tilt_inertia_kg_mm2",
     "cage", "inner_groove_offset_mm", "outer_groove_offset_mm", "split_inner_ring", "bore_diameter_mm",
-    "outside_diameter_mm",
+    "outside_diameter_mm", "ball_roughness_um", "race_roughness_um",
 )
 CAGE_FIELDS = ("pocket_clearance_mm", "land_clearance_mm", "guidance", "mass_kg", "inertia_kg_mm2",
                "land_width_mm", "material")
@@ -426,6 +433,8 @@ def from_dict(d: dict) -> BearingGeometry:
         source=str(d.get("source", "")), notes=str(d.get("notes", "")),
         inner_groove_offset=offs["inner_groove_offset_mm"], outer_groove_offset=offs["outer_groove_offset_mm"],
         split_inner_ring=split, bore=offs["bore_diameter_mm"], outside_diameter=offs["outside_diameter_mm"],
+        ball_roughness=_num(d, "ball_roughness_um", lo_incl=True, default=0.03, unit="um") * 1e-6,
+        race_roughness=_num(d, "race_roughness_um", lo_incl=True, default=0.08, unit="um") * 1e-6,
     )
 
 
