@@ -7,9 +7,10 @@ The FMU carries
     compiled here with the system C compiler ($CC, default gcc); binaries/win64/<id>.dll as well when a
     MinGW-w64 cross compiler (x86_64-w64-mingw32-gcc) is on PATH (not the case on the test machines:
     only linux64 is tested);
-  * resources/code/: fmu_src/bearing_fmu.py (the pythonfmu slave), bearing_core and pythonfmu, renamed
-    to names carrying a hash of their content (bearing_core_<hash> ...), so that two FMU versions in
-    one process, or an installed bearing_core, never share modules;
+  * resources/code/<name>/<name>: fmu_src/bearing_fmu.py (the pythonfmu slave), bearing_core and
+    pythonfmu, each renamed to a name carrying a hash of its content (bearing_core_<hash> ...; the
+    imports of the slave are rewritten accordingly), so that two FMU versions in one process, or an
+    installed bearing_core, never share modules;
   * resources/python_env.json: the Python the FMU was built with (libpython, home, site-packages); a
     master that is not itself Python loads that libpython (override: BEARING_FMU_PYTHON_LIB,
     BEARING_FMU_PYTHONHOME), which needs numpy, scipy and numba;
@@ -57,12 +58,6 @@ def _python_env() -> dict:
             "env_overrides": "BEARING_FMU_PYTHON_LIB (libpython path), BEARING_FMU_PYTHONHOME (home of that Python)"}
 
 
-def _rename_imports(text: str, h: str) -> str:
-    """Absolute imports of bearing_core / pythonfmu / bearing_fmu -> their content-hashed names."""
-    pat = r"(?m)^(\s*(?:from|import)\s+)(" + "|".join(_RENAMED) + r")(?=[\s.,]|$)"
-    return re.sub(pat, lambda m: f"{m.group(1)}{m.group(2)}_{h}", text)
-
-
 def _content_hash(files) -> str:
     d = hashlib.sha256()
     for name, data in sorted(files):
@@ -97,38 +92,50 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path) -
                                "imports inside bearing_core")
     pf_files = [(f"pythonfmu/{f.name}", f.read_bytes()) for f in sorted(pfmu_dir.glob("*.py"))]
     native = [(f"native/{f.name}", f.read_bytes()) for f in sorted(NATIVE.glob("*")) if f.suffix in (".c", ".h", ".py")]
-    h = _content_hash(core_files + pf_files + native + [(k, v.encode()) for k, v in slave_sources.items()])
-    packages = [f"bearing_core_{h}", f"pythonfmu_{h}"] + [f"{m}_{h}" for m in slave_sources]
+    # one content hash per package: an FMU version that changes only the slave shares bearing_core (and
+    # its numba cache) with the others, any change of bearing_core gives it a new name
+    hc, hp = _content_hash(core_files), _content_hash(pf_files)
+    names = {"bearing_core": f"bearing_core_{hc}", "pythonfmu": f"pythonfmu_{hp}"}
+    pat = r"(?m)^(\s*(?:from|import)\s+)(" + "|".join(_RENAMED) + r")(?=[\s.,]|$)"
+    renamed = {m: re.sub(pat, lambda x: x.group(1) + names.get(x.group(2), x.group(2) + "_@"), t)
+               for m, t in slave_sources.items()}
+    hs = _content_hash(native + [(k, v.encode()) for k, v in renamed.items()])
+    renamed = {m: t.replace("_@", f"_{hs}") for m, t in renamed.items()}
+    names.update({m: f"{m}_{hs}" for m in slave_sources})
+    packages = sorted(set(names.values()))
+    h = _content_hash([(k, k.encode()) for k in packages])
     with tempfile.TemporaryDirectory(prefix="bearing_fmu_build_") as td:
         stage = Path(td)
         code = stage / "resources" / "code"
-        shutil.copytree(HERE / "bearing_core", code / f"bearing_core_{h}", ignore=_IGNORE)
-        (code / f"pythonfmu_{h}").mkdir()
+        shutil.copytree(HERE / "bearing_core", code / names["bearing_core"] / names["bearing_core"], ignore=_IGNORE)
+        (code / names["pythonfmu"] / names["pythonfmu"]).mkdir(parents=True)
         for f in pfmu_dir.glob("*.py"):
-            shutil.copyfile(f, code / f"pythonfmu_{h}" / f.name)
-        for mod, text in slave_sources.items():
-            renamed = _rename_imports(text, h)
-            left = [ln for ln in renamed.splitlines()
-                    if re.match(r"\s*(from|import)\s+(" + "|".join(_RENAMED) + r")\b(?!_" + h + ")", ln)]
+            shutil.copyfile(f, code / names["pythonfmu"] / names["pythonfmu"] / f.name)
+        for mod, text in renamed.items():
+            left = [ln for ln in text.splitlines()
+                    if re.match(r"\s*(from|import)\s+(" + "|".join(_RENAMED) + r")(?![_\w])", ln)]
             if left:
                 raise RuntimeError(f"{mod}: imports not renamed: {left}")
-            (code / f"{mod}_{h}.py").write_text(renamed)
+            (code / names[mod]).mkdir()
+            (code / names[mod] / f"{names[mod]}.py").write_text(text)
         shutil.copyfile(NATIVE / "bearing_fmi2_bridge.py", stage / "resources" / "bearing_fmi2_bridge.py")
         (stage / "resources" / "native").mkdir()
         for f in ("bearing_fmi2.c", "fmi2_min.h"):
             shutil.copyfile(NATIVE / f, stage / "resources" / "native" / f)
 
         # modelDescription.xml from the pythonfmu slave class (imported under its hashed name)
-        sys.path.insert(0, str(code))
+        paths = [str(code / p) for p in packages]
+        sys.path[:0] = paths
         try:
             import importlib
-            mod = importlib.import_module(f"{main_module}_{h}")
+            mod = importlib.import_module(names[main_module])
             inst = getattr(mod, class_name)(instance_name="modelDescription", resources=str(stage / "resources"))
             xml = inst.to_xml({"canGetAndSetFMUstate": True, "canSerializeFMUstate": False,
                                "needsExecutionTool": False, "canHandleVariableCommunicationStepSize": True,
                                "canBeInstantiatedOnlyOncePerProcess": False})
         finally:
-            sys.path.remove(str(code))
+            for p in paths:
+                sys.path.remove(p)
             for k in [k for k in sys.modules if k.split(".")[0] in packages]:
                 del sys.modules[k]
         model_id = xml.find("CoSimulation").get("modelIdentifier")
@@ -136,7 +143,7 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path) -
         md = parseString(tostring(xml, "UTF-8")).toprettyxml(encoding="UTF-8")
 
         env = dict(_python_env(), bridge_module=f"bearing_fmi2_bridge_{h}", code_hash=h, packages=packages,
-                   slave_module=f"{main_module}_{h}", class_name=class_name, guid=guid)
+                   slave_module=names[main_module], class_name=class_name, guid=guid)
         (stage / "resources" / "python_env.json").write_text(json.dumps(env, indent=1, ensure_ascii=False) + "\n",
                                                               encoding="utf-8")
         binaries = {}

@@ -133,9 +133,22 @@ class CoSimSession:
             check_range(k, u[k], -1e7, 1e7, unit="N")
         return u
 
+    def _check_seated(self, u: dict):
+        """Load-driven coupling: the axial load must seat the single angular-contact bearing (Fz > 0). Every
+        ball pushes the inner ring along its contact line, whose axial component has the same sign for all
+        balls (Q_j sin(alpha_j) >= 0), so sum Q_j sin(alpha_j) = Fz has no solution with Fz <= 0 other than
+        all Q_j = 0, which carries no radial load or moment either: no equilibrium exists. Refused at once
+        instead of after a failed quasi-static solve or with the ring driven out of its raceway."""
+        if self.p.coupling == "load" and not u["Fz"] > 0.0:
+            what = "no axial load" if u["Fz"] == 0.0 else "a reversed axial load"
+            raise BearingInputError("Fz", u["Fz"], "Fz > 0 N (the axial load that seats the bearing)",
+                                    f"{what} on a single angular-contact bearing: its balls can only push the inner "
+                                    "ring axially in one direction, so there is no equilibrium")
+
     def initialize(self, t0: float, inputs: dict):
         """Build the model and start it from the quasi-static state at the given inputs."""
         u = self._inputs(inputs)
+        self._check_seated(u)
         g = self._geometry()
         self.model = DynamicModel(g, self._options())
         loads = (u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"])
@@ -160,6 +173,7 @@ class CoSimSession:
             raise StepRejected(f"step starts at t = {t!r} but the bearing is at t = {self.t!r}")
         try:
             u = self._inputs(inputs)
+            self._check_seated(u)
         except BearingInputError as e:
             raise StepRejected(str(e))
         m = self.model

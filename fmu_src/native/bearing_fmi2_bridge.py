@@ -8,7 +8,7 @@ passed to the master's logger after the GIL is released.
 The model code (bearing_core, the pythonfmu slave and pythonfmu itself) was renamed at build time to
 names carrying a hash of its content (``bearing_core_<hash>`` ...), so two FMU versions in one process,
 or an installed bearing_core, never share modules. It is imported through a meta-path finder that only
-answers for those names, from a content-addressed copy in a writable cache folder (numba caches compiled
+answers for those names, each from a content-addressed copy in a writable cache folder (numba caches compiled
 kernels next to the sources; the FMU itself may be unpacked read-only or into a new temporary folder at
 each instantiation): ``$BEARING_FMU_CACHE``, else ``~/.cache/bearing_fmu``, else
 ``<tempdir>/bearing_fmu-<user>``; if none is writable, the unpacked copy is used in place.
@@ -40,16 +40,19 @@ class _FmiError(Exception):
 
 
 class _Finder(importlib.abc.MetaPathFinder):
-    """Finds only the FMU's content-hashed top-level modules, in its code folder."""
+    """Finds only the FMU's content-hashed top-level modules, each in its own code folder."""
 
-    def __init__(self, root: Path, names):
-        self.root = str(root)
-        self.names = frozenset(names)
+    def __init__(self, roots: dict):
+        self.roots = roots
 
     def find_spec(self, fullname, path=None, target=None):
-        if fullname in self.names:
-            return importlib.machinery.PathFinder.find_spec(fullname, [self.root])
+        root = self.roots.get(fullname)
+        if root is not None:
+            return importlib.machinery.PathFinder.find_spec(fullname, [str(root)])
         return None
+
+
+_FINDER = _Finder({})
 
 
 def _env(res: str) -> dict:
@@ -58,7 +61,7 @@ def _env(res: str) -> dict:
     return _ENV_CACHE[res]
 
 
-def _writable_copy(src: Path, code_hash: str) -> Path | None:
+def _writable_copy(src: Path, name: str) -> Path | None:
     """A content-addressed copy of the code folder with writable modes (see module docstring)."""
     bases = []
     if os.environ.get("BEARING_FMU_CACHE"):
@@ -73,7 +76,7 @@ def _writable_copy(src: Path, code_hash: str) -> Path | None:
         user = os.environ.get("USERNAME", "user")
     bases.append(Path(tempfile.gettempdir()) / f"bearing_fmu-{user}")
     for base in bases:
-        dst = base / code_hash
+        dst = base / name
         if (dst / ".complete").is_file() and os.access(dst, os.W_OK):
             return dst
         try:
@@ -97,9 +100,6 @@ def _writable_copy(src: Path, code_hash: str) -> Path | None:
     return None
 
 
-_ROOTS: dict = {}
-
-
 def _load_class(res: str, own_interpreter: bool):
     env = _env(res)
     if own_interpreter:
@@ -111,16 +111,18 @@ def _load_class(res: str, own_interpreter: bool):
             if p not in _SITE_DONE and os.path.isdir(p):
                 site.addsitedir(p)
                 _SITE_DONE.add(p)
-    h = env["code_hash"]
-    if h not in _ROOTS:
-        src = Path(res) / "code"
-        root = _writable_copy(src, h)
+    if _FINDER not in sys.meta_path:
+        sys.meta_path.insert(0, _FINDER)
+    for name in env["packages"]:
+        if name in _FINDER.roots:
+            continue
+        src = Path(res) / "code" / name
+        root = _writable_copy(src, name)
         if root is None:
             root = src
             if "numba" not in sys.modules and not os.environ.get("NUMBA_CACHE_DIR"):
                 os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="bearing_fmu_numba_")
-        sys.meta_path.insert(0, _Finder(root, env["packages"]))
-        _ROOTS[h] = root
+        _FINDER.roots[name] = root
     mod = importlib.import_module(env["slave_module"])
     return getattr(mod, env["class_name"]), env
 
