@@ -324,9 +324,23 @@ static int py_start(const char *envjson) {
 /* ---------------------------------------------------------------------------------------------- */
 /* calls into the bridge                                                                            */
 
+/* The message is passed as the format string with every '%' doubled and no further arguments, so that
+ * masters that format it (as FMI 2.0 specifies) and masters that print it as is both show the text. */
 static void log_to(fmi2CallbackLogger logger, fmi2ComponentEnvironment env, const char *name, fmi2Status st,
                    const char *cat, const char *msg) {
-    if (logger) logger(env, name ? name : "", st, cat, "%s", msg);
+    if (!logger) return;
+    size_t n = strlen(msg), extra = 0;
+    for (size_t i = 0; i < n; i++) extra += msg[i] == '%';
+    char *fmt = (char *)malloc(n + extra + 1);
+    if (!fmt) return;
+    char *q = fmt;
+    for (size_t i = 0; i < n; i++) {
+        *q++ = msg[i];
+        if (msg[i] == '%') *q++ = '%';
+    }
+    *q = '\0';
+    logger(env, name ? name : "", st, cat, fmt);
+    free(fmt);
 }
 
 /* The bridge's queued log records: "<status>\x1f<category>\x1f<message>\0" repeated. Copied out under the
