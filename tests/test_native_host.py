@@ -338,3 +338,55 @@ def invalid_in_layer(text):
             else:
                 cur.append(body)
     return [r for r in recs if any("BearingFMU.so" in x or "bearing_fmi2" in x for x in r)]
+
+
+@pytest.mark.slow
+def test_masters_agree_on_seed000_profile(built, tmp_path):
+    """Seed 000's acceleration profile (bearing_core.dynamics SEED000_PROFILE: 1000 rpm to 0.5 s, 10,000
+    rpm/s to 10,000 rpm, held to 2 s; 7218B, Fx 1 kN, Fz 3 kN, lubricated traction, 1 ms steps, speed held
+    over each step) in three masters: fmpy, libcosim (C++, libcosimpy) and the C host. The mean cage speed
+    over the profile agrees within 0.1 % (the masters round communication points differently)."""
+    import json
+    from bearing_core.dynamics import read_profile
+    t_pts, rpm_pts, _ = read_profile("seed000")
+    h = 1e-3
+    n = int(round((t_pts[-1] - t_pts[0]) / h))
+    speeds = [float(np.interp(k * h, t_pts, rpm_pts)) * RPM for k in range(n)]
+    vr = built["vr"]
+    env = dict(os.environ, BEARING_FMU_CACHE=built["cache"])
+    means = {}
+    # fmpy
+    spec = {"fmu": str(built["fmu"]), "params": {}, "outputs": ["cage_speed"],
+            "start_inputs": {"shaft_speed": speeds[0], "Fx": 1000.0, "Fz": 3000.0},
+            "steps": [[h, {"shaft_speed": w}] for w in speeds]}
+    p = tmp_path / "fmpy.json"
+    p.write_text(json.dumps(spec))
+    r = subprocess.run([sys.executable, str(HERE / "fmu_driver.py"), str(p)], capture_output=True, text=True,
+                       env=env, timeout=900)
+    assert r.returncode == 0, r.stderr[-2000:]
+    rows = json.loads([ln for ln in r.stdout.splitlines() if ln.startswith("RESULT ")][-1][7:])["rows"]
+    assert all(x["status"] == 0 for x in rows)
+    means["fmpy"] = float(np.mean([x["values"][0] for x in rows]))
+    # libcosim
+    p = tmp_path / "cosim.json"
+    p.write_text(json.dumps({"fmu": str(built["fmu"]), "h": h, "t_end": n * h, "outputs": ["cage_speed"],
+                             "inputs": {"shaft_speed": speeds[0], "Fx": 1000.0, "Fz": 3000.0}, "speeds": speeds}))
+    r = subprocess.run([sys.executable, str(HERE / "libcosim_driver.py"), str(p)], capture_output=True, text=True,
+                       env=env, timeout=900)
+    assert r.returncode == 0, r.stderr[-2000:]
+    res = json.loads([ln for ln in r.stdout.splitlines() if ln.startswith("RESULT ")][-1][7:])
+    assert res["ok"]
+    means["libcosim"] = float(np.mean(res["series"]["cage_speed"][-n:]))
+    # C host
+    lines = ["instantiate 0", "setup 0", "enter", f"set_real {vr['shaft_speed']} {speeds[0]!r}",
+             f"set_real {vr['Fx']} 1000", f"set_real {vr['Fz']} 3000", "exit",
+             f"inputs {vr['shaft_speed']}", f"outputs {vr['cage_speed']}"]
+    lines += [f"step {h!r} {w!r}" for w in speeds] + ["terminate", "free"]
+    r = run_host(built, "\n".join(lines) + "\n", tmp_path)
+    assert r.returncode == 0, r.stderr[-2000:]
+    _, crow, _, _ = parse(r.stdout)
+    assert all(x[0] == 0 for x in crow) and len(crow) == n
+    means["c"] = float(np.mean([x[3] for x in crow]))
+    print("mean cage speed [rpm]:", {k: v / RPM for k, v in means.items()})
+    for k in ("libcosim", "c"):
+        assert abs(means[k] / means["fmpy"] - 1) < 1e-3, means
