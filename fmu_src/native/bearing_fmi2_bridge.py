@@ -308,7 +308,7 @@ class Instance:
     def do_step(self, t, h, no_set_prior):
         if self.mode != "step":
             why = {"failed": f"the initialisation failed ({self.failure})", "terminated": "after fmi2Terminate"}
-            raise _FmiError("fmi2DoStep is not allowed: " + why.get(self.mode, f"the FMU is in {self.mode} mode, "
+            raise _FmiError("not allowed: " + why.get(self.mode, f"the FMU is in {self.mode} mode, "
                                                                              "call fmi2ExitInitializationMode first"))
         ok = self.slave.do_step(float(t), float(h))
         self._drain_slave()
