@@ -1,6 +1,6 @@
 """Count host processes that abort at exit after running the bearing FMU (docs/fmu.md).
 
-    python bench/fmu_exit_check.py [--runs 200] [--fmu dist/BearingFMU.fmu] [--hosts fmpy,fmpy-numba,two,c]
+    python bench/fmu_exit_check.py [--runs 200] [--fmu dist/BearingFMU.fmu] [--hosts fmpy,fmpy-numba,two,c] [--progress]
 
 Each run is a fresh process that loads the FMU, simulates 10 ms (1 ms steps, 1000 rpm, Fx 1 kN, Fz 3 kN)
 and exits normally (the C exit handlers and library destructors run). Hosts:
@@ -31,6 +31,7 @@ def main():
     ap.add_argument("--runs", type=int, default=50)
     ap.add_argument("--fmu", default=str(ROOT / "dist" / "BearingFMU.fmu"))
     ap.add_argument("--hosts", default="fmpy,fmpy-numba,two,c")
+    ap.add_argument("--progress", action="store_true", help="one line per run on stderr (partial counts)")
     a = ap.parse_args()
     w = 1000 * math.pi / 30
     inp = {"shaft_speed": w, "Fx": 1000.0, "Fz": 3000.0}
@@ -77,6 +78,9 @@ def main():
                 counts[str(r.returncode)] += 1
                 ok_out = ("RESULT " in r.stdout) if name != "c" else (r.stdout.count("ROW 0 0") == 10)
                 bad_out += not ok_out
+                if a.progress:
+                    sys.stderr.write(json.dumps({"host": name, "exit": r.returncode, "results": ok_out}) + "\n")
+                    sys.stderr.flush()
             print(json.dumps({"host": name, "runs": a.runs, "exit": dict(counts), "runs_without_results": bad_out,
                               "wall_s": round(time.perf_counter() - t0, 1)}), flush=True)
 
