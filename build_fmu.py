@@ -47,11 +47,16 @@ def _python_env() -> dict:
     if sys.platform.startswith("win"):
         lib = str(Path(sys.base_prefix) / f"python{sys.version_info.major}{sys.version_info.minor}.dll")
     else:
-        name = sysconfig.get_config_var("INSTSONAME") or sysconfig.get_config_var("LDLIBRARY") or ""
-        lib = str(Path(sysconfig.get_config_var("LIBDIR") or "", name)) if name.endswith((".so", ".dylib")) or \
-            ".so." in name else ""
-        if lib and not Path(lib).exists():
-            lib = ""
+        lib = ""
+        for name in (sysconfig.get_config_var("INSTSONAME"), sysconfig.get_config_var("LDLIBRARY")):
+            if name and (name.endswith((".so", ".dylib")) or ".so." in name):
+                for d in (sysconfig.get_config_var("LIBDIR"), sysconfig.get_config_var("LIBPL"),
+                          str(Path(sys.base_prefix) / "lib")):
+                    if d and (Path(d) / name).exists():
+                        lib = str(Path(d) / name)
+                        break
+            if lib:
+                break
     sp = [p for p in site.getsitepackages() if Path(p).is_dir()]
     return {"libpython": lib, "python_home": sys.base_prefix, "python_version": v, "prefix": sys.prefix,
             "base_prefix": sys.base_prefix, "executable": sys.executable, "site_packages": sp,
