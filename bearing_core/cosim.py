@@ -145,10 +145,29 @@ class CoSimSession:
                                     f"{what} on a single angular-contact bearing: its balls can only push the inner "
                                     "ring axially in one direction, so there is no equilibrium")
 
+    def _check_capacity(self, u: dict, g):
+        """Load-driven coupling: refuse at once loads whose equilibrium surely exceeds the P_LIMIT contact
+        stress. The inner-contact forces balance the applied force, so by the triangle inequality
+        sum_j Q_j >= |F| and max_j Q_j >= |F| / Z; the Hertz pressure of that load is taken on the flattest
+        inner contact over all contact angles (a lower bound of the pressure the model would reach)."""
+        if self.p.coupling != "load":
+            return
+        from .hertz import contact_curvature, hertz_approx, reduced_modulus
+        q = math.sqrt(u["Fx"] ** 2 + u["Fy"] ** 2 + u["Fz"] ** 2) / g.Z
+        E = reduced_modulus(g.ring_material.E, g.ring_material.nu, g.ball_material.E, g.ball_material.nu)
+        p = min(hertz_approx(*contact_curvature(g.D, g.dm, g.fi, a, True)[:2], E).p_max(q)
+                for a in np.linspace(0.0, 0.5 * math.pi, 7))
+        if p > P_LIMIT:
+            raise BearingInputError("loads", [u["Fx"], u["Fy"], u["Fz"]], "loads the bearing can carry",
+                                    f"maximum contact pressure at least {p / 1e9:.2f} GPa (largest ball load >= "
+                                    f"|F| / Z = {q:.4g} N) exceeds the {P_LIMIT / 1e9:.1f} GPa static limit of ball "
+                                    "bearings (ISO 76)")
+
     def initialize(self, t0: float, inputs: dict):
         """Build the model and start it from the quasi-static state at the given inputs."""
         u = self._inputs(inputs)
         self._check_seated(u)
+        self._check_capacity(u, self._geometry())
         g = self._geometry()
         self.model = DynamicModel(g, self._options())
         loads = (u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"])
@@ -174,6 +193,7 @@ class CoSimSession:
         try:
             u = self._inputs(inputs)
             self._check_seated(u)
+            self._check_capacity(u, self.model.g)
         except BearingInputError as e:
             raise StepRejected(str(e))
         m = self.model
