@@ -144,7 +144,8 @@ def test_statuses(built, tmp_path):
     failed initialisation (no axial load) -> fmi2Error, refused within 5 s; getReal and doStep after it ->
     fmi2Error; default start values initialise (OK); a fixed parameter set after initialisation -> fmi2Error and
     the value is unchanged; an output set -> fmi2Error; fmi2SerializeFMUstate (unsupported) -> fmi2Error and
-    the instance keeps stepping; a reversed axial load mid-run -> fmi2Discard with the ring where it was."""
+    the instance keeps stepping; a reversed axial load mid-run -> fmi2Discard with the ring where it was; a
+    1e7 N axial load mid-run -> fmi2Discard (beyond the ISO 76 contact-stress limit), the next step OK."""
     vr = built["vr"]
     script = f"""instantiate 0
 setup 0
@@ -171,6 +172,8 @@ serialize
 step 0.001 314.159 1000 3000
 step 0.001 314.159 1000 -3000
 step 0.001 314.159 1000 3000
+step 0.001 314.159 1000 1e7
+step 0.001 314.159 1000 3000
 terminate
 free
 """
@@ -186,7 +189,7 @@ free
     assert st["get_real"] == [3, 0] and values[1] == pytest.approx(0.1)
     assert st["set_string"] == [3] and st["set_real"] == [0, 3, 3]   # Fz before init, fixed parameter, output
     assert st["getstate"] == [0] and st["serialize"] == [3]
-    assert [int(r_[0]) for r_ in rows] == [3, 0, 0, 2, 0]
+    assert [int(r_[0]) for r_ in rows] == [3, 0, 0, 2, 0, 2, 0]
     assert rows[3][3] == rows[2][3]          # ir_z unchanged by the refused step
     assert abs(rows[4][3] - rows[2][3]) < 1e-6
     errs = [m for s, c, m in logs if s == 3 and c == "logError"]
@@ -198,6 +201,7 @@ free
     assert any("cage_speed is an output" in m for m in errs)
     assert any("fmi2SerializeFMUstate is not supported" in m for m in errs)
     assert any(s == 2 and c == "logDiscard" and "reversed axial load" in m for s, c, m in logs)
+    assert any(s == 2 and c == "logDiscard" and "contact pressure at least" in m for s, c, m in logs)
     assert wall < 120
 
 
@@ -216,13 +220,16 @@ def test_default_start_values_run_in_fmpy(built, tmp_path):
 
 def test_unsolvable_load_refused_fast():
     """No axial load and a reversed axial load on a single angular-contact bearing have no equilibrium (all
-    ball loads push the inner ring axially one way): refused at initialisation with that reason, before any
-    solve (generous bound 5 s here; measured time in docs/fmu.md)."""
+    ball loads push the inner ring axially one way), and a 1e7 N axial load needs a ball load >= 1e7 N / Z,
+    whose Hertz pressure on any inner contact exceeds the 4.2 GPa static limit (ISO 76): refused at
+    initialisation with that reason, before any solve (generous bound 5 s here; measured time in
+    docs/fmu.md)."""
     from bearing_core.cosim import CoSimParameters, CoSimSession
     from bearing_core.errors import BearingInputError
     for inp, why in (({"shaft_speed": 314.0, "Fx": 1000.0, "Fz": 0.0}, "no axial load"),
                      ({"shaft_speed": 314.0, "Fz": -3000.0}, "reversed axial load"),
-                     ({"shaft_speed": 0.0}, "no axial load")):
+                     ({"shaft_speed": 0.0}, "no axial load"),
+                     ({"shaft_speed": 314.0, "Fz": 1e7}, "contact pressure at least")):
         t0 = time.perf_counter()
         with pytest.raises(BearingInputError, match=why):
             CoSimSession(CoSimParameters()).initialize(0.0, inp)
