@@ -133,9 +133,41 @@ class CoSimSession:
             check_range(k, u[k], -1e7, 1e7, unit="N")
         return u
 
+    def _check_seated(self, u: dict):
+        """Load-driven coupling: the axial load must seat the single angular-contact bearing (Fz > 0). Every
+        ball pushes the inner ring along its contact line, whose axial component has the same sign for all
+        balls (Q_j sin(alpha_j) >= 0), so sum Q_j sin(alpha_j) = Fz has no solution with Fz <= 0 other than
+        all Q_j = 0, which carries no radial load or moment either: no equilibrium exists. Refused at once
+        instead of after a failed quasi-static solve or with the ring driven out of its raceway."""
+        if self.p.coupling == "load" and not u["Fz"] > 0.0:
+            what = "no axial load" if u["Fz"] == 0.0 else "a reversed axial load"
+            raise BearingInputError("Fz", u["Fz"], "Fz > 0 N (the axial load that seats the bearing)",
+                                    f"{what} on a single angular-contact bearing: its balls can only push the inner "
+                                    "ring axially in one direction, so there is no equilibrium")
+
+    def _check_capacity(self, u: dict, g):
+        """Load-driven coupling: refuse at once loads whose equilibrium surely exceeds the P_LIMIT contact
+        stress. The inner-contact forces balance the applied force, so by the triangle inequality
+        sum_j Q_j >= |F| and max_j Q_j >= |F| / Z; the Hertz pressure of that load is taken on the flattest
+        inner contact over all contact angles (a lower bound of the pressure the model would reach)."""
+        if self.p.coupling != "load":
+            return
+        from .hertz import contact_curvature, hertz_approx, reduced_modulus
+        q = math.sqrt(u["Fx"] ** 2 + u["Fy"] ** 2 + u["Fz"] ** 2) / g.Z
+        E = reduced_modulus(g.ring_material.E, g.ring_material.nu, g.ball_material.E, g.ball_material.nu)
+        p = min(hertz_approx(*contact_curvature(g.D, g.dm, g.fi, a, True)[:2], E).p_max(q)
+                for a in np.linspace(0.0, 0.5 * math.pi, 7))
+        if p > P_LIMIT:
+            raise BearingInputError("loads", [u["Fx"], u["Fy"], u["Fz"]], "loads the bearing can carry",
+                                    f"maximum contact pressure at least {p / 1e9:.2f} GPa (largest ball load >= "
+                                    f"|F| / Z = {q:.4g} N) exceeds the {P_LIMIT / 1e9:.1f} GPa static limit of ball "
+                                    "bearings (ISO 76)")
+
     def initialize(self, t0: float, inputs: dict):
         """Build the model and start it from the quasi-static state at the given inputs."""
         u = self._inputs(inputs)
+        self._check_seated(u)
+        self._check_capacity(u, self._geometry())
         g = self._geometry()
         self.model = DynamicModel(g, self._options())
         loads = (u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"])
@@ -160,6 +192,8 @@ class CoSimSession:
             raise StepRejected(f"step starts at t = {t!r} but the bearing is at t = {self.t!r}")
         try:
             u = self._inputs(inputs)
+            self._check_seated(u)
+            self._check_capacity(u, self.model.g)
         except BearingInputError as e:
             raise StepRejected(str(e))
         m = self.model

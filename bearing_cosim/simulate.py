@@ -53,9 +53,20 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
             sys.stderr.flush()
         return True
 
-    res = fmpy.simulate_fmu(fmu, start_time=float(t[0]), stop_time=float(t[-1]), step_size=step,
-                            output_interval=step, input=sig, output=outputs, start_values=params or {},
-                            step_finished=step_finished, logger=None)
+    reasons = []
+
+    def logger(component, instance_name, status, category, message):
+        if status >= 2:   # discard, error, fatal: the FMU's reason, reported with the failure
+            reasons.append(message.decode("utf-8", "replace") if isinstance(message, bytes) else str(message))
+
+    try:
+        res = fmpy.simulate_fmu(fmu, start_time=float(t[0]), stop_time=float(t[-1]), step_size=step,
+                                output_interval=step, input=sig, output=outputs, start_values=params or {},
+                                step_finished=step_finished, logger=logger)
+    except Exception as e:
+        if progress:
+            sys.stderr.write("\n")
+        raise RuntimeError(f"{e}: " + ("; ".join(reasons[-3:]) if reasons else "the FMU gave no reason")) from None
     if progress:
         sys.stderr.write("\n")
     wall = time.perf_counter() - t0

@@ -1,38 +1,88 @@
 """Count host processes that abort at exit after running the bearing FMU (docs/fmu.md).
 
-    python bench/fmu_exit_check.py [--runs 50] [--fmu dist/BearingFMU.fmu]
+    python bench/fmu_exit_check.py [--runs 200] [--fmu dist/BearingFMU.fmu] [--hosts fmpy,fmpy-numba,two,c] [--progress]
 
-Each run is a fresh Python process that loads the FMU with fmpy, simulates 10 ms and exits normally
-(running the C exit handlers). Prints the exit-status histogram, e.g. {"0": 50}.
+Each run is a fresh process that loads the FMU, simulates 10 ms (1 ms steps, 1000 rpm, Fx 1 kN, Fz 3 kN)
+and exits normally (the C exit handlers and library destructors run). Hosts:
+  fmpy        tests/fmu_driver.py (fmpy FMU2Slave)
+  fmpy-numba  the same, with numba imported by the host before the FMU is loaded
+  two         two instances of the FMU in one fmpy process
+  c           tests/c_host/host.c (compiled here with gcc): a C master, no Python in the host
+Prints one JSON line per host: exit-status histogram and wall time, e.g. {"host": "c", "runs": 200, "exit": {"0": 200}}.
 """
 import argparse
 import collections
 import json
 import math
+import os
 import subprocess
 import sys
 import tempfile
+import time
+import zipfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--runs", type=int, default=50)
-    ap.add_argument("--fmu", default=str(HERE.parent / "dist" / "BearingFMU.fmu"))
+    ap.add_argument("--fmu", default=str(ROOT / "dist" / "BearingFMU.fmu"))
+    ap.add_argument("--hosts", default="fmpy,fmpy-numba,two,c")
+    ap.add_argument("--progress", action="store_true", help="one line per run on stderr (partial counts)")
     a = ap.parse_args()
-    inp = {"shaft_speed": 1000 * math.pi / 30, "Fx": 1000.0, "Fz": 3000.0}
+    w = 1000 * math.pi / 30
+    inp = {"shaft_speed": w, "Fx": 1000.0, "Fz": 3000.0}
     spec = {"fmu": a.fmu, "params": {}, "start_inputs": inp, "steps": [[1e-3, inp]] * 10, "outputs": ["cage_speed"]}
     with tempfile.TemporaryDirectory() as td:
-        p = Path(td) / "spec.json"
-        p.write_text(json.dumps(spec))
-        counts = collections.Counter()
-        for _ in range(a.runs):
-            r = subprocess.run([sys.executable, str(HERE.parent / "tests" / "fmu_driver.py"), str(p), "--normal-exit"],
-                               capture_output=True, text=True)
-            counts[str(r.returncode)] += 1
-    print(json.dumps(dict(counts)))
+        td = Path(td)
+        p1 = td / "spec.json"
+        p1.write_text(json.dumps(spec))
+        p2 = td / "two.json"
+        p2.write_text(json.dumps(dict(spec, mode="two", start_inputs_2=dict(inp, Fz=4000.0),
+                                      inputs_2=dict(inp, Fz=4000.0))))
+        numba_first = td / "numba_first.py"
+        numba_first.write_text("import runpy, sys\nimport numba  # noqa: F401\nsys.argv = sys.argv[1:]\n"
+                               "runpy.run_path(sys.argv[0], run_name='__main__')\n")
+        driver = str(ROOT / "tests" / "fmu_driver.py")
+        cmds = {"fmpy": [sys.executable, driver, str(p1)],
+                "fmpy-numba": [sys.executable, str(numba_first), driver, str(p1)],
+                "two": [sys.executable, driver, str(p2)]}
+        env = dict(os.environ)
+        if "c" in a.hosts.split(","):
+            from fmpy import read_model_description
+            md = read_model_description(a.fmu)
+            vr = {v.name: v.valueReference for v in md.modelVariables}
+            unz = td / "unz"
+            with zipfile.ZipFile(a.fmu) as z:
+                z.extractall(unz)
+            host = td / "host"
+            subprocess.run(["gcc", "-std=gnu99", "-O2", "-o", str(host), str(ROOT / "tests" / "c_host" / "host.c"),
+                            "-ldl"], check=True)
+            script = td / "script.txt"
+            script.write_text("\n".join(
+                ["instantiate 0", "setup 0", "enter", f"set_real {vr['shaft_speed']} {w!r}",
+                 f"set_real {vr['Fx']} 1000", f"set_real {vr['Fz']} 3000", "exit",
+                 f"inputs {vr['shaft_speed']} {vr['Fx']} {vr['Fz']}", f"outputs {vr['cage_speed']}"]
+                + [f"step 0.001 {w!r} 1000 3000"] * 10 + ["terminate", "free"]) + "\n")
+            cmds["c"] = [str(host), str(unz), md.coSimulation.modelIdentifier, md.guid, str(script)]
+        for name in a.hosts.split(","):
+            counts = collections.Counter()
+            bad_out = 0
+            t0 = time.perf_counter()
+            e = env if name != "c" else {k: v for k, v in env.items() if k not in ("PYTHONPATH", "LD_PRELOAD")}
+            for _ in range(a.runs):
+                r = subprocess.run(cmds[name], capture_output=True, text=True, env=e)
+                counts[str(r.returncode)] += 1
+                ok_out = ("RESULT " in r.stdout) if name != "c" else (r.stdout.count("ROW 0 0") == 10)
+                bad_out += not ok_out
+                if a.progress:
+                    sys.stderr.write(json.dumps({"host": name, "exit": r.returncode, "results": ok_out}) + "\n")
+                    sys.stderr.flush()
+            print(json.dumps({"host": name, "runs": a.runs, "exit": dict(counts), "runs_without_results": bad_out,
+                              "wall_s": round(time.perf_counter() - t0, 1)}), flush=True)
 
 
 if __name__ == "__main__":

@@ -1,61 +1,25 @@
-"""FMI 2.0 co-simulation slave of the angular-contact ball bearing (pythonfmu). It only translates
-between FMI variables and bearing_core.cosim.CoSimSession; all physics lives in bearing_core.
+"""FMI 2.0 co-simulation slave of the angular-contact ball bearing (a pythonfmu Fmi2Slave). It only
+translates between FMI variables and bearing_core.cosim.CoSimSession; all physics lives in bearing_core.
 
-numba cache: the FMU is unpacked to a new temporary folder at each instantiation, so numba's cache next
-to the unpacked source would never be reused. The bundled bearing_core is therefore copied once to a
-stable per-user folder keyed by a hash of its content (``$BEARING_FMU_CACHE`` or
-``~/.cache/bearing_fmu/<hash>``) and imported from there; its compiled kernels are cached beside it and
-reused by every later instantiation in any process.
+In the built FMU this file, bearing_core and pythonfmu are renamed to names carrying a hash of their
+content (build_fmu.py) and run by the FMU's own native FMI layer (fmu_src/native/), which also keeps the
+numba cache in a stable folder (fmu_src/native/bearing_fmi2_bridge.py).
 """
 from __future__ import annotations
 
-import hashlib
-import os
-import shutil
-import sys
-import tempfile
-from pathlib import Path
+import math
 from xml.etree.ElementTree import Element, SubElement
 
 from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Real, String
-from pythonfmu.enums import Fmi2Status
-from pythonfmu.enums import Fmi2Initial
+from pythonfmu.enums import Fmi2Initial, Fmi2Status
 from pythonfmu.default_experiment import DefaultExperiment
 
-_HERE = Path(__file__).resolve().parent
+from bearing_core.cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_SPEC  # light, no numba
 
-
-def _stable_bearing_core():
-    """Put a content-addressed copy of the bundled bearing_core on sys.path (see module docstring)."""
-    src = _HERE / "bearing_core"
-    if not src.is_dir():          # running from the source tree: the installed package is used
-        return
-    h = hashlib.sha256()
-    for f in sorted(src.rglob("*")):
-        if f.is_file() and "__pycache__" not in f.parts:
-            h.update(str(f.relative_to(src)).encode())
-            h.update(f.read_bytes())
-    base = Path(os.environ.get("BEARING_FMU_CACHE") or (Path.home() / ".cache" / "bearing_fmu"))
-    dst = base / h.hexdigest()[:20]
-    if not (dst / "bearing_core" / "__init__.py").is_file():
-        base.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix="tmp_", dir=base))
-        shutil.copytree(src, tmp / "bearing_core", ignore=shutil.ignore_patterns("__pycache__"))
-        try:
-            os.replace(tmp, dst)
-        except OSError:           # another process won the race: use its copy
-            shutil.rmtree(tmp, ignore_errors=True)
-    if str(dst) not in sys.path:
-        sys.path.insert(0, str(dst))
-
-
-# Load order matters (measured, docs/fmu.md): when scipy's Fortran runtime (scipy.linalg, libgfortran) is
-# loaded AFTER numba/llvmlite inside an FMU-hosted interpreter, 11-16 of 40 host processes aborted at exit
-# with heap corruption in libgfortran's exit handler; loading scipy.linalg first: 0 of 40.
-import scipy.linalg  # noqa: E402,F401
-
-_stable_bearing_core()
-from bearing_core.cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_SPEC  # noqa: E402  (light, no numba)
+# Start values of the inputs: a loaded bearing at a moderate speed, so that the default experiment
+# initialises and runs in every master (7218B: 3000 rpm, Fx 1 kN radial, Fz 3 kN axial; the axial load
+# seats the single angular-contact bearing, without it there is no equilibrium).
+INPUT_START = {"shaft_speed": 3000.0 * math.pi / 30.0, "Fx": 1000.0, "Fz": 3000.0}
 
 # FMI 2.0 unit definitions: exponents of kg, m, s, rad
 _UNITS = {
@@ -106,6 +70,12 @@ class BearingFMU(Fmi2Slave):
     description = ("Angular-contact ball bearing tribo-dynamic model (Gupta-style dynamics, Hertz contact, "
                    "traction over the contact ellipse, skidding, cage dynamics)")
     default_experiment = DefaultExperiment(start_time=0.0, stop_time=1.0, step_size=1e-3)
+    log_categories = {
+        "logError": "the reason of every fmi2Error (refused calls, failed initialisation, failed steps)",
+        "logDiscard": "the reason of every rejected step (fmi2Discard)",
+        "logWarning": "warnings",
+        "logInfo": "information (only with logging on)",
+    }
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)   # light: no numba import here (the builder instantiates this class)
@@ -122,7 +92,7 @@ class BearingFMU(Fmi2Slave):
             if rng:
                 self._ranges[name] = rng
         for name, unit in zip(INPUT_NAMES, INPUT_UNITS):
-            setattr(self, name, 0.0)
+            setattr(self, name, INPUT_START.get(name, 0.0))
             self.register_variable(Real(name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
                                         description=_INPUT_DESC[name]))
             self._units[name] = unit
@@ -166,15 +136,11 @@ class BearingFMU(Fmi2Slave):
 
     def exit_initialization_mode(self):
         from bearing_core.cosim import CoSimParameters, CoSimSession
-        from bearing_core.errors import BearingInputError
         params = CoSimParameters(**{name: getattr(self, name) for name, *_ in _PARAMS})
-        try:
-            self._session = CoSimSession(params)
-            self._session.initialize(self._t0, self._inputs())
-        except (BearingInputError, ValueError) as e:
-            self._session = None
-            self.log(f"initialisation failed: {e}", Fmi2Status.error)
-            raise
+        self._session = None
+        session = CoSimSession(params)
+        session.initialize(self._t0, self._inputs())   # raises with the reason (BearingInputError ...)
+        self._session = session
         self._publish()
 
     def setup_experiment(self, start_time, stop_time=None, tolerance=None):

@@ -21,7 +21,8 @@ def fmu(tmp_path_factory):
     from build_fmu import build
     d = tmp_path_factory.mktemp("dist")
     path = build(d)
-    cache = tmp_path_factory.mktemp("fmu_numba_cache")
+    cache = tmp_path_factory.getbasetemp() / "fmu_numba_cache"   # shared with tests/test_native_host.py
+    cache.mkdir(exist_ok=True)
     return {"path": str(path), "cache": str(cache)}
 
 
@@ -33,7 +34,7 @@ def drive(fmu, spec, tmp_path, name="spec.json"):
     env = dict(os.environ, BEARING_FMU_CACHE=fmu["cache"])
     r = subprocess.run([sys.executable, str(HERE / "fmu_driver.py"), str(p)], capture_output=True, text=True,
                        env=env, timeout=600)
-    # the host process must exit cleanly (no abort at exit, docs/fmu.md)
+    # the host process exits normally (C exit handlers run) and must exit cleanly (docs/fmu.md)
     assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
     line = [ln for ln in r.stdout.splitlines() if ln.startswith("RESULT ")][-1]
     res = json.loads(line[7:])
@@ -278,3 +279,65 @@ def test_geometry_overrides(fmu, tmp_path):
     assert abs(math.degrees(ai - qs.alpha_i[0])) < 0.5
     bad = drive(fmu, {"params": {"free_contact_angle": -0.1}, "start_inputs": inp, "steps": []}, tmp_path, "b.json")
     assert bad["init_error"] is not None and "free_contact_angle" in bad["log"]
+
+
+def test_fmpy_statuses(fmu, tmp_path):
+    """Through fmpy (its exceptions carry the status): a failed initialisation (reversed axial load) is
+    fmi2Error, not fatal, and getReal/doStep after it are fmi2Error; after a good initialisation a fixed
+    parameter set is fmi2Error and reads back unchanged; fmi2SerializeFMUstate (declared unsupported) is
+    fmi2Error and the instance keeps stepping (OK); every refusal's reason reaches the logger."""
+    code = r"""
+import json, sys
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+from fmpy.fmi1 import FMICallException
+path = sys.argv[1]
+md = read_model_description(path)
+vr = {v.name: v.valueReference for v in md.modelVariables}
+logs = []
+from fmpy.fmi2 import fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE
+from fmpy import calloc, free
+def logger(c, name, status, cat, msg):
+    logs.append([status, cat.decode(), msg.decode()])
+cb = fmi2CallbackFunctions()
+cb.logger = fmi2CallbackLoggerTYPE(logger)
+cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+out = {}
+def st(name, fn):
+    try:
+        fn(); out[name] = 0
+    except FMICallException as e:
+        out[name] = e.status
+unz = extract(path)
+f = FMU2Slave(guid=md.guid, unzipDirectory=unz, modelIdentifier="BearingFMU", instanceName="a")
+f.instantiate(callbacks=cb); f.setupExperiment(startTime=0.0); f.enterInitializationMode()
+f.setReal([vr["Fz"]], [-2000.0])
+st("exit_failed", f.exitInitializationMode)
+st("get_after_failed", lambda: f.getReal([vr["cage_speed"]]))
+st("step_after_failed", lambda: f.doStep(0.0, 1e-3))
+f.terminate(); f.freeInstance()
+g = FMU2Slave(guid=md.guid, unzipDirectory=unz, modelIdentifier="BearingFMU", instanceName="b")
+g.instantiate(callbacks=cb); g.setupExperiment(startTime=0.0); g.enterInitializationMode()
+st("exit_ok", g.exitInitializationMode)
+st("set_fixed", lambda: g.setReal([vr["friction_coefficient"]], [0.3]))
+out["fixed_value"] = g.getReal([vr["friction_coefficient"]])[0]
+s = g.getFMUstate()
+st("serialize", lambda: g.serializeFMUstate(s))
+st("step_after_serialize", lambda: g.doStep(0.0, 1e-3))
+g.terminate(); g.freeInstance()
+print("RESULT", json.dumps({"status": out, "logs": logs}))
+"""
+    env = dict(os.environ, BEARING_FMU_CACHE=fmu["cache"])
+    r = subprocess.run([sys.executable, "-c", code, fmu["path"]], capture_output=True, text=True, env=env,
+                       timeout=600)
+    assert r.returncode == 0, r.stderr[-2000:]
+    res = json.loads(r.stdout.split("RESULT", 1)[1])
+    st, logs = res["status"], res["logs"]
+    assert st["exit_failed"] == 3 and st["get_after_failed"] == 3 and st["step_after_failed"] == 3
+    assert st["exit_ok"] == 0 and st["set_fixed"] == 3 and st["fixed_value"] == 0.1
+    assert st["serialize"] == 3 and st["step_after_serialize"] == 0
+    errs = [m for s, c, m in logs if s == 3 and c == "logError"]
+    assert any("reversed axial load" in m for m in errs), logs
+    assert any("friction_coefficient is a fixed parameter" in m for m in errs), logs
+    assert any("fmi2Serialize" in m and "is not supported" in m for m in errs), logs

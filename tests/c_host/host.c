@@ -1,0 +1,190 @@
+/* A minimal FMI 2.0 co-simulation master in C (no Python): loads an unpacked FMU's shared library with
+ * dlopen and runs a command script. Used by tests/test_native_host.py and bench/fmu_exit_check.py.
+ *
+ *   host <unpacked FMU dir> <modelIdentifier> <guid> <script>
+ *
+ * Script lines (one command each; '#' starts a comment):
+ *   instantiate [loggingOn 0|1]   setup <t0>   enter   exit   terminate   free   reset
+ *   set_real <vr> <v>   set_string <vr> <s>   set_bool <vr> <0|1>   get_real <vr>
+ *   inputs <vr>...      outputs <vr>...      step <h> <input values...>   (prints a ROW line)
+ *   getstate   setstate   freestate   serialize
+ * Output: "STATUS <command> <fmi2Status>", "VALUE <vr> <v>", "ROW <status> <t> <outputs...>",
+ * "LOG <status> <category> <message>". Exit status 0 when the script ran to its end.
+ */
+#include <dlfcn.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef void *fmi2Component;
+typedef void *fmi2FMUstate;
+typedef unsigned int fmi2ValueReference;
+typedef int fmi2Status;
+typedef void (*Logger)(void *, const char *, int, const char *, const char *, ...);
+typedef struct {
+    Logger logger;
+    void *(*allocateMemory)(size_t, size_t);
+    void (*freeMemory)(void *);
+    void (*stepFinished)(void *, int);
+    void *env;
+} Callbacks;
+
+static void logger(void *env, const char *name, int status, const char *cat, const char *fmt, ...) {
+    (void)env;
+    (void)name;
+    char buf[8192];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    for (char *p = buf; *p; p++)
+        if (*p == '\n') *p = ' ';
+    printf("LOG %d %s %s\n", status, cat, buf);
+}
+
+static void *lib;
+static void *fn(const char *name) {
+    void *f = dlsym(lib, name);
+    if (!f) {
+        fprintf(stderr, "missing %s\n", name);
+        exit(3);
+    }
+    return f;
+}
+
+int main(int argc, char **argv) {
+    if (argc != 5) {
+        fprintf(stderr, "usage: host <fmu dir> <modelIdentifier> <guid> <script>\n");
+        return 2;
+    }
+    char path[4096], uri[4200];
+    snprintf(path, sizeof path, "%s/binaries/linux64/%s.so", argv[1], argv[2]);
+    lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (!lib) {
+        fprintf(stderr, "dlopen: %s\n", dlerror());
+        return 3;
+    }
+    snprintf(uri, sizeof uri, "file://%s/resources", argv[1]);
+    fmi2Component (*inst)(const char *, int, const char *, const char *, const Callbacks *, int, int) =
+        (fmi2Component (*)(const char *, int, const char *, const char *, const Callbacks *, int, int))fn("fmi2Instantiate");
+    fmi2Status (*setup)(fmi2Component, int, double, double, int, double) =
+        (fmi2Status (*)(fmi2Component, int, double, double, int, double))fn("fmi2SetupExperiment");
+    fmi2Status (*enter)(fmi2Component) = (fmi2Status (*)(fmi2Component))fn("fmi2EnterInitializationMode");
+    fmi2Status (*exitm)(fmi2Component) = (fmi2Status (*)(fmi2Component))fn("fmi2ExitInitializationMode");
+    fmi2Status (*term)(fmi2Component) = (fmi2Status (*)(fmi2Component))fn("fmi2Terminate");
+    fmi2Status (*reset)(fmi2Component) = (fmi2Status (*)(fmi2Component))fn("fmi2Reset");
+    void (*freei)(fmi2Component) = (void (*)(fmi2Component))fn("fmi2FreeInstance");
+    fmi2Status (*setReal)(fmi2Component, const fmi2ValueReference *, size_t, const double *) =
+        (fmi2Status (*)(fmi2Component, const fmi2ValueReference *, size_t, const double *))fn("fmi2SetReal");
+    fmi2Status (*getReal)(fmi2Component, const fmi2ValueReference *, size_t, double *) =
+        (fmi2Status (*)(fmi2Component, const fmi2ValueReference *, size_t, double *))fn("fmi2GetReal");
+    fmi2Status (*setString)(fmi2Component, const fmi2ValueReference *, size_t, const char *const *) =
+        (fmi2Status (*)(fmi2Component, const fmi2ValueReference *, size_t, const char *const *))fn("fmi2SetString");
+    fmi2Status (*setBool)(fmi2Component, const fmi2ValueReference *, size_t, const int *) =
+        (fmi2Status (*)(fmi2Component, const fmi2ValueReference *, size_t, const int *))fn("fmi2SetBoolean");
+    fmi2Status (*doStep)(fmi2Component, double, double, int) =
+        (fmi2Status (*)(fmi2Component, double, double, int))fn("fmi2DoStep");
+    fmi2Status (*getState)(fmi2Component, fmi2FMUstate *) = (fmi2Status (*)(fmi2Component, fmi2FMUstate *))fn("fmi2GetFMUstate");
+    fmi2Status (*setState)(fmi2Component, fmi2FMUstate) = (fmi2Status (*)(fmi2Component, fmi2FMUstate))fn("fmi2SetFMUstate");
+    fmi2Status (*freeState)(fmi2Component, fmi2FMUstate *) = (fmi2Status (*)(fmi2Component, fmi2FMUstate *))fn("fmi2FreeFMUstate");
+    fmi2Status (*serialize)(fmi2Component, fmi2FMUstate, char *, size_t) =
+        (fmi2Status (*)(fmi2Component, fmi2FMUstate, char *, size_t))fn("fmi2SerializeFMUstate");
+
+    static Callbacks cb = {logger, calloc, free, NULL, NULL};
+    FILE *f = fopen(argv[4], "r");
+    if (!f) {
+        fprintf(stderr, "cannot open %s\n", argv[4]);
+        return 2;
+    }
+    fmi2Component c = NULL;
+    fmi2FMUstate state = NULL;
+    fmi2ValueReference in[64], out[256];
+    size_t nin = 0, nout = 0;
+    double t = 0.0;
+    char line[65536];
+    while (fgets(line, sizeof line, f)) {
+        char *save = NULL;
+        char *cmd = strtok_r(line, " \t\r\n", &save);
+        if (!cmd || cmd[0] == '#') continue;
+        char *a1 = strtok_r(NULL, " \t\r\n", &save);
+        char *a2 = strtok_r(NULL, "\r\n", &save);
+        fmi2Status st = 0;
+        if (!strcmp(cmd, "instantiate")) {
+            c = inst("bearing", 1, argv[3], uri, &cb, 0, a1 ? atoi(a1) : 0);
+            st = c ? 0 : 3;
+        } else if (!strcmp(cmd, "setup")) {
+            t = a1 ? atof(a1) : 0.0;
+            st = setup(c, 0, 0.0, t, 0, 0.0);
+        } else if (!strcmp(cmd, "enter")) {
+            st = enter(c);
+        } else if (!strcmp(cmd, "exit")) {
+            st = exitm(c);
+        } else if (!strcmp(cmd, "terminate")) {
+            st = term(c);
+        } else if (!strcmp(cmd, "reset")) {
+            st = reset(c);
+        } else if (!strcmp(cmd, "free")) {
+            freei(c);
+            c = NULL;
+        } else if (!strcmp(cmd, "set_real")) {
+            fmi2ValueReference vr = (fmi2ValueReference)atoi(a1);
+            double v = atof(a2);
+            st = setReal(c, &vr, 1, &v);
+        } else if (!strcmp(cmd, "set_string")) {
+            fmi2ValueReference vr = (fmi2ValueReference)atoi(a1);
+            const char *v = a2 ? a2 : "";
+            st = setString(c, &vr, 1, &v);
+        } else if (!strcmp(cmd, "set_bool")) {
+            fmi2ValueReference vr = (fmi2ValueReference)atoi(a1);
+            int v = atoi(a2);
+            st = setBool(c, &vr, 1, &v);
+        } else if (!strcmp(cmd, "get_real")) {
+            fmi2ValueReference vr = (fmi2ValueReference)atoi(a1);
+            double v = -12345.0;
+            st = getReal(c, &vr, 1, &v);
+            printf("VALUE %u %.17g\n", vr, v);
+        } else if (!strcmp(cmd, "inputs") || !strcmp(cmd, "outputs")) {
+            fmi2ValueReference *dst = cmd[0] == 'i' ? in : out;
+            size_t cap = cmd[0] == 'i' ? 64 : 256, n = 0;
+            if (a1) dst[n++] = (fmi2ValueReference)atoi(a1);
+            char *s2 = NULL;
+            for (char *tok = a2 ? strtok_r(a2, " \t", &s2) : NULL; tok && n < cap; tok = strtok_r(NULL, " \t", &s2))
+                dst[n++] = (fmi2ValueReference)atoi(tok);
+            if (cmd[0] == 'i') nin = n; else nout = n;
+            continue;
+        } else if (!strcmp(cmd, "step")) {
+            double h = atof(a1), u[64], y[256];
+            size_t n = 0;
+            char *s2 = NULL;
+            for (char *tok = a2 ? strtok_r(a2, " \t", &s2) : NULL; tok && n < nin; tok = strtok_r(NULL, " \t", &s2))
+                u[n++] = atof(tok);
+            fmi2Status s1 = n ? setReal(c, in, n, u) : 0;
+            st = doStep(c, t, h, 0);
+            if (s1 > st) st = s1;
+            if (st <= 1) t += h;
+            fmi2Status s3 = getReal(c, out, nout, y);
+            printf("ROW %d %d %.9f", st, s3, t);
+            for (size_t k = 0; k < nout; k++) printf(" %.17g", y[k]);
+            printf("\n");
+            continue;
+        } else if (!strcmp(cmd, "getstate")) {
+            st = getState(c, &state);
+        } else if (!strcmp(cmd, "setstate")) {
+            st = setState(c, state);
+        } else if (!strcmp(cmd, "freestate")) {
+            st = freeState(c, &state);
+        } else if (!strcmp(cmd, "serialize")) {
+            char buf[64];
+            st = serialize(c, state, buf, sizeof buf);
+        } else {
+            fprintf(stderr, "unknown command %s\n", cmd);
+            return 2;
+        }
+        printf("STATUS %s %d\n", cmd, st);
+        fflush(stdout);
+    }
+    fclose(f);
+    fflush(stdout);
+    return 0;
+}
