@@ -169,11 +169,12 @@ def test_resumed_sweep_recomputes_nothing_that_finished(client2, tmp_path):
 
 
 def test_min_preload_brackets_a_directly_checked_point(client2):
-    """Quasi-static tribological model, 7008-ma2023 at 15,000 rpm, lubricated traction with ball drag in an
+    """Quasi-static tribological model, 7008-ma2023 at 15,000 rpm, the smooth illustrative traction curve
+    ('lubricated-curve': cheap, well-conditioned solves; the bisection is what is tested here) with ball drag in an
     oil-air mixture of oil fraction 0.5 (the drag the traction must overcome): the bisection's minimum preload
     P is checked directly, outside the bisection: at 0.9 P the bearing skids (cage speed ratio < 0.95), at
     1.03 P it does not. Also: the curve's bracket ratios straddle the criterion."""
-    base = {"bearing": BEARING, "traction": "lubricated", "oil_fraction": 0.5}
+    base = {"bearing": BEARING, "traction": "lubricated-curve", "oil_fraction": 0.5}
     spec = S.SweepSpec(model="tribo", base=base)
     df = S.min_preload_curve(spec, [15000.0], lo=20.0, hi=200.0, rtol=0.03, client=client2, progress=False)
     r = df.iloc[0]
