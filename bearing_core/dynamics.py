@@ -561,6 +561,31 @@ class DynamicModel:
     def _thermal_step(self, rec, dt):
         self.thermal.step(self.heat_sources(rec), dt)
         self._apply_thermal()
+        if self.thermal.runaway():
+            self.thermal_runaway = True
+
+    @property
+    def thermal_runaway(self) -> bool:
+        """True once a thermal-network temperature passed the oil's limit (thermal.OIL_T_MAX); stays set
+        until the thermal state is restored to one below the limit (set_thermal_state)."""
+        return getattr(self, "_runaway", False)
+
+    @thermal_runaway.setter
+    def thermal_runaway(self, v):
+        self._runaway = bool(v)
+
+    def skid(self) -> dict:
+        """Kinematic reference and skid classification at the current instant (bearing_core.skid): pure-
+        rolling cage speeds at the loaded balls' contact angles with outer / inner raceway control [rad/s],
+        seed 000's Eq. 26 value (spin-free, mean angles) [rad/s], cage speed [rad/s], cage_slip_ratio and
+        skid_state (+1 skidding, 0 pure rolling, -1 over-skidding) with its label."""
+        from .skid import SKID_LABELS, classify_skid
+        o = self.outputs()
+        state, s = classify_skid(o["cage_speed"], o["cage_speed_pure_rolling_outer"])
+        return {"cage_speed": o["cage_speed"], "cage_speed_pure_rolling_outer": o["cage_speed_pure_rolling_outer"],
+                "cage_speed_pure_rolling_inner": o["cage_speed_pure_rolling_inner"],
+                "cage_speed_seed000_eq26": o["pure_rolling_cage_speed"], "cage_slip_ratio": s,
+                "skid_state": state, "skid_label": SKID_LABELS[state]}
 
     def _apply_thermal(self):
         T = self.thermal.temperatures()
@@ -581,6 +606,9 @@ class DynamicModel:
             T_old = self.thermal.T.copy()
             self.thermal.steady_state(Q, set_state=True)
             self._apply_thermal()
+            # a steady state past the oil's limit is a thermal runaway, not an equilibrium
+            self.thermal.check_runaway(f"at {self.U[K.U_W1] * 30 / math.pi:.0f} rpm (thermal equilibrium, "
+                                       f"iteration {it}, losses {sum(Q.values()):.0f} W)")
             if np.max(np.abs(self.thermal.T - T_old)) < tol:
                 break
         else:
@@ -614,6 +642,7 @@ class DynamicModel:
         th.T[:] = st[0]
         th.E_generated, th.E_ambient, th.E_flow = st[1], st[2], st[3]
         self._apply_thermal()
+        self.thermal_runaway = th.runaway()
 
     def temperatures(self) -> dict:
         """Node temperatures [K] (ball, outer, inner, oil) and the heat flows to ambient and to the oil flow [W];

@@ -17,7 +17,7 @@ import tempfile
 from pathlib import Path
 from xml.etree.ElementTree import Element, SubElement
 
-from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Real, String
+from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
 from pythonfmu.enums import Fmi2Status
 from pythonfmu.enums import Fmi2Initial
 from pythonfmu.default_experiment import DefaultExperiment
@@ -56,6 +56,7 @@ import scipy.linalg  # noqa: E402,F401
 
 _stable_bearing_core()
 from bearing_core.cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_SPEC  # noqa: E402  (light, no numba)
+from bearing_core.cosim_spec import INT_OUTPUT_SPEC  # noqa: E402
 
 # FMI 2.0 unit definitions: exponents of kg, m, s, rad
 _UNITS = {
@@ -98,6 +99,9 @@ _PARAMS = (
     ("oil_inlet_temperature", float, 0.0, "K", "oil supply temperature (0: ambient)", (0.0, 473.15)),
     ("oil_flow_rate", float, 0.0, "m^3/s", "circulating oil flow through the bearing", (0.0, 0.1)),
     ("thermal_time_scale", float, 1.0, "1", "thermal seconds per simulated second (> 1 fast-forwards heating)", (1e-3, 1e6)),
+    ("lubrication", str, "auto", None, "lubrication regime of races and cage: oil (lubricated traction, oil-lubricated "
+     "pocket and land) | solid (Kalker/Coulomb traction with friction_coefficient, dry cage) | dry (Coulomb "
+     "everywhere) | auto (oil for traction_model lubricated, else solid)", None),
 )
 
 
@@ -132,6 +136,11 @@ class BearingFMU(Fmi2Slave):
             self.register_variable(Real(name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
                                         initial=Fmi2Initial.calculated, description=desc))
             self._units[name] = unit
+        for name, unit, desc in INT_OUTPUT_SPEC:
+            setattr(self, name, 0)
+            self.register_variable(Integer(name, causality=Fmi2Causality.output,
+                                           variability=Fmi2Variability.discrete, initial=Fmi2Initial.calculated,
+                                           description=desc))
 
     # ---- model description: units, ranges and InitialUnknowns (plain pythonfmu writes neither) ----
     def to_xml(self, model_options=dict()) -> Element:
@@ -195,6 +204,7 @@ class BearingFMU(Fmi2Slave):
             self._session.step(current_time, step_size, self._inputs())
         except StepRejected as e:
             self.log(f"step at t = {current_time:.9g} s rejected: {e}", Fmi2Status.discard)
+            self._publish()          # flags such as thermal_runaway are visible after the discarded step
             return False
         except Exception as e:  # never let an exception reach the host (it would be fmi2Fatal)
             self.log(f"step at t = {current_time:.9g} s failed: {type(e).__name__}: {e}", Fmi2Status.error)
