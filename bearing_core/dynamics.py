@@ -606,13 +606,16 @@ class DynamicModel:
             T_old = self.thermal.T.copy()
             self.thermal.steady_state(Q, set_state=True)
             self._apply_thermal()
-            # a steady state past the oil's limit is a thermal runaway, not an equilibrium
-            self.thermal.check_runaway(f"at {self.U[K.U_W1] * 30 / math.pi:.0f} rpm (thermal equilibrium, "
-                                       f"iteration {it}, losses {sum(Q.values()):.0f} W)")
             if np.max(np.abs(self.thermal.T - T_old)) < tol:
                 break
         else:
+            # not converged: past the oil's limit it is a runaway (the fixed point keeps heating up)
+            self.thermal.check_runaway(f"at {self.U[K.U_W1] * 30 / math.pi:.0f} rpm (thermal equilibrium not "
+                                       f"reached in {max_iter} iterations, losses {sum(Q.values()):.0f} W)")
             raise ConvergenceError(f"thermal equilibrium not reached in {max_iter} iterations of {window} s")
+        # a steady state past the oil's limit is a thermal runaway, not an equilibrium
+        self.thermal.check_runaway(f"at {self.U[K.U_W1] * 30 / math.pi:.0f} rpm (thermal equilibrium after "
+                                   f"{it} iterations, losses {sum(Q.values()):.0f} W)")
         # check: one more window at the final temperatures (no update); its losses must equal what the
         # network rejects at those temperatures
         th = self.thermal_state()

@@ -152,3 +152,36 @@ def palmgren_friction(dm_mm: float, n_rpm: float, nu_mm2s: float, Fr: float = 0.
     P1 = max(Fa - 0.1 * Fr, Fr)
     M1 = f1 * P1 * dm_mm
     return {"M0": M0 * 1e-3, "M1": M1 * 1e-3, "M": (M0 + M1) * 1e-3, "f1": f1, "P0": P0, "P1": P1}
+
+
+def bearing_envelope_mm(geometry) -> tuple[float, float, str]:
+    """(bore d, outside diameter D) [mm] of a preset for the catalogue models, and how they were found:
+    the preset's 'bore_mm' / 'outside_diameter_mm' if it has them, else estimated from the raceways as
+    bearing_core.thermal.ThermalData.resolved does (D = outer raceway + 0.55 D_ball, d = inner raceway -
+    0.55 D_ball; 7218B: 90.6 / 160.0 mm against the ISO 90 / 160 mm)."""
+    from .geometry import preset_data
+    try:
+        pd = preset_data(geometry.name)
+    except Exception:     # not a preset (custom geometry): estimate
+        pd = {}
+    if "bore_mm" in pd and "outside_diameter_mm" in pd:
+        return float(pd["bore_mm"]), float(pd["outside_diameter_mm"]), "preset"
+    d = (geometry.inner_raceway_diameter - 0.55 * geometry.D) * 1e3
+    D = (geometry.outer_raceway_diameter + 0.55 * geometry.D) * 1e3
+    return d, D, "estimated from the raceway diameters"
+
+
+def reference_torques(geometry, n_rpm, nu_mm2s, Fr, Fa, lubrication: str = "oil-jet") -> dict:
+    """SKF (series 72B constants) and Palmgren (f0 = 2, C0 from iso76_static_rating) friction torques [N m]
+    of a single-row angular contact ball bearing at arrays of speed [rpm], radial and axial load [N] and
+    one viscosity [mm^2/s]: {'skf': array, 'palmgren': array, 'envelope': how d, D were found}."""
+    import numpy as np
+    d, D, how = bearing_envelope_mm(geometry)
+    C0 = iso76_static_rating(geometry)
+    n, fr, fa = (np.broadcast_arrays(np.asarray(n_rpm, float), np.abs(np.asarray(Fr, float)),
+                                     np.abs(np.asarray(Fa, float))))
+    skf = np.array([skf_friction(d, D, max(a, 0.0), nu_mm2s, b, c, lubrication=lubrication)["M"]
+                    for a, b, c in zip(n.ravel(), fr.ravel(), fa.ravel())]).reshape(n.shape)
+    pal = np.array([palmgren_friction(geometry.dm * 1e3, max(a, 0.0), nu_mm2s, b, c, C0)["M"]
+                    for a, b, c in zip(n.ravel(), fr.ravel(), fa.ravel())]).reshape(n.shape)
+    return {"skf": skf, "palmgren": pal, "envelope": how, "d_mm": d, "D_mm": D}

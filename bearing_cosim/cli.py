@@ -23,6 +23,12 @@ def build_parser():
     s.add_argument("--traction", choices=("lubricated", "coulomb", "kalker"), default="lubricated")
     s.add_argument("--mu", type=core_cli._finite("--mu"), default=0.1)
     s.add_argument("--mu-cage", type=core_cli._finite("--mu-cage"), default=0.1)
+    s.add_argument("--lubrication", choices=("auto", "oil", "solid", "dry"), default="auto",
+                   help="lubrication regime (FMU parameter lubrication): oil | solid | dry | auto (from --traction)")
+    s.add_argument("--oil", default="", help="oil name for viscosity (bearing_core.lubricants; default: the "
+                                             "traction curve's oil)")
+    s.add_argument("--oil-temperature-c", type=core_cli._finite("--oil-temperature-c"), default=40.0,
+                   help="oil temperature [degC] (thermal network off)")
     s.add_argument("--out", default="out")
     s.set_defaults(func=cmd_simulate)
     return p
@@ -37,7 +43,8 @@ def cmd_simulate(a) -> int:
     if not (0.0 <= a.mu <= 1.0) or not (0.0 <= a.mu_cage <= 1.0):
         raise core_cli._BadArg(f"--mu = {a.mu}, --mu-cage = {a.mu_cage}: allowed 0 <= value <= 1")
     params = {"bearing": a.bearing, "traction_model": a.traction, "friction_coefficient": a.mu,
-              "cage_friction_coefficient": a.mu_cage}
+              "cage_friction_coefficient": a.mu_cage, "lubrication": a.lubrication, "oil": a.oil,
+              "oil_temperature": a.oil_temperature_c + 273.15}
     s = simulate(a.fmu, a.profile, (a.fx, a.fy, a.fz, a.mx, a.my), a.step, params, a.out)
     print(f"wrote {s['csv']}, {s['plot']} and {Path(a.out) / 'fmu_simulation_summary.json'}")
     print(json.dumps({k: v for k, v in s.items() if k.startswith("final") or k in ("simulated_s", "wall_s")}))
