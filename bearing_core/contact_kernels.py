@@ -35,7 +35,9 @@ Sources
 [Jo85] K. L. Johnson, Contact Mechanics, CUP 1985 (torsion of a Hertz circular contact in full slip,
        M = 3 pi mu Q a / 16, the a = b case of M_s above; section number not re-checked).
 seed 002 (Ma et al. 2023) Sec. 2.1-2.2: traction by integrating p(x, y) mu(s(x, y)) over the ellipse,
-       p = p_max sqrt(1 - x^2/a^2 - y^2/b^2), mu(s) = (A + B s) exp(-C s) + D, s = v/u.
+       p = p_max sqrt(1 - x^2/a^2 - y^2/b^2), mu(s) = (A + B s) exp(-C s) + D, s = v/u (kept as the
+       illustrative curve model TRACTION_CURVE; the lubricated model is the rheology-based EHL traction
+       of bearing_core.ehl_traction, which integrates over the same ellipse and sliding field).
 seed 004 Eqs. 1-5: rolling-direction slip on the deformed contact surface, rolling radius
        rho(x) = sqrt(R^2 - x^2) - sqrt(R^2 - a^2) + sqrt((D/2)^2 - a^2), R = 2 f D / (2 f + 1).
 seed 000 Eq. 6: ball-pocket penalty force K_cb r_p dtheta + C_cb r_p dtheta_dot beyond the clearance
@@ -51,12 +53,18 @@ from numba import njit
 
 from .hertz import ROW_K_LOAD, hertz_lookup, hertz_lookup_alpha
 
+from . import ehl_traction as EHL
+
 # traction model selectors
 TRACTION_COULOMB = 0      # mu = mu0 tanh(|v| / v_reg)
-TRACTION_LUBRICATED = 1   # mu = (A + B s) exp(-C s) + D,  s = |v| / max(|u_roll|, u_min)
-# layout of the traction parameter array (float64, length N_TRACTION_PARAMS)
+TRACTION_CURVE = 1        # illustrative curve mu = (A + B s) exp(-C s) + D,  s = |v| / max(|u_roll|, u_min)
+TRACTION_EHL = 2          # rheology-based EHL traction (bearing_core.ehl_traction.ehl_ellipse_traction)
+TRACTION_LUBRICATED = TRACTION_EHL
+# layout of the traction parameter array (float64, length N_TRACTION_PARAMS): Coulomb / curve slots,
+# then the oil's rheology (ehl_traction.R_*; filled by lubricants.rheology_traction_params)
 P_MU0, P_VREG, P_A, P_B, P_C, P_D, P_UMIN = range(7)
-N_TRACTION_PARAMS = 7
+P_LUBMODEL = EHL.R_LUBMODEL
+N_TRACTION_PARAMS = EHL.N_PARAMS
 
 # normal damping selectors
 DAMP_NONE = 0
@@ -65,12 +73,15 @@ DAMP_LINEAR = 2           # F = Q + c delta_dot
 
 
 def traction_params(mu0=0.1, v_reg=1e-3, A=0.0, B=0.0, C=0.0, D=0.0, u_min=1e-3):
-    """Parameter array for traction_coefficient / ellipse_traction.
+    """Parameter array for traction_coefficient / ellipse_traction / ehl_traction.ehl_ellipse_traction.
 
-    mu0 [-], v_reg [m/s] (Coulomb model); A, B, C, D [-] (lubricated curve mu(s) = (A + B s)
-    exp(-C s) + D; A + D = 0 makes mu(0) = 0); u_min [m/s]: floor of the rolling speed in s."""
+    mu0 [-], v_reg [m/s] (Coulomb model); A, B, C, D [-] (illustrative curve mu(s) = (A + B s)
+    exp(-C s) + D; A + D = 0 makes mu(0) = 0); u_min [m/s]: floor of the rolling speed in s and of the
+    entrainment speed of the EHL model. The rheology slots stay 0 here (lubricants.rheology_traction_params
+    fills them)."""
     p = np.zeros(N_TRACTION_PARAMS)
     p[P_MU0], p[P_VREG], p[P_A], p[P_B], p[P_C], p[P_D], p[P_UMIN] = mu0, v_reg, A, B, C, D, u_min
+    p[P_LUBMODEL] = TRACTION_CURVE
     return p
 
 
@@ -206,9 +217,9 @@ def contact_kinematics(r_b, vr, vt, vz, wr, wt, wz, Omega_race, vrr, vrt, vrz, n
 def traction_coefficient(v, u_roll, model, params):
     """Traction coefficient [-] at sliding speed v >= 0 [m/s] and rolling speed u_roll [m/s].
 
-    TRACTION_COULOMB: mu0 tanh(v / v_reg). TRACTION_LUBRICATED (seed 002 Sec. 2.1):
+    TRACTION_COULOMB: mu0 tanh(v / v_reg). TRACTION_CURVE (seed 002 Sec. 2.1, illustrative):
     (A + B s) exp(-C s) + D, s = v / max(|u_roll|, u_min). params from traction_params()."""
-    if model == TRACTION_LUBRICATED:
+    if model == TRACTION_CURVE:
         u = abs(u_roll)
         um = params[P_UMIN]
         if u < um:

@@ -23,9 +23,9 @@ from .hertz_tables import HertzInterp
 from .lubricants import get_lubricant
 from .quasistatic import QuasiStaticModel
 
-TRACTION_MODELS = ("lubricated", "coulomb", "kalker")
+TRACTION_MODELS = ("lubricated", "coulomb", "kalker", "lubricated-curve")
 LUBRICATION_REGIMES = ("auto", "oil", "solid", "dry")
-OIL_TRACTIONS = ("lubricated",)       # race traction laws of an oil-lubricated bearing
+OIL_TRACTIONS = ("lubricated", "lubricated-curve")   # race traction laws of an oil-lubricated bearing
 INTEGRATORS = ("rk4", "adaptive", "implicit", "auto")
 # stats: [0] accepted steps, [1] rejected, [2] rhs calls, [3] last step, [4] failure flag (kernels);
 # integrator='auto' selector: current method, cost of each [rhs equivalents / simulated s], intervals
@@ -39,9 +39,13 @@ START_MODELS = ("jones-harris", "tribological")
 
 @dataclass(frozen=True)
 class DynamicsOptions:
-    """Model options (SI). traction: 'lubricated' (seed 002 curve of ``lubricant``), 'coulomb'
-    (mu, regularised as mu tanh(|v| / v_reg), v_reg [m/s]) or 'kalker' (FASTSIM with friction limit mu on a
-    kalker_grid x kalker_grid grid, seed 000); u_min: floor of the entrainment speed [m/s];
+    """Model options (SI). traction: 'lubricated' (EHL traction from the oil's rheology over each contact
+    ellipse with mixed lubrication by film parameter and the EHL rolling resistance, bearing_core.ehl_traction;
+    the oil is ``oil`` or the one behind ``lubricant``; mu_boundary [-] the boundary friction coefficient of
+    the asperity-borne load; rolling_resistance, ehl_thermal: the rolling-resistance moment and the shear
+    heating of the film on/off), 'lubricated-curve' (the illustrative seed 002 curve of ``lubricant``),
+    'coulomb' (mu, regularised as mu tanh(|v| / v_reg), v_reg [m/s]) or 'kalker' (FASTSIM with friction
+    limit mu on a kalker_grid x kalker_grid grid, seed 000); u_min: floor of the entrainment speed [m/s];
     zeta: normal contact damping as a fraction of critical for the ball mass [-];
     integrator: 'rk4' (fixed dt, baseline), 'adaptive' (explicit Dormand-Prince 5(4), rtol) or 'implicit'
     (Rosenbrock-W ROS34PW2 with the bearing's arrow-structured Jacobian, rtol; integrate_rosw) or 'auto'
@@ -67,7 +71,9 @@ class DynamicsOptions:
     after every advance() with the mean losses of the interval (times thermal_time_scale, > 1 to
     fast-forward the heating); its temperatures feed back into the oil viscosity and density (churning,
     drag, flooded land, film thickness) and the traction curve (lubricants.traction_curve_at at the ball
-    temperature). roughness [m]: rms roughness of each surface for the film parameter Lambda.
+    temperature). roughness [m]: if > 0, the rms roughness of each surface (film parameter Lambda and mixed
+    lubrication) in place of the geometry's ball_roughness / race_roughness (0, default).
+
     lubrication: the lubrication regime, setting consistent laws for races and cage:
       'oil'   -- lubricated race traction (traction must be one of OIL_TRACTIONS); oil-lubricated ball-pocket
                  contacts (films on both walls with EHL / boundary friction in contact,
@@ -80,13 +86,16 @@ class DynamicsOptions:
                  in the land;
       'auto'  -- (default) from the traction law: 'lubricated' -> 'oil', 'kalker' / 'coulomb' -> 'solid'
                  (seed 000's solid-lubricated Kalker runs keep their dry Coulomb cage).
-    mu_boundary, mu_ehl_cage: boundary and full-film friction coefficients of the oil-lubricated cage
-    contacts (defaults 0.15 and 0.05: mu_bl and mu_EHL (mineral oil) of the SKF friction model, SKF General
-    Catalogue 6000 'Friction'); cage_roughness [m]: rms roughness of the pocket and land surfaces
+    mu_boundary (also the races' boundary coefficient) and mu_ehl_cage: boundary and full-film friction
+    coefficients of the oil-lubricated cage contacts (defaults 0.15 and 0.05: mu_bl and mu_EHL (mineral oil)
+    of the SKF friction model, SKF General Catalogue 6000 'Friction'); cage_roughness [m]: rms roughness of the pocket and land surfaces
     (0.4 um: an estimate for machined phenolic / brass cages, not from a source)."""
 
     traction: str = "lubricated"
     lubricant: str = "generic-mineral-oil"
+    mu_boundary: float = 0.15
+    rolling_resistance: bool = True
+    ehl_thermal: bool = True
     mu: float = 0.1
     v_reg: float = 0.02
     u_min: float = 0.5
@@ -121,9 +130,8 @@ class DynamicsOptions:
     thermal: bool = False
     thermal_data: object = None
     thermal_time_scale: float = 1.0
-    roughness: float = 0.1e-6
+    roughness: float = 0.0
     lubrication: str = "auto"
-    mu_boundary: float = 0.15
     mu_ehl_cage: float = 0.05
     cage_roughness: float = 0.4e-6
 
@@ -196,7 +204,9 @@ class DynamicsOptions:
         get_oil(self.oil or TRACTION_OIL[self.lubricant])
         check_range("oil_temperature", self.oil_temperature, 233.15, 473.15, unit="K")
         check_range("thermal_time_scale", self.thermal_time_scale, 1e-3, 1e6)
-        check_range("roughness", self.roughness, 1e-9, 1e-5, unit="m")
+        if self.roughness != 0.0:
+            check_range("roughness", self.roughness, 1e-9, 1e-5, unit="m")
+        check_range("mu_boundary", self.mu_boundary, 0.0, 1.0)
         if self.thermal_data is not None:
             from .thermal import ThermalData
             if not isinstance(self.thermal_data, ThermalData):
@@ -262,7 +272,8 @@ class DynamicModel:
         P[K.P_GUIDE] = guide
         P[K.P_RLAND] = 0.5 * g.dm + (0.35 * g.D if guide == 0.0 else -0.35 * g.D)
         lub = get_lubricant(o.lubricant)
-        P[K.P_TRACTION] = {"lubricated": 0.0, "coulomb": 1.0, "kalker": 2.0}[o.race_traction]
+        P[K.P_TRACTION] = {"lubricated": 0.0, "lubricated-curve": 0.0, "coulomb": 1.0,
+                            "kalker": 2.0}[o.race_traction]
         # cage lubrication (regime 'oil': lubricated pocket and land; viscosities set by apply_temperatures)
         P[K.P_LUBE] = 1.0 if o.regime == "oil" else 0.0
         P[K.P_MUBL] = o.mu_boundary
@@ -271,7 +282,7 @@ class DynamicModel:
         from .materials import get_material
         cm = get_material(g.cage.material)
         P[K.P_EPK] = reduced_modulus(g.ball_material.E, g.ball_material.nu, cm.E, cm.nu)
-        P[K.P_SIGPK] = math.hypot(o.roughness, o.cage_roughness)
+        P[K.P_SIGPK] = math.hypot(o.roughness if o.roughness > 0 else g.ball_roughness, o.cage_roughness)
         # flooded land: the film force acts up to a minimum film of 3 composite roughnesses (the full-film
         # limit Lambda = 3) in the oil regime; 0.95 (the original cap) for an explicitly flooded dry model
         P[K.P_EPSMAX] = (max(0.95, 1.0 - 3.0 * P[K.P_SIGPK] / (0.5 * g.cage.land_clearance))
@@ -284,6 +295,8 @@ class DynamicModel:
         P[K.P_RHO_EFF] = 1.2 + o.oil_fraction * (lub.density - 1.2)
         P[K.P_CD] = o.cd
         self._tp = CK.traction_params(o.mu, o.v_reg, lub.A, lub.B, lub.C, lub.D, o.u_min)
+        if o.race_traction == "lubricated":
+            self._tp = self._ehl_params(o.oil_temperature)
         self._quad = CK.ellipse_quadrature(o.n_major, o.n_minor)
         P[K.P_COUPLING] = 1.0 if o.coupling == "displacement" else 0.0
         P[K.P_FIXTILT] = 1.0 if o.fixed_tilt else 0.0
@@ -332,15 +345,43 @@ class DynamicModel:
                 self.P[K.P_ETA_LAND] = eta
         self._T_oil = T_oil
         if T_ball is not None and o.race_traction == "lubricated":
+            self._tp = self._ehl_params(T_ball)      # the oil enters the contacts at the ball temperature
+        elif T_ball is not None and o.race_traction == "lubricated-curve":
             T_ball = min(max(float(T_ball), 233.15), 473.15)
             c = traction_curve_at(o.lubricant, T_ball)
             self._tp = CK.traction_params(o.mu, o.v_reg, c.A, c.B, c.C, c.D, o.u_min)
 
+    def roughness_pair(self) -> tuple[float, float]:
+        """(ball, race) rms roughness [m]: options.roughness for both if > 0, else the geometry's."""
+        r = self.opt.roughness
+        return (r, r) if r > 0 else (self.g.ball_roughness, self.g.race_roughness)
+
+    def _ehl_params(self, T: float):
+        """Traction parameters of the rheology-based EHL model (ehl_traction) for the oil at inlet
+        temperature T [K]: E' of the ball/ring pair; solids' tangential compliance G C11 with Kalker's C11 at
+        the b/a of the inner contact at the free contact angle (Hamrock-Dowson ellipticity); composite
+        roughness."""
+        from .fastsim import combined_elastic, kalker_coefficients
+        from .film import ellipticity_nb
+        from .lubricants import rheology_traction_params
+        g, o = self.g, self.opt
+        rm, bm = g.ring_material, g.ball_material
+        Ep = 2.0 / ((1 - rm.nu ** 2) / rm.E + (1 - bm.nu ** 2) / bm.E)
+        Gc, nuc = combined_elastic(rm.E, rm.nu, bm.E, bm.nu)
+        Rx = 0.5 * g.D * (1.0 - g.D * math.cos(g.alpha0) / g.dm)
+        Ry = g.fi * g.D / (2.0 * g.fi - 1.0)
+        C11 = kalker_coefficients(1.0 / ellipticity_nb(Rx, Ry, 0), nuc)[0]
+        rb, rr = self.roughness_pair()
+        base = CK.traction_params(o.mu, o.v_reg, 0.0, 0.0, 0.0, 0.0, o.u_min)
+        return rheology_traction_params(base, self.oil_name, min(max(float(T), 233.15), 473.15), Ep, Gc * C11,
+                                        math.hypot(rb, rr), mu_bl=o.mu_boundary,
+                                        rolling_resistance=o.rolling_resistance, thermal=o.ehl_thermal)
+
     def film(self) -> dict:
         """Hamrock-Dowson film thickness (bearing_core.film, seed 003 Eq. 23) of every ball-race contact at
         the current instant with the oil at its current temperature: h_c_i, h_min_i, h_c_o, h_min_o [m]
-        (arrays over balls; 0 where unloaded) and the smallest film parameter Lambda_min [-] (two surfaces of
-        rms roughness options.roughness)."""
+        (arrays over balls; 0 where unloaded) and the smallest film parameter Lambda_min [-] (h_min over the
+        composite roughness of roughness_pair())."""
         from .film import film_thickness_nb, ellipticity_nb, film_parameter_nb
         from .lubricants import get_oil
         g = self.g
@@ -364,7 +405,7 @@ class DynamicModel:
                 Rx = 0.5 * g.D * (g.dm + sgn * g.D * math.cos(al[j])) / g.dm
                 k = ellipticity_nb(Rx, Ry, 0)
                 hc[j], hm[j] = film_thickness_nb(u[j], eta0, alpha, Rx, Ry, Ep, Q[j], k, 1.0)
-                lam = min(lam, film_parameter_nb(hm[j], self.opt.roughness, self.opt.roughness))
+                lam = min(lam, film_parameter_nb(hm[j], *self.roughness_pair()))
             out[f"h_c_{race}"], out[f"h_min_{race}"] = hc, hm
         out["Lambda_min"] = float(lam) if np.isfinite(lam) else 0.0
         out["T_oil"] = T

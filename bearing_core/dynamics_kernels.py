@@ -28,7 +28,9 @@ frame turning with each ball's azimuth):
 
 Contact geometry, contact kinematics, traction integrated over the Hertz ellipse and the ball-pocket
 contact come from bearing_core.contact_kernels (seed 002 section 2.2, seed 004 Eqs. 1-5, seed 000 Eq. 6):
-lubricated traction mu(s) = (A + B s) exp(-C s) + D with s = |v| / max(u, u_min), regularised Coulomb
+lubricated traction from the oil's rheology over the same ellipse with mixed-lubrication load sharing and
+the EHL rolling-resistance moment (bearing_core.ehl_traction), the illustrative curve
+mu(s) = (A + B s) exp(-C s) + D with s = |v| / max(u, u_min), regularised Coulomb
 mu0 tanh(|v| / v_reg), or Kalker's simplified theory (bearing_core.fastsim, seed 000 Eqs. 7-9) with
 creepages from the same contact kinematics and the Hertz pressure as traction bound.
 """
@@ -40,7 +42,9 @@ import numpy as np
 from numba import njit
 
 from .contact_kernels import (ball_race_contact, contact_kinematics, ellipse_traction, ball_pocket_contact,
-                              ball_pocket_lubricated, normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_LUBRICATED)
+                              ball_pocket_lubricated, normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB,
+                              TRACTION_EHL, P_LUBMODEL)
+from .ehl_traction import ehl_ellipse_traction
 from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 from .churning import cylinder_churning_torque
 
@@ -121,14 +125,17 @@ def _shaft(U, t):
 
 
 @njit(cache=True)
-def _race_traction(kalker, a, b, Q, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx, fny,
-                   qx, qwx, qy, qwy):
+def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx,
+                   fny, qx, qwx, qy, qwy):
     """Traction of one ball-race contact on the ball: (F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W]) by
-    FASTSIM (kalker) or the ellipse-integrated lubricated / Coulomb law (contact_kernels)."""
+    FASTSIM (kalker), the rheology-based EHL traction with rolling resistance (ehl_traction; Rx, Ry [m]
+    the contact's effective radii) or the ellipse-integrated curve / Coulomb law (contact_kernels)."""
     if kalker:
         ft, fm, mn, pl = fastsim_traction_fast(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, PRESSURE_HERTZ)
         # the shear acts on the contact surface, D/2 from the ball centre
         return ft, fm, mn, 0.5 * D * ft, -0.5 * D * fm, pl
+    if tmodel == TRACTION_EHL:
+        return ehl_ellipse_traction(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, qx, qwx, qy, qwy)
     return ellipse_traction(a, b, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, qx, qwx, qy, qwy)
 
 
@@ -138,7 +145,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     receives per-ball details when want_bd is True. tp: contact_kernels traction parameters; (qx, qwx,
     qy, qwy): contact_kernels.ellipse_quadrature."""
     Z = P[P_Z]
-    tmodel = TRACTION_LUBRICATED if P[P_TRACTION] < 0.5 else TRACTION_COULOMB
+    tmodel = int(tp[P_LUBMODEL]) if P[P_TRACTION] < 0.5 else TRACTION_COULOMB   # lubricated: EHL or curve
     kalker = P[P_TRACTION] > 1.5          # Kalker's simplified theory (FASTSIM), seed 000 Eqs. 7-9
     Gc = P[P_GCOMB]
     nuc = P[P_NUCOMB]
@@ -162,6 +169,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     offo = (fo - 0.5) * D
     Rdi = 2.0 * fi * D / (2.0 * fi + 1.0)
     Rdo = 2.0 * fo * D / (2.0 * fo + 1.0)
+    Ryi = fi * D / (2.0 * fi - 1.0)       # effective radii across the rolling direction (Hamrock-Dowson)
+    Ryo = fo * D / (2.0 * fo - 1.0)
     zeta = P[P_ZETA]
     w, wdot = _shaft(U, t)
     disp = P[P_COUPLING] > 0.5
@@ -246,8 +255,9 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # along n, m, t about the ball centre)
         vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, w, vrr, vrt, vrz,
                                                            nir, niz, D)
-        ft, fm, mn, mm, mt, pl = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi, vs_t, vs_m, wsp, wrm, wrt,
-                                                ur, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
+        ft, fm, mn, mm, mt, pl = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi,
+                                                0.5 * D * (1.0 - D * math.cos(ai) / dm), Ryi, vs_t, vs_m, wsp,
+                                                wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
         Fr += -fm * niz; Ft += ft; Fz += fm * nir
         Mr += mn * nir - mm * niz; Mt += mt; Mz += mn * niz + mm * nir
         P_ri += pl
@@ -265,8 +275,9 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # traction, outer race (fixed)
         vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, 0.0, vor, vot, 0.0,
                                                            nor, noz, D)
-        ft, fm, mn, mm, mt, pl = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo, vs_t, vs_m, wsp, wrm, wrt,
-                                                ur, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
+        ft, fm, mn, mm, mt, pl = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo,
+                                                0.5 * D * (1.0 + D * math.cos(ao) / dm), Ryo, vs_t, vs_m, wsp,
+                                                wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
         Fr += -fm * noz; Ft += ft; Fz += fm * nor
         Mr += mn * nor - mm * noz; Mt += mt; Mz += mn * noz + mm * nor
         P_ro += pl

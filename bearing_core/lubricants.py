@@ -66,6 +66,31 @@ properties (SI inside: K, Pa s, m^2/s, kg/m^3, J/(kg K), W/(m K), 1/Pa).
    are kept to check the fit (tests/test_lubricants.py). The tabulated numbers were transcribed from the
    reproduced tables and not re-checked against the 1975 original in this repository.
 
+3. EHL rheology (``Oil`` fields tau0, tauL0, gamma_L, G_film, roelands_z; used by bearing_core.ehl_traction
+   through ``rheology_traction_params``): Eyring stress tau_0 [Pa] of the Ree-Eyring law, limiting shear
+   stress tau_L = tau_L0 + gamma_L p (Bair & Winer 1979), shear modulus G of the film (Maxwell, Johnson &
+   Tevaarwerk 1977), Roelands index z (0: the index equivalent to the oil's alpha at low pressure,
+   z = alpha p_0 / (ln eta_0 + 9.67), Hamrock NASA RP-1255 Ch. 4). The temperature-viscosity coefficient
+   beta = -d ln eta / dT comes from the Walther fit. Thermal conductivity: Cragoe (above). Each oil's
+   ``rheology_source`` names where its numbers come from. Numbers marked 'recalled' were taken from memory
+   of the cited papers and were not re-checked against them here; treat them as such.
+
+   * Mineral oils (iso-vg32/68, naphthenic): tau_0 = 5 MPa, the middle of the 2-10 MPa that Evans &
+     Johnson (Proc. IMechE 200C, 1986) and Johnson & Tevaarwerk (Proc. R. Soc. A 356, 1977) found for
+     mineral oils (HVI 650, ...) at 0.5-2 GPa; gamma_L = 0.075 (Bair & Winer, J. Lubr. Technol. 101, 1979,
+     and Hoglund & Jacobson, J. Tribol. 108, 1986: 0.07-0.09 near room temperature); G = 0.5 GPa (Johnson
+     & Tevaarwerk 1977: 0.1-1 GPa). All recalled.
+   * ``santotrac-50`` (Monsanto traction fluid, a synthetic cycloaliphatic hydrocarbon): viscosity and
+     alpha of the 'synthetic hydrocarbon (traction fluid)' row of Jones et al. (1975) as tabulated by
+     Hamrock (NASA RP-1255 Ch. 4): eta = 34.3 / 3.53 mPa s and alpha = 3.12 / 1.76 x 1e-8 1/Pa at 38 /
+     99 degC (recalled); rho_15 = 900 kg/m^3 (typical, assumed); tau_0 = 8 MPa, gamma_L = 0.10, G = 0.5 GPa
+     (traction fluids: higher Eyring and limiting stresses than mineral oils, Johnson & Tevaarwerk 1977,
+     Bair & Winer 1979; recalled).
+   * ``mil-prf-23699-ester``: tau_0 = 4 MPa, gamma_L = 0.06 (esters trace lower than mineral oils; recalled
+     from the ester traction data summarised by Gupta, Advanced Dynamics of Rolling Elements, 1984).
+   * ``synthetic-paraffinic`` (PAO): tau_0 = 4 MPa, gamma_L = 0.065 (recalled, as above).
+   * ``seed003-oil``: the mineral-oil values.
+
 Seed 001 (Gao et al., Friction 2022) names no oil and gives no viscosity.
 """
 from __future__ import annotations
@@ -185,6 +210,11 @@ def walther_constants(T1: float, nu1: float, T2: float, nu2: float) -> tuple[flo
 # =============================================================================================
 # named oils
 # =============================================================================================
+_MINERAL_RHEOLOGY = ("mineral oil: tau_0 5 MPa (Evans & Johnson, Proc. IMechE 200C, 1986; Johnson & Tevaarwerk, "
+                     "Proc. R. Soc. A 356, 1977), gamma_L 0.075 (Bair & Winer, J. Lubr. Technol. 101, 1979), "
+                     "G 0.5 GPa (Johnson & Tevaarwerk 1977); recalled, check against the sources")
+
+
 @dataclass(frozen=True)
 class Oil:
     """A named oil. kind 'walther': two kinematic-viscosity points (T1, nu1), (T2, nu2) [K, m^2/s];
@@ -206,6 +236,12 @@ class Oil:
     eta_const: float = 0.0
     check_points: tuple = ()
     cragoe_note: str = "petroleum oil: Cragoe's correlation applies"
+    tau0: float = 5e6           # Pa, Eyring stress
+    tauL0: float = 0.0          # Pa, limiting shear stress at zero pressure
+    gamma_L: float = 0.075      # -, limiting shear stress pressure coefficient
+    G_film: float = 0.5e9       # Pa, elastic shear modulus of the film
+    roelands_z: float = 0.0     # -, 0: equivalent to alpha at low pressure
+    rheology_source: str = _MINERAL_RHEOLOGY
 
     @property
     def walther(self) -> tuple[float, float]:
@@ -245,6 +281,20 @@ class Oil:
         w = (T - Ts[k]) / (Ts[k + 1] - Ts[k])
         return math.exp(la[k] + w * (la[k + 1] - la[k]))
 
+    def beta(self, T):
+        """Temperature-viscosity coefficient beta = -d ln eta / dT [1/K] at T (central difference of eta)."""
+        _T(T)
+        dT = 0.5
+        lo, hi = max(T - dT, T_MIN), min(T + dT, T_MAX)
+        return -(math.log(self.eta(hi)) - math.log(self.eta(lo))) / (hi - lo)
+
+    def roelands(self, T):
+        """Roelands pressure-viscosity index z [-] at T: the oil's own, or alpha(T) p_0 / (ln eta_0 + 9.67)."""
+        if self.roelands_z > 0.0:
+            return self.roelands_z
+        lne = math.log(self.eta(T)) + 9.67
+        return self.alpha(T) * 1.96e8 / lne
+
     def specific_heat(self, T):
         """c_p [J/(kg K)], Cragoe (1929) in SI."""
         _T(T)
@@ -268,14 +318,16 @@ _JONES = ("Jones, Johnson, Winer & Sanborn, ASLE Trans. 18(4) 249-262 (1975), as
           "Fundamentals of Fluid Film Lubrication, NASA RP-1255 (1991) Ch. 4")
 
 
-def _jones(name, eta38, eta99, eta149, a38, a99, a149, rho15, note, cragoe):
-    """Oil from a Jones et al. row: absolute viscosities [mPa s] and alpha [1e-8 1/Pa] at 38/99/149 degC."""
+def _jones(name, eta38, eta99, eta149, a38, a99, a149, rho15, note, cragoe, **rheology):
+    """Oil from a Jones et al. row: absolute viscosities [mPa s] and alpha [1e-8 1/Pa] at 38/99/149 degC
+    (eta149 / a149 None: not used)."""
     T1, T2, T3 = _C(37.78), _C(98.89), _C(148.89)     # 100, 210, 300 degF
     nu1 = eta38 * 1e-3 / oil_density(rho15, T1)
     nu2 = eta99 * 1e-3 / oil_density(rho15, T2)
-    return Oil(name, "walther", rho15, (T1, T2, T3), (a38 * 1e-8, a99 * 1e-8, a149 * 1e-8),
+    aT, av = ((T1, T2, T3), (a38 * 1e-8, a99 * 1e-8, a149 * 1e-8)) if a149 else ((T1, T2), (a38 * 1e-8, a99 * 1e-8))
+    return Oil(name, "walther", rho15, aT, av,
                _JONES + "; " + note, T1=T1, nu1=nu1, T2=T2, nu2=nu2,
-               check_points=((T3, eta149 * 1e-3),), cragoe_note=cragoe)
+               check_points=((T3, eta149 * 1e-3),) if eta149 else (), cragoe_note=cragoe, **rheology)
 
 
 _A_MINERAL = ((_C(37.78), _C(98.89), _C(148.89)), (2.51e-8, 1.54e-8, 1.27e-8))
@@ -296,14 +348,27 @@ OILS = {
     "mil-prf-23699-ester": _jones(
         "mil-prf-23699-ester", 27.6, 4.96, 2.15, 1.37, 1.00, 0.874, 1000.0,
         "'formulated advanced ester' (type II polyol ester, MIL-L-23699 class); rho_15 typical of such oils",
-        "synthetic ester: Cragoe's petroleum correlation is an approximation (~10 %)"),
+        "synthetic ester: Cragoe's petroleum correlation is an approximation (~10 %)",
+        tau0=4e6, gamma_L=0.06,
+        rheology_source="ester: tau_0 4 MPa, gamma_L 0.06, G 0.5 GPa; recalled (see module docstring)"),
     "naphthenic-mineral": _jones(
         "naphthenic-mineral", 68.1, 6.86, 2.74, 2.51, 1.54, 1.27, 900.0,
         "super-refined naphthenic mineral oil; rho_15 assumed", "petroleum oil: Cragoe's correlation applies"),
     "synthetic-paraffinic": _jones(
         "synthetic-paraffinic", 414.0, 34.3, 10.9, 1.77, 1.51, 1.09, 850.0,
         "synthetic paraffinic oil (lot 3), PAO-type; rho_15 assumed",
-        "synthetic hydrocarbon: Cragoe's petroleum correlation is an approximation (~10 %)"),
+        "synthetic hydrocarbon: Cragoe's petroleum correlation is an approximation (~10 %)",
+        tau0=4e6, gamma_L=0.065,
+        rheology_source="PAO: tau_0 4 MPa, gamma_L 0.065, G 0.5 GPa; recalled (see module docstring)"),
+    "santotrac-50": _jones(
+        "santotrac-50", 34.3, 3.53, None, 3.12, 1.76, None, 900.0,
+        "'synthetic hydrocarbon (traction fluid)' row (Santotrac 50); values recalled, check against the "
+        "source; rho_15 assumed",
+        "synthetic hydrocarbon: Cragoe's petroleum correlation is an approximation (~10 %)",
+        tau0=8e6, gamma_L=0.10,
+        rheology_source="traction fluid: tau_0 8 MPa, gamma_L 0.10, G 0.5 GPa (Johnson & Tevaarwerk, Proc. R. "
+                        "Soc. A 356, 1977; Bair & Winer, J. Lubr. Technol. 101, 1979); recalled, check against "
+                        "the sources"),
     "seed003-oil": Oil(
         "seed003-oil", "constant", 870.0, (_C(40.0),), (2.2e-8,),
         "seed 003 (Preprints 2026) section 3.1.1: eta_0 = 0.04 Pa s, xi = 2.2e-8 m^2/N, no temperature given;"
@@ -362,3 +427,55 @@ def eta_pressure(oil: str, T: float, p: float) -> float:
     check_range("p", p, 0.0, 5e9, unit="Pa")
     o = get_oil(oil)
     return o.eta(T) * math.exp(o.alpha(T) * p)
+
+
+# =============================================================================================
+# EHL rheology parameters for the traction kernels
+# =============================================================================================
+STEEL_RHO_C_K = 7850.0 * 470.0 * 46.0   # rho c k of bearing steel [J^2/(m^4 K^2 s)]: 7850 kg/m^3, 470 J/(kg K),
+#                                          46 W/(m K) (AISI 52100, e.g. Harris & Kotzalas Vol. 1 App.)
+MU_BOUNDARY = 0.15    # boundary friction coefficient of an additive-containing oil: SKF's mu_bl (SKF rolling
+#                       bearings catalogue, 'The SKF model for calculating the frictional moment', 2018)
+V_BOUNDARY = 1e-3     # m/s, regularisation of the boundary friction direction
+
+
+def rheology_traction_params(base, oil, T: float, E_prime: float, GsC11: float, Rq: float,
+                             mu_bl: float = MU_BOUNDARY, rolling_resistance: bool = True, thermal: bool = True,
+                             rck: float = STEEL_RHO_C_K, v_bl: float = V_BOUNDARY):
+    """Traction parameter array (contact_kernels layout) of the rheology-based EHL model for ``oil`` at the
+    inlet temperature T [K]: ``base`` from contact_kernels.traction_params (mu0, v_reg, u_min), a copy is
+    returned with the model set to contact_kernels.TRACTION_EHL and the rheology slots filled.
+
+    E_prime [Pa] = 2 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2); GsC11 [Pa]: combined shear modulus of the solids
+    times Kalker's C11 at the contact's b/a (the tangential compliance in series with the film); Rq [m]:
+    composite rms roughness sqrt(Rq1^2 + Rq2^2) (0: smooth, no asperity contact); mu_bl [-]: boundary
+    friction coefficient; rolling_resistance: EHL rolling-resistance moment on/off; thermal: shear heating
+    on/off; rck: rho c k of the solids (flash temperature)."""
+    from . import ehl_traction as E
+    o = get_oil(oil)
+    check_range("T", T, T_MIN, T_MAX, unit="K")
+    check_range("E_prime", E_prime, 1e9, 1e13, unit="Pa")
+    check_range("Rq", Rq, 0.0, 1e-5, unit="m")
+    check_range("mu_bl", mu_bl, 0.0, 1.0)
+    p = np.array(base, dtype=float).copy()
+    eta0 = o.eta(T)
+    p[E.R_LUBMODEL] = 2.0
+    p[E.R_ETA0] = eta0
+    p[E.R_LNE] = math.log(eta0) + 9.67
+    p[E.R_Z] = o.roelands(T)
+    p[E.R_ALPHA] = o.alpha(T)
+    p[E.R_BETA] = o.beta(T)
+    p[E.R_TAU0] = o.tau0
+    p[E.R_TAUL0] = o.tauL0
+    p[E.R_GAML] = o.gamma_L
+    p[E.R_GFILM] = o.G_film
+    p[E.R_KOIL] = o.conductivity(T)
+    p[E.R_EPRIME] = E_prime
+    p[E.R_GSC11] = GsC11
+    p[E.R_RCK] = rck
+    p[E.R_RQ] = Rq
+    p[E.R_MUBL] = mu_bl
+    p[E.R_VBL] = v_bl
+    p[E.R_RR] = 1.0 if rolling_resistance else 0.0
+    p[E.R_THERMAL] = 1.0 if thermal else 0.0
+    return p

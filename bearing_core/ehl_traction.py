@@ -1,0 +1,314 @@
+"""EHL traction of a lubricated ball-race contact from the lubricant's rheology, point by point over the
+Hertz ellipse, with mixed-lubrication load sharing and the EHL rolling resistance. SI units throughout
+(m, s, N, Pa, Pa s, K, W).
+
+Formulation followed (one local, closed-form shear law per quadrature point; per-contact quantities once
+per contact; names of the parameter slots in contact_kernels.P_*):
+
+1. Local Hertz pressure p(x, y) = p_max sqrt(1 - x^2/a^2 - y^2/b^2) (the quadrature of
+   contact_kernels.ellipse_quadrature carries the same ellipse).
+2. Film: Hamrock-Dowson central film h_c (bearing_core.film.hd_central_film_nb, [HD77]) at the contact's
+   entrainment speed, inlet viscosity eta_0(T) and alpha(T); uniform over the contact (the EHL plateau).
+   Shear rate gamma_dot = |v| / h_c, v the local sliding speed (contact_kernels.ellipse_traction's field).
+3. Viscosity with pressure, Roelands [R66]: ln(eta/eta_0) = (ln eta_0 + 9.67) [(1 + p/p_0)^z - 1],
+   p_0 = 1.96e8 Pa. z is the oil's own where published, else the Roelands index equivalent to the
+   oil's Barus alpha at low pressure, z = alpha p_0 / (ln eta_0 + 9.67) (Hamrock NASA RP-1255 Ch. 4);
+   which one is used is said per oil (bearing_core.lubricants).
+4. Non-Newtonian shear, Ree-Eyring sinh law [JT77, EJ86]: gamma_dot = (tau_0/eta) sinh(tau/tau_0), i.e.
+   tau_v = tau_0 asinh(eta gamma_dot / tau_0), tau_0 the Eyring stress.
+5. Shear heating [EJ86, JG80-style]: the viscosity in 4 is taken at the film's mid-plane temperature
+   T = T_inlet + dT_flash + dT_film, with
+     dT_film = tau |v| h / (8 k_oil)    (Couette shear heating, uniform in the film, conducted to both
+                                         surfaces: the parabolic profile's peak rise),
+     dT_flash = tau |v| sqrt(s_in / (pi u rho_s c_s k_s))   (surface temperature of a semi-infinite
+                                         solid under the half of the heat flux it takes, after the
+                                         exposure time s_in / u since the inlet edge, Jaeger / Carslaw &
+                                         Jaeger moving-source result with the local flux),
+   and eta(T) = eta(T_inlet) exp(-beta (T - T_inlet)), beta = -d ln eta / dT of the oil at T_inlet. The
+   implicit equation tau = tau_0 asinh(X exp(-beta c tau)), dT = c tau, is solved by two Newton steps
+   from the Eyring-logarithmic closed form tau = tau_iso / (1 + beta c tau_0) (Evans & Johnson's thermal
+   Eyring regime).
+6. Elasticity, Maxwell [JT77]: a fluid element entering the Hertz zone at constant strain rate builds its
+   stress as tau = tau_v (1 - exp(-tau_e / tau_v)) with tau_e = G_e gamma_dot s_in / u the elastic stress
+   after the transit s_in / u (exact for a linear Maxwell liquid of constant properties; the Eyring
+   tau_v in place of eta gamma_dot). G_e is the film's shear modulus G in series with the tangential
+   compliance of the two solids: 1 / G_e = 1 / G + 8 b / (3 h C11 G_s), the modulus that makes the
+   elastic film force G_e gamma (8 a b^2 / 3) s / h equal Kalker's linear creep force G_s C11 a b s in
+   the small-slip limit (Kalker C11 of bearing_core.fastsim.kalker_coefficients at the contact's b/a).
+7. Limiting shear stress [BW79]: tau = min(tau, tau_L0 + gamma_L p).
+8. Mixed lubrication [ZH91]: film parameter Lambda = h_c / sqrt(Rq1^2 + Rq2^2); the fluid carries the
+   fraction f(Lambda) of the local pressure, the asperities the rest at the boundary friction
+   coefficient mu_bl (regularised mu_bl tanh(|v| / v_bl)); f from Zhou & Hoeprich's fit
+   f = 1.21 Lambda^0.64 / (1 + 0.37 Lambda^1.26) (recalled, check against the source), normalised by
+   its maximum (1.0026 at Lambda = 2.258) and held at 1 beyond, so that it reaches full film smoothly.
+9. EHL rolling resistance [HK07]: the hydrodynamic rolling force
+     F_R = 2.86 E' Rx^2 k^0.348 G^0.022 U^0.66 W^0.47     (Harris & Kotzalas Vol. 2 Ch. 5, the fit of
+   Houpert's / Hamrock's numerical results; recalled, check against the source), with the Hamrock-Dowson
+   groups U, G, W and k = a/b. It is applied as the moment of the upstream shift of the pressure centre,
+   M_R = F_R Rx about the contact's rolling axis m, opposing the relative rolling rotation (ball minus
+   race) w_roll_m; the race gets the opposite moment. This conserves momentum and dissipates
+   M_R |w_roll_m| = F_R u in pure rolling (u = Rx |w_roll_m|), the rolling-resistance power of F_R.
+
+Sources
+-------
+[R66]  C. J. A. Roelands, Correlational aspects of the viscosity-temperature-pressure relationship of
+       lubricating oils, PhD thesis, TU Delft, 1966.
+[JT77] K. L. Johnson, J. L. Tevaarwerk, Shear behaviour of elastohydrodynamic oil films, Proc. R. Soc.
+       Lond. A 356 (1977) 215-236.
+[EJ86] C. R. Evans, K. L. Johnson, The rheological properties of elastohydrodynamic lubricants, Proc.
+       IMechE 200(C5) (1986) 303-312.
+[JG80] K. L. Johnson, J. A. Greenwood, Thermal analysis of an Eyring fluid in elastohydrodynamic
+       traction, Wear 61 (1980) 353-374.
+[BW79] S. Bair, W. O. Winer, A rheological model for elastohydrodynamic contacts based on primary
+       laboratory data, J. Lubr. Technol. 101 (1979) 258-265.
+[ZH91] R. S. Zhou, M. R. Hoeprich, Torque of tapered roller bearings, J. Tribol. 113 (1991) 590-597.
+[HK07] T. A. Harris, M. N. Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 2 (2007) Ch. 5.
+[HD77] B. J. Hamrock, D. Dowson, J. Lubr. Technol. 99 (1977) 264-276.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .film import hd_central_film_nb, hd_groups_nb
+
+ROELANDS_P0 = 1.96e8       # Pa [R66]
+ROELANDS_LN_ETA_INF = 9.67  # -ln(6.31e-5 Pa s) [R66]
+_ZH_LAM_PEAK = (0.64 / (0.37 * 1.26 - 0.37 * 0.64)) ** (1.0 / 1.26)   # argmax of the Zhou-Hoeprich fit, 2.258
+_ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
+
+# layout of the rheology part of the traction parameter array (float64); indices continue those of
+# contact_kernels (P_MU0 ... P_UMIN = 0..6); the array is built by contact_kernels.traction_params
+(R_LUBMODEL, R_ETA0, R_LNE, R_Z, R_ALPHA, R_BETA, R_TAU0, R_TAUL0, R_GAML, R_GFILM, R_KOIL, R_EPRIME,
+ R_GSC11, R_RCK, R_RQ, R_MUBL, R_VBL, R_RR, R_THERMAL) = range(7, 26)
+N_PARAMS = 26
+
+
+@njit(cache=True)
+def roelands_ln_factor(p, lne, z):
+    """ln(eta(p) / eta_0) [-] of the Roelands equation [R66] at gauge pressure p >= 0 [Pa]; lne =
+    ln(eta_0 [Pa s]) + 9.67, z the pressure-viscosity index."""
+    if p <= 0.0:
+        return 0.0
+    return lne * ((1.0 + p / ROELANDS_P0) ** z - 1.0)
+
+
+@njit(cache=True)
+def fluid_fraction(lam):
+    """Fraction of the load carried by the fluid film [-] at film parameter lam [-]: the Zhou-Hoeprich
+    fit [ZH91] 1.21 lam^0.64 / (1 + 0.37 lam^1.26) normalised by its maximum, 1 for lam >= 2.258."""
+    if lam >= _ZH_LAM_PEAK:
+        return 1.0
+    if lam <= 0.0:
+        return 0.0
+    return 1.21 * lam ** 0.64 / (1.0 + 0.37 * lam ** 1.26) / _ZH_PEAK
+
+
+@njit(cache=True)
+def hydrodynamic_rolling_force(u, eta0, alpha_pv, Rx, k, E_prime, Q):
+    """EHL rolling force F_R [N] [HK07]: 2.86 E' Rx^2 k^0.348 G^0.022 U^0.66 W^0.47 (Hamrock-Dowson
+    groups of film.hd_groups_nb). u [m/s] entrainment speed, eta0 [Pa s], alpha_pv [1/Pa], Rx [m], k = a/b
+    [-], E_prime [Pa], Q [N]. 0 without load or motion."""
+    if not (Q > 0.0 and u != 0.0 and eta0 > 0.0):
+        return 0.0
+    U, G, W = hd_groups_nb(u, eta0, alpha_pv, Rx, E_prime, Q)
+    return 2.86 * E_prime * Rx * Rx * k ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
+
+
+@njit(cache=True)
+def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, G_e, k_oil, rck, thermal):
+    """Shear stress [Pa] of the EHL film at one point (module docstring items 3-7).
+
+    p [Pa] pressure carried by the fluid; v [m/s] >= 0 sliding speed; h [m] film thickness; s_in [m]
+    distance from the inlet edge along the rolling direction; u [m/s] > 0 entrainment speed; eta0 [Pa s]
+    inlet viscosity; lne = ln eta0 + 9.67, z (Roelands); beta [1/K] temperature-viscosity coefficient;
+    tau0 [Pa] Eyring stress; tauL0 [Pa], gamL [-] limiting shear stress tau_L0 + gamL p; G_e [Pa]
+    effective shear modulus (film in series with the solids; <= 0: no elasticity); k_oil [W/(m K)];
+    rck [J^2/(m^4 K^2 s)] = rho c k of the solids (flash temperature); thermal: shear heating on/off."""
+    if not (v > 0.0 and h > 0.0):
+        return 0.0
+    gd = v / h
+    X = eta0 * math.exp(roelands_ln_factor(p, lne, z)) * gd / tau0
+    tau = tau0 * math.log(X + math.sqrt(X * X + 1.0))      # tau_0 asinh(X), Ree-Eyring
+    if thermal:
+        c = v * h / (8.0 * k_oil)                         # dT_film / tau  [K/Pa]
+        if rck > 0.0 and s_in > 0.0:
+            c += v * math.sqrt(s_in / (math.pi * u * rck))  # dT_flash / tau
+        kap = beta * c
+        if kap * tau > 1e-6:
+            if X > 1.0:
+                t = tau / (1.0 + kap * tau0)
+            else:
+                t = tau / (1.0 + kap * tau)
+            for _ in range(2):
+                Xe = X * math.exp(-kap * t)
+                sq = math.sqrt(Xe * Xe + 1.0)
+                g = t - tau0 * math.log(Xe + sq)
+                t -= g / (1.0 + tau0 * kap * Xe / sq)
+                if t < 0.0:
+                    t = 0.0
+                elif t > tau:
+                    t = tau
+            tau = t
+    if G_e > 0.0 and tau > 0.0:
+        te = G_e * gd * s_in / u                          # Maxwell: elastic stress after the transit
+        tau = tau * (1.0 - math.exp(-te / tau))
+    tl = tauL0 + gamL * p
+    if tau > tl:
+        tau = tl
+    return tau
+
+
+@njit(cache=True)
+def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
+                         params, xi, wxi, zeta, wzeta):
+    """Rheology-based EHL traction on the ball, integrated over the Hertz ellipse (module docstring).
+
+    Same contact geometry, kinematics, quadrature and outputs as contact_kernels.ellipse_traction
+    (a along m, b along t; forces on the ball along t and m, moments about the ball centre along n, m, t,
+    dissipated power), plus Rx, Ry [m] the effective radii of the contact in and across the rolling
+    direction (for the film thickness and the rolling force). params: contact_kernels.traction_params
+    with the oil's rheology (lubricants.rheology_traction_params). The EHL rolling-resistance moment is
+    included in M_m and in the power."""
+    Ft = 0.0
+    Fm = 0.0
+    Mn = 0.0
+    Mm = 0.0
+    Mt = 0.0
+    P = 0.0
+    if not (p_max > 0.0 and a > 0.0 and b > 0.0):
+        return Ft, Fm, Mn, Mm, Mt, P
+    # ---- per contact
+    u = abs(u_roll)
+    umin = params[6]
+    if u < umin:
+        u = umin
+    eta0 = params[R_ETA0]
+    alpha = params[R_ALPHA]
+    Ep = params[R_EPRIME]
+    Q = 2.0 / 3.0 * math.pi * a * b * p_max
+    k = a / b
+    h = hd_central_film_nb(u, eta0, alpha, Rx, Ry, Ep, Q, k)
+    rq = params[R_RQ]
+    f = 1.0
+    if rq > 0.0:
+        f = fluid_fraction(h / rq)
+    mubl = params[R_MUBL] * (1.0 - f)
+    vbl = params[R_VBL]
+    G = params[R_GFILM]
+    gs = params[R_GSC11]
+    Ge = 0.0
+    if G > 0.0:
+        Ge = 1.0 / (1.0 / G + 8.0 * b / (3.0 * h * gs)) if gs > 0.0 else G
+    lne = params[R_LNE]
+    z = params[R_Z]
+    beta = params[R_BETA]
+    tau0 = params[R_TAU0]
+    tauL0 = params[R_TAUL0]
+    gamL = params[R_GAML]
+    koil = params[R_KOIL]
+    rck = params[R_RCK]
+    thermal = params[R_THERMAL] > 0.5
+    sgn = 1.0 if u_roll >= 0.0 else -1.0
+    # ---- over the ellipse (same field as contact_kernels.ellipse_traction)
+    hh = 0.5 * D
+    curv = R_def > a and hh > a
+    c0 = 0.0
+    if curv:
+        c0 = math.sqrt(hh * hh - a * a) - math.sqrt(R_def * R_def - a * a)
+    pab = p_max * a * b
+    for i in range(xi.shape[0]):
+        x = a * xi[i]
+        w2 = 1.0 - xi[i] * xi[i]
+        w = math.sqrt(w2)
+        if curv:
+            rho = math.sqrt(R_def * R_def - x * x) + c0
+        else:
+            rho = hh
+        d = rho - hh
+        vt_x = vs_t - w_spin * x + w_roll_m * d
+        vm_x = vs_m - w_roll_t * d
+        wi = pab * w2 * wxi[i]
+        bw = b * w
+        for j in range(zeta.shape[0]):
+            y = bw * zeta[j]
+            vm = vm_x + w_spin * y
+            v = math.sqrt(vt_x * vt_x + vm * vm)
+            if v > 0.0:
+                sz = math.sqrt(1.0 - zeta[j] * zeta[j])
+                p = p_max * w * sz                       # local Hertz pressure
+                s_in = bw + sgn * y                      # distance from the inlet edge
+                tau = fluid_shear_stress(f * p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, Ge,
+                                         koil, rck, thermal)
+                if mubl > 0.0:
+                    tau += mubl * p * math.tanh(v / vbl)
+                # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear
+                # force tau dA = (tau / p) * (p dA)
+                dF = tau / p * wi * wzeta[j] if p > 0.0 else 0.0
+                ft = -dF * vt_x / v
+                fm = -dF * vm / v
+                Ft += ft
+                Fm += fm
+                Mn += y * fm - x * ft
+                Mm += rho * ft
+                Mt -= rho * fm
+                P += dF * v
+    # ---- EHL rolling resistance: moment F_R Rx opposing the relative rolling rotation about m
+    if params[R_RR] > 0.5:
+        FR = hydrodynamic_rolling_force(u, eta0, alpha, Rx, k, Ep, Q) * f
+        if FR > 0.0:
+            MR = FR * Rx * math.tanh(w_roll_m * Rx / umin)
+            Mm -= MR
+            P += MR * w_roll_m
+    return Ft, Fm, Mn, Mm, Mt, P
+
+
+# --------------------------------------------------------------------------------------------------
+# Python entry point: traction curve of a disc-machine / ball-on-disc contact
+def disc_traction_curve(oil, T, p_max, u, srr, Rx, Ry, E_prime=2.26e11, G_solid=80e9, nu_solid=0.3, Rq=0.0,
+                        thermal=True, elastic=True, n=24, mu_bl=None):
+    """Traction coefficient [-] of an EHL point contact in rolling with sliding, as measured on twin-disc
+    and ball-on-disc machines (no spin; the rolling-resistance moment is not part of the measured shear).
+
+    oil: bearing_core.lubricants name; T [K] bulk (inlet) temperature; p_max [Pa] maximum Hertz pressure;
+    u [m/s] entrainment (mean rolling) speed; srr [-] slide-to-roll ratio (u1 - u2) / u (scalar or array);
+    Rx, Ry [m] effective radii in and across the rolling direction; E_prime [Pa]; G_solid [Pa] shear modulus
+    and nu_solid [-] Poisson ratio of the (equal) solids; Rq [m] composite roughness; thermal / elastic:
+    shear heating and Maxwell elasticity on/off; n: quadrature points per ellipse axis.
+    Returns (mu array, dict of contact data: a, b, Q, h_c, Lambda)."""
+    from .contact_kernels import ellipse_quadrature, traction_params
+    from .errors import check_range
+    from .fastsim import kalker_coefficients
+    from .film import ellipticity_nb
+    from . import lubricants as L
+    check_range("p_max", p_max, 1e7, 5e9, unit="Pa")
+    check_range("u", u, 1e-3, 200.0, unit="m/s")
+    # Hertz ellipse from p_max (Hamrock-Brewe: k from the radii, E(k) ~ 1 + (pi/2 - 1) Rx/Ry)
+    k = 1.0 if Rx == Ry else (ellipticity_nb(Rx, Ry, 0) if Ry > Rx else 1.0 / ellipticity_nb(Ry, Rx, 0))
+    Rr = 1.0 / (1.0 / Rx + 1.0 / Ry)
+    Ek = 1.0 + (0.5 * math.pi - 1.0) * (min(Rx, Ry) / max(Rx, Ry))
+    # p = 3Q/(2 pi a b), a = (6 k^2 E Q R / (pi E'))^(1/3), b = a / k  ->  Q from p_max
+    c = (6.0 * k * k * Ek * Rr / (math.pi * E_prime)) ** (1.0 / 3.0)     # a = c Q^(1/3)
+    Q = (p_max * 2.0 * math.pi * c * c / (3.0 * k)) ** 3                  # p = 3 Q k / (2 pi c^2 Q^(2/3))
+    a = c * Q ** (1.0 / 3.0)
+    b = a / k
+    C11 = kalker_coefficients(b / a, nu_solid)[0]
+    base = traction_params(u_min=1e-3)
+    prm = L.rheology_traction_params(base, oil, T, E_prime, G_solid * C11 if elastic else 0.0, Rq,
+                                     mu_bl=L.MU_BOUNDARY if mu_bl is None else mu_bl,
+                                     rolling_resistance=False, thermal=thermal)
+    if not elastic:
+        prm[R_GFILM] = 0.0
+    quad = ellipse_quadrature(n, n)
+    s_arr = np.atleast_1d(np.asarray(srr, dtype=float))
+    mu = np.empty(s_arr.size)
+    for i, s in enumerate(s_arr):
+        F = ehl_ellipse_traction(a, b, p_max, 2.0 * Rx, 0.0, Rx, Ry, s * u, 0.0, 0.0, 0.0, 0.0, u, prm, *quad)
+        mu[i] = -F[0] / Q
+    h = hd_central_film_nb(u, prm[R_ETA0], prm[R_ALPHA], Rx, Ry, E_prime, Q, a / b)
+    info = {"a": a, "b": b, "Q": Q, "h_c": h, "Lambda": h / Rq if Rq > 0 else math.inf, "C11": C11,
+            "G_e": (1.0 / (1.0 / prm[R_GFILM] + 8.0 * b / (3.0 * h * prm[R_GSC11]))
+                    if (elastic and prm[R_GFILM] > 0) else 0.0)}
+    return (mu if np.ndim(srr) else float(mu[0])), info
