@@ -80,3 +80,45 @@ def test_bad_input_names_the_parameter():
         skf_friction(90.0, 160.0, 1000.0, 20.0, series="62")
     with pytest.raises(BearingInputError, match="C0"):
         palmgren_friction(125.0, 1000.0, 20.0, C0=0.0)
+
+
+def test_dynamics_friction_torque_against_skf_and_palmgren():
+    """Steady friction torque of the oil-lubricated dynamics (EHL race traction with rolling resistance,
+    oil-lubricated pocket and land, 7218B, pure axial load, oil at 40 degC) against the SKF model (72 B
+    constants, oil jet, no drag) at 3 speeds x 2 loads x 2 viscosities: 1000 / 2500 / 5000 rpm (the
+    catalogue speed range of a 7218 B with oil), Fa = 2 and 6 kN, ISO VG 32 and VG 68 (32 and 68 mm^2/s).
+    Accepted band: 0.5 <= M / M_SKF <= 2. Why: the SKF model is a fit to SKF's bearing tests whose
+    scatter SKF does not publish per series; the two classical estimates at these 12 points differ from
+    each other by up to a factor 1.6 (Palmgren / SKF = 0.77-1.6, computed here), so a model with a
+    different physical split cannot be held closer than about that spread; a factor 2 on either side
+    still catches a missing or doubled loss source (the dry Coulomb cage gave 3-4x). Measured (this
+    commit): M / M_SKF = 0.56-1.31. Also: the torque rises with speed, load and viscosity like both
+    references. Window: 0.05-0.1 s from the Jones-Harris start (the mean differs from a tribological start
+    by < 5 %)."""
+    import math
+    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+    from bearing_core.lubricants import get_oil
+    g = load_preset("7218B")
+    C0 = iso76_static_rating(g)
+    T = 313.15
+    M = {}
+    for oil in ("iso-vg32-mineral", "iso-vg68-mineral"):
+        nu = get_oil(oil).nu(T) * 1e6
+        for Fa in (2000.0, 6000.0):
+            for rpm in (1000.0, 2500.0, 5000.0):
+                m = DynamicModel(g, DynamicsOptions(oil=oil, oil_temperature=T, integrator="auto"))
+                m.initialize(rpm * math.pi / 30, (0.0, 0.0, Fa, 0.0, 0.0))
+                d = records_to_dict(m.advance(0.1, record_dt=1e-3))
+                Md = d["friction_torque"][50:].mean()
+                skf = skf_friction(90.0, 160.0, rpm, nu, 0.0, Fa)["M"]
+                pal = palmgren_friction(g.dm * 1e3, rpm, nu, 0.0, Fa, C0)["M"]
+                assert 0.5 <= Md / skf <= 2.0, (oil, Fa, rpm, Md, skf, pal)
+                M[oil, Fa, rpm] = Md
+    for oil in ("iso-vg32-mineral", "iso-vg68-mineral"):
+        for Fa in (2000.0, 6000.0):
+            assert M[oil, Fa, 1000.0] < M[oil, Fa, 2500.0] < M[oil, Fa, 5000.0]
+        for rpm in (1000.0, 2500.0):
+            assert M[oil, 2000.0, rpm] < M[oil, 6000.0, rpm]
+    for Fa in (2000.0, 6000.0):
+        for rpm in (1000.0, 2500.0, 5000.0):
+            assert M["iso-vg32-mineral", Fa, rpm] < M["iso-vg68-mineral", Fa, rpm]
