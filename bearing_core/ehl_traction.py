@@ -35,7 +35,13 @@ per contact; names of the parameter slots in contact_kernels.P_*):
    compliance of the two solids: 1 / G_e = 1 / G + 8 b / (3 h C11 G_s), the modulus that makes the
    elastic film force G_e gamma (8 a b^2 / 3) s / h equal Kalker's linear creep force G_s C11 a b s in
    the small-slip limit (Kalker C11 of bearing_core.fastsim.kalker_coefficients at the contact's b/a).
-7. Limiting shear stress [BW79]: tau = min(tau, tau_L0 + gamma_L p).
+7. Limiting shear stress [BW79]: tau = min(tau, tau_L), tau_L = tau_L0 + gamma_L(T) p. gamma_L falls with
+   temperature (measured for a naphthenic oil and a PAO/diester, Wikstrom & Hoglund, J. Tribol. 116 (1994)
+   612-620); none of our sources gives a slope we could transfer, so, as for lubricants.traction_scale,
+   the ASSUMPTION gamma_L(T) = gamma_L(T_ref) (1 - k_T (T - T_ref)), k_T = 0.003 1/K, T_ref = 40 degC, is
+   used, at the inlet temperature (per contact) and with the film's heating dT = c tau_L (item 5) at each
+   point: tau_L = tau_L,inlet / (1 + k_T' c tau_L,inlet), k_T' = k_T gamma_L(T_ref) / gamma_L(T_inlet)
+   (closed form of the linear law).
 8. Mixed lubrication [ZH91]: film parameter Lambda = h_c / sqrt(Rq1^2 + Rq2^2); the fluid carries the
    fraction f(Lambda) of the local pressure, the asperities the rest at the boundary friction
    coefficient mu_bl (regularised mu_bl tanh(|v| / v_bl)); f from Zhou & Hoeprich's fit
@@ -82,8 +88,8 @@ _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 # layout of the rheology part of the traction parameter array (float64); indices continue those of
 # contact_kernels (P_MU0 ... P_UMIN = 0..6); the array is built by contact_kernels.traction_params
 (R_LUBMODEL, R_ETA0, R_LNE, R_Z, R_ALPHA, R_BETA, R_TAU0, R_TAUL0, R_GAML, R_GFILM, R_KOIL, R_EPRIME,
- R_GSC11, R_RCK, R_RQ, R_MUBL, R_VBL, R_RR, R_THERMAL) = range(7, 26)
-N_PARAMS = 26
+ R_GSC11, R_RCK, R_RQ, R_MUBL, R_VBL, R_RR, R_THERMAL, R_KGAM) = range(7, 27)
+N_PARAMS = 27
 
 
 @njit(cache=True)
@@ -118,7 +124,8 @@ def hydrodynamic_rolling_force(u, eta0, alpha_pv, Rx, k, E_prime, Q):
 
 
 @njit(cache=True)
-def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, G_e, k_oil, rck, thermal):
+def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, G_e, k_oil, rck, thermal,
+                       kgam=0.0):
     """Shear stress [Pa] of the EHL film at one point (module docstring items 3-7).
 
     p [Pa] pressure carried by the fluid; v [m/s] >= 0 sliding speed; h [m] film thickness; s_in [m]
@@ -126,16 +133,19 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
     inlet viscosity; lne = ln eta0 + 9.67, z (Roelands); beta [1/K] temperature-viscosity coefficient;
     tau0 [Pa] Eyring stress; tauL0 [Pa], gamL [-] limiting shear stress tau_L0 + gamL p; G_e [Pa]
     effective shear modulus (film in series with the solids; <= 0: no elasticity); k_oil [W/(m K)];
-    rck [J^2/(m^4 K^2 s)] = rho c k of the solids (flash temperature); thermal: shear heating on/off."""
+    rck [J^2/(m^4 K^2 s)] = rho c k of the solids (flash temperature); thermal: shear heating on/off;
+    kgam [1/K]: relative fall of tau_L with the film's temperature rise (item 7)."""
     if not (v > 0.0 and h > 0.0):
         return 0.0
     gd = v / h
     X = eta0 * math.exp(roelands_ln_factor(p, lne, z)) * gd / tau0
     tau = tau0 * math.log(X + math.sqrt(X * X + 1.0))      # tau_0 asinh(X), Ree-Eyring
+    tl = tauL0 + gamL * p
     if thermal:
         c = v * h / (8.0 * k_oil)                         # dT_film / tau  [K/Pa]
         if rck > 0.0 and s_in > 0.0:
             c += v * math.sqrt(s_in / (math.pi * u * rck))  # dT_flash / tau
+        tl = tl / (1.0 + kgam * c * tl)
         kap = beta * c
         if kap * tau > 1e-6:
             if X > 1.0:
@@ -155,7 +165,6 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
     if G_e > 0.0 and tau > 0.0:
         te = G_e * gd * s_in / u                          # Maxwell: elastic stress after the transit
         tau = tau * (1.0 - math.exp(-te / tau))
-    tl = tauL0 + gamL * p
     if tau > tl:
         tau = tl
     return tau
@@ -211,6 +220,7 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     koil = params[R_KOIL]
     rck = params[R_RCK]
     thermal = params[R_THERMAL] > 0.5
+    kgam = params[R_KGAM]
     sgn = 1.0 if u_roll >= 0.0 else -1.0
     # ---- over the ellipse (same field as contact_kernels.ellipse_traction)
     hh = 0.5 * D
@@ -241,7 +251,7 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
                 p = p_max * w * sz                       # local Hertz pressure
                 s_in = bw + sgn * y                      # distance from the inlet edge
                 tau = fluid_shear_stress(f * p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, Ge,
-                                         koil, rck, thermal)
+                                         koil, rck, thermal, kgam)
                 if mubl > 0.0:
                     tau += mubl * p * math.tanh(v / vbl)
                 # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear

@@ -71,7 +71,9 @@ properties (SI inside: K, Pa s, m^2/s, kg/m^3, J/(kg K), W/(m K), 1/Pa).
    stress tau_L = tau_L0 + gamma_L p (Bair & Winer 1979), shear modulus G of the film (Maxwell, Johnson &
    Tevaarwerk 1977), Roelands index z (0: the index equivalent to the oil's alpha at low pressure,
    z = alpha p_0 / (ln eta_0 + 9.67), Hamrock NASA RP-1255 Ch. 4). The temperature-viscosity coefficient
-   beta = -d ln eta / dT comes from the Walther fit. Thermal conductivity: Cragoe (above). Each oil's
+   beta = -d ln eta / dT comes from the Walther fit. gamma_L is read as a 40 degC value and falls with
+   temperature by the ASSUMED factor traction_scale(T) (item 1's k_T = 0.003 1/K; no source gives a slope).
+   Thermal conductivity: Cragoe (above). Each oil's
    ``rheology_source`` names where its numbers come from. Numbers marked 'recalled' were taken from memory
    of the cited papers and were not re-checked against them here; treat them as such.
 
@@ -467,7 +469,11 @@ def rheology_traction_params(base, oil, T: float, E_prime: float, GsC11: float, 
     p[E.R_BETA] = o.beta(T)
     p[E.R_TAU0] = o.tau0
     p[E.R_TAUL0] = o.tauL0
-    p[E.R_GAML] = o.gamma_L
+    # limiting shear stress coefficient at the inlet temperature, and its relative fall with the film's
+    # heating (ehl_traction item 7; the same assumed k_T = TRACTION_K_T as traction_scale)
+    g_in = o.gamma_L * traction_scale(T)
+    p[E.R_GAML] = g_in
+    p[E.R_KGAM] = TRACTION_K_T * o.gamma_L / g_in if thermal else 0.0
     p[E.R_GFILM] = o.G_film
     p[E.R_KOIL] = o.conductivity(T)
     p[E.R_EPRIME] = E_prime

@@ -5,8 +5,11 @@ model in which the ball motion follows from the traction of rolling-contact theo
 Ma & Zi, Friction 11 (2023) 1987) instead of a raceway-control hypothesis (Jones-Harris, quasistatic.py).
 This module is that model, built on the SAME contact interface as the dynamics: the right-hand side
 ``dynamics_kernels.rhs`` (Hertz contact through the groove curvature centres, contact kinematics and the
-traction of ``DynamicsOptions.traction``: Kalker/FASTSIM, lubricated curve or Coulomb, plus ball drag and
-churning) is evaluated at a state in which nothing accelerates, and the accelerations are driven to zero.
+traction of ``DynamicsOptions.traction``: Kalker/FASTSIM, lubricated (rheology-based EHL traction with mixed
+lubrication and the EHL rolling-resistance moment of each ball-race contact, bearing_core.ehl_traction), the
+illustrative curve or Coulomb, plus ball drag and churning) is evaluated at a state in which nothing
+accelerates, and the accelerations are driven to zero. The rolling-resistance moment enters the ball moment
+equations and, with the opposite sign, the ring's torque, as in the dynamics.
 
 Steady state (Gupta, Advanced Dynamics of Rolling Elements 1984, Ch. 3 equations with all rates zero, in
 the frame turning with each ball's azimuth psi_j = 2 pi j / Z):
@@ -30,8 +33,8 @@ rhs call that perturbs unknown k of all balls, and the rhs reports each ball's s
 pseudo-dynamics that grow into Newton steps), then, if needed, a trust-region least-squares solve
 (scipy.optimize.least_squares 'trf'). Start: the Jones-Harris solution (outer raceway control), as
 DynamicModel.initialize; if that fails, continuation in speed from 100 rpm. Residuals are forces [N]
-(moments over D/2 or dm/2). Measured on 7218B (docs/kalker.md): 31 of 36 cases (Kalker 0.1 / 0.001,
-Coulomb, lubricated; 1000 / 3000 / 10,000 rpm; pure thrust and two combined loads) converge to 1e-7 of
+(moments over D/2 or dm/2). Measured on 7218B (docs/kalker.md, with the earlier illustrative lubricated
+curve): 31 of 36 cases (Kalker 0.1 / 0.001, Coulomb, lubricated; 1000 / 3000 / 10,000 rpm; pure thrust and two combined loads) converge to 1e-7 of
 the load; the rest raise ConvergenceError (full-slip Kalker and Coulomb contacts at 10,000 rpm under
 combined load, Kalker 0.1 at 1000 rpm under combined load).
 """

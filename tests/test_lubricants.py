@@ -124,3 +124,49 @@ def test_existing_names_and_errors():
     assert e.value.parameter == "T" and "233.0" in e.value.allowed
     with pytest.raises(BearingInputError):
         L.traction_curve_at("generic-mineral-oil", float("nan"))
+
+
+# ---- EHL rheology data -------------------------------------------------------------------------------
+def test_santotrac50_table_points():
+    """Santotrac 50 ('synthetic hydrocarbon (traction fluid)' row of Jones et al. 1975 as tabulated by Hamrock,
+    NASA RP-1255 Ch. 4; recalled): eta = 34.3 / 3.53 mPa s, alpha = 3.12 / 1.76 x 1e-8 1/Pa at 37.8 / 98.9
+    degC, reproduced by the Walther fit and the alpha interpolation (1e-6)."""
+    o = L.get_oil("santotrac-50")
+    assert o.eta(37.78 + C) == pytest.approx(34.3e-3, rel=1e-6)
+    assert o.eta(98.89 + C) == pytest.approx(3.53e-3, rel=1e-6)
+    assert o.alpha(37.78 + C) == pytest.approx(3.12e-8, rel=1e-9)
+    assert o.alpha(98.89 + C) == pytest.approx(1.76e-8, rel=1e-9)
+
+
+@pytest.mark.parametrize("oil", L.list_oils())
+def test_roelands_index_matches_alpha_at_low_pressure(oil):
+    """Roelands index equivalent to Barus alpha (Hamrock NASA RP-1255 Ch. 4): d ln eta / dp at p = 0 of the
+    Roelands law, (ln eta_0 + 9.67) z / p_0, equals alpha (1e-9); beta = -d ln eta / dT > 0 for the
+    temperature-dependent oils and within 0.01-0.1 1/K (mineral and synthetic oils near 40 degC)."""
+    o = L.get_oil(oil)
+    T = 40.0 + C
+    z = o.roelands(T)
+    assert (math.log(o.eta(T)) + 9.67) * z / 1.96e8 == pytest.approx(o.alpha(T), rel=1e-9)
+    if o.kind == "walther":
+        assert 0.01 < o.beta(T) < 0.1
+    assert o.tau0 > 0 and 0 < o.gamma_L < 0.15 and o.G_film > 0 and o.rheology_source
+
+
+def test_rheology_params_and_bad_input():
+    """rheology_traction_params fills the EHL slots from the oil at the inlet temperature; the limiting shear
+    coefficient follows the assumed traction_scale(T); bad inputs raise BearingInputError naming them."""
+    from bearing_core import contact_kernels as ck
+    from bearing_core import ehl_traction as E
+    base = ck.traction_params(u_min=0.5)
+    p = L.rheology_traction_params(base, "iso-vg68-mineral", 353.15, 2.26e11, 2.7e11, 0.085e-6)
+    o = L.get_oil("iso-vg68-mineral")
+    assert p[E.R_LUBMODEL] == ck.TRACTION_EHL and p[ck.P_UMIN] == 0.5 and base[ck.P_LUBMODEL] == ck.TRACTION_CURVE
+    assert p[E.R_ETA0] == pytest.approx(o.eta(353.15)) and p[E.R_ALPHA] == pytest.approx(o.alpha(353.15))
+    assert p[E.R_GAML] == pytest.approx(o.gamma_L * L.traction_scale(353.15))
+    for kw, name in ((dict(T=600.0), "T"), (dict(Rq=-1e-7), "Rq"), (dict(mu_bl=2.0), "mu_bl")):
+        args = dict(base=base, oil="iso-vg68-mineral", T=353.15, E_prime=2.26e11, GsC11=2.7e11, Rq=0.0)
+        args.update(kw)
+        with pytest.raises(BearingInputError, match=name):
+            L.rheology_traction_params(**args)
+    with pytest.raises(BearingInputError, match="oil"):
+        L.rheology_traction_params(base, "castor", 313.15, 2.26e11, 2.7e11, 0.0)
