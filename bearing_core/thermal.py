@@ -94,6 +94,8 @@ OIL_T_MAX = {
     "seed003-oil": (393.15, "taken as a mineral oil (seed 003 gives no type)"),
     "mil-prf-23699-ester": (473.15, "MIL-PRF-23699 ester turbine oil bulk temperature limit"),
     "synthetic-paraffinic": (423.15, "synthetic hydrocarbon (PAO), SKF Rolling bearings catalogue (2018)"),
+    "santotrac-50": (393.15, "traction fluid (cycloaliphatic hydrocarbon): no limit at hand, the mineral-oil "
+                             "limit is assumed"),
 }
 OIL_T_MAX_DEFAULT = (393.15, "unknown oil: the mineral-oil limit")
 
