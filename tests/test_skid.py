@@ -59,8 +59,9 @@ def test_high_speed_combined_load_case_is_skidding_not_over_skidding():
     """7218B at 10,000 rpm, Fx 1 kN, Fz 3 kN, oil (the main job's case). alpha_i swings over ~35-76 deg
     around the orbit, so seed 000's Eq. 26 at mean angles is far below the pure-rolling speed at the
     actual angles: the cage runs above Eq. 26 (what was plotted as over-skidding) but more than 1 % below
-    outer-raceway control -- skidding (state +1). Outer control at the actual angles: ~5324 rpm by the
-    first analysis of this case; accepted 5000-5800 rpm (the angles depend on the traction law)."""
+    outer-raceway control -- skidding (state +1). Outer control at the actual angles: 5324 rpm estimated
+    for this case with the illustrative traction curve; accepted 5000-5800 rpm (the angles depend on the
+    traction law)."""
     m = DynamicModel(load_preset("7218B"), DynamicsOptions(oil_temperature=323.15))
     m.initialize(10000 * RPM, (1000.0, 0.0, 3000.0, 0.0, 0.0), start="tribological")
     d = records_to_dict(m.advance(0.06, record_dt=1e-3))

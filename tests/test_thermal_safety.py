@@ -17,11 +17,11 @@ def test_every_oil_has_a_sourced_temperature_limit():
 
 
 def test_session_discards_a_runaway_step_and_raises_the_flag():
-    """The measured failure: thermal network on, thermal_time_scale 1e6 (1000 thermal seconds per 1 ms
-    step), churning, oil fraction 0.05, 7218B at 10,000 rpm, Fx 1 kN, Fz 3 kN gave a 13,594 K ball with
-    status OK at step 2. Now the first step past the oil's 120 degC limit is rejected with a 'thermal
-    runaway' message, the Integer output thermal_runaway is 1, and the temperatures stay those of the last
-    accepted state (finite, below the limit)."""
+    """Thermal network on, thermal_time_scale 1e6 (1000 thermal seconds per 1 ms step), churning, oil
+    fraction 0.05, no oil flow, 7218B at 10,000 rpm, Fx 1 kN, Fz 3 kN: the losses drive the network's ball
+    node far past the oil's 120 degC limit (unbounded, the network is linear). The first step past the limit
+    is rejected with a 'thermal runaway' message, the Integer output thermal_runaway is 1, and the
+    temperatures stay those of the last accepted state (finite, below the limit)."""
     s = CoSimSession(CoSimParameters(thermal=True, thermal_time_scale=1e6, churning=True, oil_fraction=0.05))
     inp = {"shaft_speed": 10000 * math.pi / 30, "Fx": 1000.0, "Fz": 3000.0}
     s.initialize(0.0, inp)
@@ -45,8 +45,9 @@ def test_thermal_runaway_message_names_node_limit_and_oil():
 
 
 def test_bearing_thermal_reports_runaway_with_exit_status_4(capsys):
-    """The measured failure: 'bearing thermal --bearing 7218B --speed-rpm 10000 --fz 3000 --oil-fraction
-    0.05' printed a 1,768 K ball with exit 0; now 'THERMAL RUNAWAY' on stderr and exit status 4."""
+    """'bearing thermal --bearing 7218B --speed-rpm 10000 --fz 3000 --oil-fraction 0.05' (no oil flow): the
+    steady state is past the oil's limit -- 'THERMAL RUNAWAY' on stderr and exit status 4, no temperatures
+    reported as a result."""
     from bearing_core.cli import EXIT_THERMAL_RUNAWAY, main
     rc = main(["thermal", "--bearing", "7218B", "--speed-rpm", "10000", "--fz", "3000", "--oil-fraction", "0.05"])
     err = capsys.readouterr().err
