@@ -89,11 +89,11 @@ def test_dynamics_friction_torque_against_skf_and_palmgren():
     catalogue speed range of a 7218 B with oil), Fa = 2 and 6 kN, ISO VG 32 and VG 68 (32 and 68 mm^2/s).
     Accepted band: 0.5 <= M / M_SKF <= 2. Why: the SKF model is a fit to SKF's bearing tests whose
     scatter SKF does not publish per series; the two classical estimates at these 12 points differ from
-    each other by up to a factor 1.6 (Palmgren / SKF = 0.77-1.6, computed here), so a model with a
+    each other by up to a factor 1.5 (Palmgren / SKF = 0.70-1.54, computed here), so a model with a
     different physical split cannot be held closer than about that spread; a factor 2 on either side
     still catches a missing or doubled loss source (a dry Coulomb cage, mu 0.1, gives 3-4x the lubricated
-    cage loss at 10,000 rpm). Measured: M / M_SKF = 0.56-1.31 (docs/tribology.md). Also: the torque rises with speed, load and viscosity like both
-    references. Window: 0.05-0.1 s from the Jones-Harris start (the mean differs from a tribological start
+    cage loss at 10,000 rpm). Measured: M / M_SKF = 0.56-1.31 (docs/tribology.md). Also: the torque rises
+    with speed, load and viscosity like both references. Window: 0.05-0.1 s from the Jones-Harris start (the mean differs from a tribological start
     by < 5 %)."""
     import math
     from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
