@@ -44,7 +44,7 @@ class CoSimParameters:
     housing_stiffness: float = 1e8
     fixed_tilt: bool = False
     integrator_tolerance: float = 1e-4
-    integrator: str = "adaptive"           # adaptive | rk4
+    integrator: str = "auto"               # auto | adaptive | implicit | rk4 (auto: the stiff EHL traction)
     # geometry overrides of the preset (0 keeps the preset value)
     free_contact_angle: float = 0.0        # rad
     pocket_clearance: float = 0.0          # m, diametral

@@ -139,7 +139,7 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
         return 0.0
     gd = v / h
     X = eta0 * math.exp(roelands_ln_factor(p, lne, z)) * gd / tau0
-    tau = tau0 * math.log(X + math.sqrt(X * X + 1.0))      # tau_0 asinh(X), Ree-Eyring
+    tau = tau0 * math.asinh(X)                            # Ree-Eyring
     tl = tauL0 + gamL * p
     if thermal:
         c = v * h / (8.0 * k_oil)                         # dT_film / tau  [K/Pa]
@@ -154,9 +154,8 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
                 t = tau / (1.0 + kap * tau)
             for _ in range(2):
                 Xe = X * math.exp(-kap * t)
-                sq = math.sqrt(Xe * Xe + 1.0)
-                g = t - tau0 * math.log(Xe + sq)
-                t -= g / (1.0 + tau0 * kap * Xe / sq)
+                g = t - tau0 * math.asinh(Xe)
+                t -= g / (1.0 + tau0 * kap * Xe / math.hypot(Xe, 1.0))
                 if t < 0.0:
                     t = 0.0
                 elif t > tau:

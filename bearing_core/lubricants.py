@@ -1,7 +1,9 @@
 """Lubricant data: traction curves and a small database of named oils with their thermophysical
 properties (SI inside: K, Pa s, m^2/s, kg/m^3, J/(kg K), W/(m K), 1/Pa).
 
-1. Traction curves (seed 002): mu(s) = (A + B s) exp(-C s) + D, s = slide-to-roll ratio.
+1. Traction curves (seed 002): mu(s) = (A + B s) exp(-C s) + D, s = slide-to-roll ratio. Illustrative; used only
+   by the traction model 'lubricated-curve'. The 'lubricated' model computes the traction from the oil's
+   rheology (item 3, bearing_core.ehl_traction); a curve name given as ``lubricant`` then only names its oil.
 
    The seeds give the form but no coefficients; both curves below are chosen, not fitted to a measurement.
    They keep mu(0) = A + D = 0 (no traction without slip) and stay inside the 0.03-0.08 range of EHL
