@@ -284,7 +284,7 @@ class DynamicModel:
         P[K.P_EPK] = reduced_modulus(g.ball_material.E, g.ball_material.nu, cm.E, cm.nu)
         P[K.P_SIGPK] = math.hypot(o.roughness if o.roughness > 0 else g.ball_roughness, o.cage_roughness)
         # flooded land: the film force acts up to a minimum film of 3 composite roughnesses (the full-film
-        # limit Lambda = 3) in the oil regime; 0.95 (the original cap) for an explicitly flooded dry model
+        # limit Lambda = 3) in the oil regime; 0.95 for a land flooded through land_viscosity in the solid regime
         P[K.P_EPSMAX] = (max(0.95, 1.0 - 3.0 * P[K.P_SIGPK] / (0.5 * g.cage.land_clearance))
                          if o.regime == "oil" else 0.95)
         from .fastsim import combined_elastic
