@@ -103,3 +103,23 @@ def test_cage_slip_falls_with_axial_load_and_rises_with_speed_seed002():
     fast = {Fa: _slip_7008(10000.0, Fa) for Fa in (20.0, 80.0)}
     assert fast[80.0][0] == 0
     assert fast[20.0][1] > s[20.0][1] and fast[80.0][1] > s[80.0][1]
+
+
+def test_cli_dynamics_reports_regime_and_skid(tmp_path, capsys):
+    """'bearing dynamics --lubrication ...' runs the regime and writes the kinematic reference and the skid
+    classification into its summary (7218B, 1000 rpm, Fz 3 kN, 0.03 s)."""
+    import json
+    from bearing_core.cli import main
+    prof = tmp_path / "p.csv"
+    prof.write_text("time_s,speed_rpm\n0,1000\n0.03,1000\n")
+    for lub, regime, trac in (("oil", "oil", "lubricated"), ("solid", "solid", "kalker")):
+        out = tmp_path / lub
+        assert main(["dynamics", "--bearing", "7218B", "--profile", str(prof), "--fz", "3000",
+                     "--lubrication", lub, "--out", str(out)]) == 0
+        s = json.loads((out / "dynamics_7218B_summary.json").read_text())
+        assert s["lubrication"] == regime and s["race_traction"] == trac
+        assert s["skid_label"] in ("skidding", "pure rolling", "over-skidding")
+        assert s["final_cage_speed_pure_rolling_inner_rpm"] <= s["final_cage_speed_pure_rolling_outer_rpm"] * 1.001
+        assert abs(s["final_cage_slip_ratio"] - (1 - s["final_cage_speed_rpm"]
+                                                 / s["final_cage_speed_pure_rolling_outer_rpm"])) < 1e-12
+    assert "outer-raceway control" in capsys.readouterr().out
