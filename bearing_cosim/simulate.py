@@ -68,6 +68,9 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
          "P_damping": res["heat_flux_damping"], "Fx": res["reaction_Fx"], "Fy": res["reaction_Fy"],
          "Fz": res["reaction_Fz"], "ball0_wr": res["ball0_omega_r"], "ball0_wt": res["ball0_omega_t"],
          "ball0_wz": res["ball0_omega_z"]}
+    if "cage_speed_pure_rolling_outer" in res.dtype.names:
+        d["cage_speed_pure_rolling_outer"] = res["cage_speed_pure_rolling_outer"]
+        d["cage_speed_pure_rolling_inner"] = res["cage_speed_pure_rolling_inner"]
     png = plot_dynamics(d, outd / "fmu_simulation.png", title=f"bearing FMU via fmpy, profile {profile}, "
                                                               f"loads {tuple(loads)} N / N m, step {step:g} s")
     tail = res["time"] >= res["time"][-1] - 0.1
