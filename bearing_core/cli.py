@@ -72,6 +72,10 @@ def build_parser() -> argparse.ArgumentParser:
     dy.add_argument("--mu", type=_finite("--mu"), default=0.1, help="Coulomb friction coefficient [-]")
     dy.add_argument("--mu-cage", type=_finite("--mu-cage"), default=0.1,
                     help="ball-pocket and cage-land friction coefficient [-]")
+    dy.add_argument("--lubrication", choices=("auto", "oil", "solid", "dry"), default="auto",
+                    help="lubrication regime of races and cage: oil (lubricated traction, oil-lubricated pocket "
+                         "and land), solid (Kalker/Coulomb traction with --mu, dry cage with --mu-cage), dry "
+                         "(Coulomb everywhere); auto: oil for --traction lubricated, else solid")
     dy.add_argument("--integrator", choices=("adaptive", "implicit", "auto", "rk4"), default="auto")
     dy.add_argument("--start", choices=("jones-harris", "tribological"), default="jones-harris",
                     help="initial state: Jones-Harris quasi-static or the quasi-static tribological model")
@@ -108,6 +112,8 @@ def build_parser() -> argparse.ArgumentParser:
     th.add_argument("--oil-flow-lpm", type=_finite("--oil-flow-lpm"), default=0.0,
                     help="circulating oil flow [L/min]")
     th.add_argument("--no-churning", action="store_true", help="leave out the churning torques")
+    th.add_argument("--lubrication", choices=("auto", "oil", "solid"), default="auto",
+                    help="lubrication regime (auto: oil, the lubricated traction of this command)")
     th.add_argument("--json", action="store_true")
     th.set_defaults(func=cmd_thermal)
 
@@ -526,7 +532,8 @@ def cmd_dynamics(a) -> int:
         raise _BadArg(f"--record-dt = {a.record_dt} is invalid; allowed: 1e-5 <= value <= 1 s")
     g = load_preset(a.bearing)
     opt = DynamicsOptions(traction=a.traction, mu=a.mu, mu_pocket=a.mu_cage, mu_land=a.mu_cage,
-                          integrator=a.integrator, reduced=a.reduced, record_dt=a.record_dt)
+                          integrator=a.integrator, reduced=a.reduced, record_dt=a.record_dt,
+                          lubrication=a.lubrication)
     m = DynamicModel(g, opt)
     loads = (a.fx, a.fy, a.fz, a.mx, a.my)
     m.initialize(prof[0][1] * RPM, loads, t0=prof[0][0], start=a.start)
@@ -558,12 +565,27 @@ def cmd_dynamics(a) -> int:
         "final_friction_torque_Nm": float(d["friction_torque"][tail].mean()),
         "final_reaction_N": {k: float(d[k][tail].mean()) for k in ("Fx", "Fy", "Fz")},
         "rhs_calls": int(m.stats[2]),
+        "lubrication": opt.regime, "race_traction": opt.race_traction,
     }
+    # kinematic reference at the loaded balls' contact angles and the skid classification (bearing_core.skid)
+    from .skid import SKID_LABELS, SKID_TOL, classify_skid
+    wo = float(d["cage_speed_pure_rolling_outer"][tail].mean())
+    state, slip = classify_skid(summary["final_cage_speed_rpm"] * RPM, wo)
+    summary.update({
+        "final_cage_speed_pure_rolling_outer_rpm": wo / RPM,
+        "final_cage_speed_pure_rolling_inner_rpm": float(d["cage_speed_pure_rolling_inner"][tail].mean() / RPM),
+        "final_cage_slip_ratio": slip, "skid_state": state, "skid_label": SKID_LABELS[state],
+        "skid_tolerance": SKID_TOL,
+    })
     (out / f"{stem}_summary.json").write_text(json.dumps(summary, indent=1))
     print(f"wrote {csv_path}, {png} and {out / (stem + '_summary.json')}")
-    print(f"final cage speed {summary['final_cage_speed_rpm']:.1f} rpm (spin-free theoretical "
-          f"{summary['final_pure_rolling_cage_speed_rpm']:.1f} rpm), friction torque "
-          f"{summary['final_friction_torque_Nm']:.3f} N m; {summary['simulated_s']:.3f} s simulated in {wall:.1f} s")
+    print(f"final cage speed {summary['final_cage_speed_rpm']:.1f} rpm; pure rolling at the loaded balls' "
+          f"angles {summary['final_cage_speed_pure_rolling_outer_rpm']:.1f} rpm (outer-raceway control) / "
+          f"{summary['final_cage_speed_pure_rolling_inner_rpm']:.1f} rpm (inner); seed 000 Eq. 26 (spin-free, "
+          f"mean angles) {summary['final_pure_rolling_cage_speed_rpm']:.1f} rpm")
+    print(f"cage {summary['skid_label']} (slip {100 * slip:+.1f} % against outer-raceway control, tolerance "
+          f"{100 * SKID_TOL:g} %), friction torque {summary['final_friction_torque_Nm']:.3f} N m; "
+          f"{summary['simulated_s']:.3f} s simulated in {wall:.1f} s")
     return 0
 
 
@@ -602,12 +624,21 @@ def cmd_thermal(a) -> int:
     T_amb = a.ambient_c + 273.15
     T_in = (a.oil_inlet_c if a.oil_inlet_c is not None else a.ambient_c) + 273.15
     td = ThermalData(T_amb=T_amb, T_in=T_in, flow_rate=a.oil_flow_lpm / 60000.0)
+    from .thermal import ThermalRunaway
     opts = DynamicsOptions(oil=a.oil, oil_fraction=a.oil_fraction, churning=not a.no_churning, thermal=True,
-                           thermal_data=td, oil_temperature=T_in)
+                           thermal_data=td, oil_temperature=T_in, lubrication=a.lubrication)
     m = DynamicModel(load_preset(a.bearing), opts)
     m.initialize(a.speed_rpm * math.pi / 30, (a.fx, a.fy, a.fz, a.mx, a.my))
-    r = m.thermal_equilibrium()
-    out = {"bearing": a.bearing, "speed_rpm": a.speed_rpm, "loads_N": [a.fx, a.fy, a.fz],
+    try:
+        r = m.thermal_equilibrium()
+    except ThermalRunaway as e:
+        if a.json:
+            print(json.dumps({"bearing": a.bearing, "speed_rpm": a.speed_rpm, "thermal_runaway": True,
+                              "temperatures_K": e.temperatures, "T_max_K": e.T_max, "oil": e.oil,
+                              "message": str(e)}))
+        sys.stderr.write(f"bearing thermal: THERMAL RUNAWAY: {e}\n")
+        return EXIT_THERMAL_RUNAWAY
+    out = {"bearing": a.bearing, "speed_rpm": a.speed_rpm, "thermal_runaway": False, "loads_N": [a.fx, a.fy, a.fz],
            "moments_Nm": [a.mx, a.my], "oil": a.oil, "oil_fraction": a.oil_fraction,
            "ambient_temperature_K": T_amb, "oil_inlet_temperature_K": T_in,
            "oil_flow_m3_per_s": td.flow_rate,
@@ -700,6 +731,9 @@ def cmd_validate(a) -> int:
 
 class _BadArg(Exception):
     pass
+
+
+EXIT_THERMAL_RUNAWAY = 4   # exit status of 'bearing thermal' when the bearing runs away thermally
 
 
 def main(argv=None) -> int:

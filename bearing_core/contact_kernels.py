@@ -338,3 +338,124 @@ def ball_pocket_contact(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_
     Mr = sig * h * Fz
     Mz = -sig * h * Fr
     return Fn, Ft, Fr, Fz, Mr, Mz
+
+
+# --------------------------------------------------------------------------------------------------
+# 5. oil-lubricated ball-pocket contact (film on both pocket walls, boundary / EHL limit in contact)
+#
+# Followed (each wall of the pocket is treated as a ball-on-flat conjunction, flooded with oil):
+# * hydrodynamic load from entrainment, isoviscous-rigid sphere-plane: Brewe, Hamrock & Taylor, 'Effect of
+#   geometry on hydrodynamic film thickness', J. Lubr. Technol. 101 (1979) 231-239, H_min,IR = 128 a_r
+#   phi^2 [0.131 atan(a_r / 2) + 1.683]^2 with H = (h/R)(W/U)^2, phi = (1 + 2 / (3 a_r))^-1; for a sphere
+#   on a plane (a_r = 1) this is 140.1, i.e. F_hd = sqrt(140.1) eta u R sqrt(R / h) = 11.84 eta u R sqrt(R/h),
+#   u the entrainment (mean surface) speed = |v_s| / 2 for the ball surface sliding on the still wall
+#   (Hamrock & Dowson, Ball Bearing Lubrication, Wiley 1981, Ch. on isoviscous-rigid conjunctions; the same
+#   rigid-film treatment of the cage pocket as in Gupta, Advanced Dynamics of Rolling Elements (1984) Ch. 5);
+# * squeeze film of a sphere approaching a plane (Reynolds): F_sq = 6 pi eta R^2 (-dh/dt) / h; the film
+#   carries no tension (the total film force is clipped at 0, half-Sommerfeld cavitation);
+# * viscous shear of the film on the ball surface, the lubrication limit of a sphere rotating next to a
+#   wall: torque 8 pi eta R^3 Omega [(2/5) ln(R/h) + 0.3817] (Goldman, Cox & Brenner, Chem. Eng. Sci. 22
+#   (1967) 637-651), written as a surface force F_v = pi eta R |v_s| (3.2 ln(R/h) + 3.05) at the wall;
+# * in contact (ball pressed on the wall beyond the penalty onset) the conjunction is elastohydrodynamic:
+#   its film is the larger of Hamrock-Dowson's piezoviscous-elastic minimum film and their isoviscous-
+#   elastic ('soft EHL', for polymer cages) minimum film h = R 8.70 U^0.66 W^-0.21 (1 - 0.85 exp(-0.31 k))
+#   (Hamrock & Dowson 1981, Ch. 'soft EHL'; k = 1 for ball on flat); its friction coefficient blends from
+#   the full-film value mu_ehl (Lambda >= 3) to the boundary value mu_bl (Lambda <= 1) linearly in Lambda
+#   (the mixed regime 1 < Lambda < 3 of Tallian / Hamrock & Dowson). Default mu_bl = 0.15, mu_ehl = 0.05:
+#   the boundary and full-film sliding friction coefficients of the SKF friction model (SKF General
+#   Catalogue 6000, 'Friction', mu_bl and mu_EHL for mineral oils; bearing_core.friction_models).
+# The film formulas are evaluated at h >= h_floor (the composite roughness): below it the solid contact
+# (penalty) carries the load.
+@njit(cache=True)
+def _hd_ball_flat_film(u, eta, alpha_pv, R, E_red, F):
+    """Minimum EHL film [m] of a ball (radius R) on a flat at load F [N], entrainment u [m/s]: max of
+    the Hamrock-Dowson piezoviscous-elastic and isoviscous-elastic minimum films (k = 1)."""
+    if not (F > 0.0 and u > 0.0 and eta > 0.0):
+        return 0.0
+    U = eta * u / (E_red * R)
+    W = F / (E_red * R * R)
+    G = alpha_pv * E_red
+    h_pe = R * 3.63 * U ** 0.68 * G ** 0.49 * W ** -0.073 * (1.0 - math.exp(-0.68))
+    h_ie = R * 8.70 * U ** 0.66 * W ** -0.21 * (1.0 - 0.85 * math.exp(-0.31))
+    return h_pe if h_pe > h_ie else h_ie
+
+
+@njit(cache=True)
+def ball_pocket_lubricated(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu_bl, mu_ehl, v_reg,
+                           eta, alpha_pv, E_red, sigma, D, vr, vz, wr, wz, vcr, vcz):
+    """Oil-lubricated ball-pocket contact: films on both pocket walls plus the penalty contact with its
+    EHL / boundary friction (see the notes above). Arguments as ball_pocket_contact, plus mu_bl, mu_ehl
+    [-] boundary and full-film friction coefficients, eta [Pa s] oil viscosity, alpha_pv [1/Pa] its
+    pressure-viscosity coefficient, E_red [Pa] reduced modulus E' of ball and cage, sigma [m] composite
+    rms roughness (also the film floor).
+    Returns (F_n [N] largest wall force (film + solid), F_t, F_r, F_z [N] force on the ball (local
+    r, t, z), M_r, M_z [N m] its moment about the ball centre, T_w [N m] the moment about the ball centre's
+    orbit of the wall friction arms (sum over walls of w D/2 F_r,w: the cage gets -(this) through its
+    wall offset), P_loss [W] film and friction dissipation (>= 0 on average; the hydrodynamic normal
+    force can return power while the gap opens), P_damp [W] penalty damping dissipation, U_el [J]
+    elastic energy of the penalty)."""
+    dth = theta_b - theta_c
+    dth = (dth + math.pi) % (2.0 * math.pi) - math.pi
+    R = 0.5 * D
+    hfl = sigma if sigma > 1e-9 else 1e-9
+    Ft = 0.0
+    Fr = 0.0
+    Fz = 0.0
+    Mr = 0.0
+    Mz = 0.0
+    Tw = 0.0
+    Pl = 0.0
+    Pd = 0.0
+    Ue = 0.0
+    Fmax = 0.0
+    vrel = (dtheta_b - dtheta_c) * r_p
+    for k in range(2):
+        w = 1.0 if k == 0 else -1.0
+        gap = c_p - w * dth * r_p            # film gap at wall w (the wall at w D/2 t)
+        gdot = -w * vrel
+        h = gap if gap > hfl else hfl
+        vsr = vr - vcr - w * R * (wz - dtheta_c)
+        vsz = vz - vcz + w * R * wr
+        vs = math.sqrt(vsr * vsr + vsz * vsz)
+        # film normal force (entrainment + squeeze), never tensile
+        Ff = 11.84 * eta * 0.5 * vs * R * math.sqrt(R / h) - 6.0 * math.pi * eta * R * R * gdot / h
+        if Ff < 0.0:
+            Ff = 0.0
+        # solid / EHL contact (penalty) beyond the clearance
+        Fc = 0.0
+        pen = -gap
+        if pen > 0.0:
+            Fc = K_cb * pen - C_cb * gdot
+            if Fc < 0.0:
+                Fc = 0.0
+            Pd += (Fc - K_cb * pen) * (-gdot)
+            Ue += 0.5 * K_cb * pen * pen
+        Fn = Ff + Fc
+        if Fn > Fmax:
+            Fmax = Fn
+        Ft -= w * Fn
+        Pl += Ff * (-gdot)     # work of the film force on the closing gap
+        # friction on the ball surface at the wall: viscous shear of the film + EHL / boundary friction
+        if vs > 0.0:
+            lr = math.log(R / h)
+            if lr < 0.0:
+                lr = 0.0
+            fv = math.pi * eta * R * vs * (3.2 * lr + 3.05)
+            mu = mu_ehl
+            if Fc > 0.0:
+                hm = _hd_ball_flat_film(0.5 * vs, eta, alpha_pv, R, E_red, Fc)
+                lam = hm / hfl
+                if lam <= 1.0:
+                    mu = mu_bl
+                elif lam < 3.0:
+                    mu = mu_bl + (mu_ehl - mu_bl) * 0.5 * (lam - 1.0)
+            f = (fv + mu * Fc * math.tanh(vs / v_reg)) / vs
+            fr = -f * vsr
+            fz = -f * vsz
+            Fr += fr
+            Fz += fz
+            Mr += w * R * fz
+            Mz -= w * R * fr
+            Tw += w * R * fr
+            Pl -= fr * vsr + fz * vsz
+    return Fmax, Ft, Fr, Fz, Mr, Mz, Tw, Pl, Pd, Ue

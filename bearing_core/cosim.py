@@ -22,6 +22,7 @@ from .errors import BearingInputError, ConvergenceError, check_range
 from .geometry import load_preset
 
 from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # noqa: F401 (re-export)
+from .cosim_spec import INT_OUTPUT_NAMES, INT_OUTPUT_SPEC  # noqa: F401 (re-export)
 P_LIMIT = 4.2e9   # Pa: ISO 76 static-capacity contact stress of ball bearings; beyond it the model refuses
 
 
@@ -58,6 +59,8 @@ class CoSimParameters:
     oil_inlet_temperature: float = 0.0     # K, oil supply temperature (0 = ambient)
     oil_flow_rate: float = 0.0             # m^3/s of circulating oil through the bearing
     thermal_time_scale: float = 1.0        # thermal seconds per simulated second (> 1 fast-forwards heating)
+    # lubrication regime of races and cage: auto (from traction_model) | oil | solid | dry (DynamicsOptions)
+    lubrication: str = "auto"
 
 
 class CoSimSession:
@@ -68,6 +71,8 @@ class CoSimSession:
         self.model: DynamicModel | None = None
         self.t = 0.0
         self.outputs = {n: 0.0 for n in OUTPUT_NAMES}
+        self.outputs.update({n: 0 for n in INT_OUTPUT_NAMES})
+        self.thermal_runaway = False
 
     def _geometry(self):
         """The preset with the non-zero geometry overrides applied (validated by BearingGeometry)."""
@@ -113,7 +118,7 @@ class CoSimSession:
             rtol=p.integrator_tolerance, integrator=p.integrator, reduced="full",
             oil=p.oil, oil_fraction=p.oil_fraction, churning=bool(p.churning),
             oil_temperature=p.oil_temperature if not p.thermal else T_in, thermal=bool(p.thermal),
-            thermal_data=td, thermal_time_scale=p.thermal_time_scale)
+            thermal_data=td, thermal_time_scale=p.thermal_time_scale, lubrication=p.lubrication)
 
     @staticmethod
     def _inputs(inputs: dict) -> dict:
@@ -205,6 +210,13 @@ class CoSimSession:
             # input held over the step: the speed takes its new value at the start of the step
             m.set_speed(u["shaft_speed"])
             m.advance(t + h, record_dt=max(h, 1e-6))
+            if m.thermal_runaway:
+                # a temperature past the oil's limit: flagged and the step discarded (never reported as OK)
+                from .thermal import ThermalRunaway
+                self.thermal_runaway = True
+                th = m.thermal
+                raise StepRejected(str(ThermalRunaway(th.temperatures(), th.T_max, th.oil.name,
+                                                      f"at t = {t + h:.6g} s")))
             self.t = m.t
             self._update_outputs()
             self._check_limits()
@@ -250,6 +262,13 @@ class CoSimSession:
             "film_min_outer": float(fl["h_min_o"][fl["h_min_o"] > 0].min()) if np.any(fl["h_min_o"] > 0) else 0.0,
             "film_parameter_min": fl["Lambda_min"],
         }
+        from .skid import classify_skid
+        state, slip = classify_skid(o["cage_speed"], o["cage_speed_pure_rolling_outer"])
+        out["cage_speed_pure_rolling_outer"] = o["cage_speed_pure_rolling_outer"]
+        out["cage_speed_pure_rolling_inner"] = o["cage_speed_pure_rolling_inner"]
+        out["cage_slip_ratio"] = slip
+        out["skid_state"] = int(state)
+        out["thermal_runaway"] = int(self.thermal_runaway)
         bad = [k for k, v in out.items() if not math.isfinite(v)]
         if bad:
             raise StepRejected(f"non-finite outputs {bad} (solver failure)")
@@ -278,3 +297,4 @@ class CoSimSession:
         self.model.stats[:] = stats
         self.t = t
         self.outputs = dict(outs)
+        self.thermal_runaway = bool(self.outputs.get("thermal_runaway", 0))

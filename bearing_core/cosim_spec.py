@@ -14,8 +14,10 @@ OUTPUT_SPEC = (
     ("reaction_My", "N.m", "moment of the bearing on the shaft about y"),
     ("cage_speed", "rad/s", "cage angular speed"),
     ("cage_shaft_ratio", "1", "cage speed / shaft speed (CSR)"),
-    ("cage_shaft_ratio_theory", "1", "spin-free pure-rolling CSR (seed 000 Eq. 26)"),
-    ("skid_ratio", "1", "1 - CSR / theoretical CSR (> 0 skidding, < 0 over-skidding)"),
+    ("cage_shaft_ratio_theory", "1", "seed 000 Eq. 26 CSR (spin-free, mean contact angles; not a raceway-"
+                                     "control bound: see cage_speed_pure_rolling_outer / _inner)"),
+    ("skid_ratio", "1", "1 - CSR / seed 000 Eq. 26 CSR (seed 000's measure; the skid classification uses "
+                        "cage_slip_ratio)"),
     ("friction_torque", "N.m", "torque needed to drive the inner ring"),
     ("heat_flux_total", "W", "total dissipated power"),
     ("heat_flux_race_inner", "W", "ball-inner race traction (rolling, sliding, spin)"),
@@ -58,5 +60,18 @@ OUTPUT_SPEC = (
     ("film_min_inner", "m", "smallest Hamrock-Dowson minimum film thickness of the inner contacts"),
     ("film_min_outer", "m", "smallest Hamrock-Dowson minimum film thickness of the outer contacts"),
     ("film_parameter_min", "1", "smallest film parameter Lambda = h_min / composite roughness"),
+    ("cage_speed_pure_rolling_outer", "rad/s",
+     "pure-rolling cage speed at the loaded balls' contact angles, outer-raceway control (bearing_core.skid)"),
+    ("cage_speed_pure_rolling_inner", "rad/s",
+     "pure-rolling cage speed at the loaded balls' contact angles, inner-raceway control (bearing_core.skid)"),
+    ("cage_slip_ratio", "1", "1 - cage speed / cage_speed_pure_rolling_outer (> 0 skidding, < 0 over-skidding)"),
 )
 OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUT_SPEC)
+
+# Integer outputs (FMI Integer variables)
+INT_OUTPUT_SPEC = (
+    ("skid_state", "1", "cage skid state: 1 skidding, 0 pure rolling (|cage_slip_ratio| <= 1 %), -1 over-skidding"),
+    ("thermal_runaway", "1", "1 once a thermal-network temperature passed the oil's limit (the step is "
+                             "then discarded), else 0"),
+)
+INT_OUTPUT_NAMES = tuple(n for n, _, _ in INT_OUTPUT_SPEC)

@@ -24,6 +24,8 @@ from .lubricants import get_lubricant
 from .quasistatic import QuasiStaticModel
 
 TRACTION_MODELS = ("lubricated", "coulomb", "kalker", "lubricated-curve")
+LUBRICATION_REGIMES = ("auto", "oil", "solid", "dry")
+OIL_TRACTIONS = ("lubricated", "lubricated-curve")   # race traction laws of an oil-lubricated bearing
 INTEGRATORS = ("rk4", "adaptive", "implicit", "auto")
 # stats: [0] accepted steps, [1] rejected, [2] rhs calls, [3] last step, [4] failure flag (kernels);
 # integrator='auto' selector: current method, cost of each [rhs equivalents / simulated s], intervals
@@ -70,7 +72,24 @@ class DynamicsOptions:
     fast-forward the heating); its temperatures feed back into the oil viscosity and density (churning,
     drag, flooded land, film thickness) and the traction curve (lubricants.traction_curve_at at the ball
     temperature). roughness [m]: if > 0, the rms roughness of each surface (film parameter Lambda and mixed
-    lubrication) in place of the geometry's ball_roughness / race_roughness (0, default)."""
+    lubrication) in place of the geometry's ball_roughness / race_roughness (0, default).
+
+    lubrication: the lubrication regime, setting consistent laws for races and cage:
+      'oil'   -- lubricated race traction (traction must be one of OIL_TRACTIONS); oil-lubricated ball-pocket
+                 contacts (films on both walls with EHL / boundary friction in contact,
+                 contact_kernels.ball_pocket_lubricated) and an oil-flooded guiding land (short journal
+                 bearing + Petroff drag at the oil's viscosity, boundary friction mu_boundary in contact);
+                 churning and ball drag allowed;
+      'solid' -- solid-lubricated: Kalker or Coulomb race traction with mu (traction 'lubricated' is
+                 replaced by 'kalker'), dry Coulomb pocket and land friction mu_pocket, mu_land;
+      'dry'   -- Coulomb everywhere (traction 'lubricated' is replaced by 'coulomb'); no churning, no oil
+                 in the land;
+      'auto'  -- (default) from the traction law: 'lubricated' -> 'oil', 'kalker' / 'coulomb' -> 'solid'
+                 (seed 000's solid-lubricated Kalker runs keep their dry Coulomb cage).
+    mu_boundary (also the races' boundary coefficient) and mu_ehl_cage: boundary and full-film friction
+    coefficients of the oil-lubricated cage contacts (defaults 0.15 and 0.05: mu_bl and mu_EHL (mineral oil)
+    of the SKF friction model, SKF General Catalogue 6000 'Friction'); cage_roughness [m]: rms roughness of the pocket and land surfaces
+    (0.4 um: an estimate for machined phenolic / brass cages, not from a source)."""
 
     traction: str = "lubricated"
     lubricant: str = "generic-mineral-oil"
@@ -112,8 +131,41 @@ class DynamicsOptions:
     thermal_data: object = None
     thermal_time_scale: float = 1.0
     roughness: float = 0.0
+    lubrication: str = "auto"
+    mu_ehl_cage: float = 0.05
+    cage_roughness: float = 0.4e-6
+
+    @property
+    def regime(self) -> str:
+        """The resolved lubrication regime: 'oil', 'solid' or 'dry'."""
+        if self.lubrication != "auto":
+            return self.lubrication
+        return "oil" if self.traction in OIL_TRACTIONS else "solid"
+
+    @property
+    def race_traction(self) -> str:
+        """The race traction law the regime runs: traction, or kalker (solid) / coulomb (dry) in place of
+        an oil traction law."""
+        if self.regime == "solid" and self.traction in OIL_TRACTIONS:
+            return "kalker"
+        if self.regime == "dry" and self.traction in OIL_TRACTIONS:
+            return "coulomb"
+        return self.traction
 
     def validate(self):
+        if self.lubrication not in LUBRICATION_REGIMES:
+            raise BearingInputError("lubrication", self.lubrication, " | ".join(LUBRICATION_REGIMES))
+        if self.lubrication == "oil" and self.traction not in OIL_TRACTIONS:
+            raise BearingInputError("traction", self.traction, " | ".join(OIL_TRACTIONS)
+                                    + " with lubrication='oil' (use lubrication='solid' or 'dry' for "
+                                    "Kalker / Coulomb race traction)")
+        if self.lubrication == "dry" and (self.churning or self.land_viscosity > 0 or self.oil_fraction > 0):
+            raise BearingInputError("lubrication", self.lubrication,
+                                    "oil | solid with churning, land_viscosity or oil_fraction (a dry bearing "
+                                    "has no oil)")
+        check_range("mu_boundary", self.mu_boundary, 0.0, 1.0)
+        check_range("mu_ehl_cage", self.mu_ehl_cage, 0.0, 1.0)
+        check_range("cage_roughness", self.cage_roughness, 1e-9, 1e-4, unit="m")
         if self.traction not in TRACTION_MODELS:
             raise BearingInputError("traction", self.traction, " | ".join(TRACTION_MODELS))
         if self.integrator not in INTEGRATORS:
@@ -220,7 +272,21 @@ class DynamicModel:
         P[K.P_GUIDE] = guide
         P[K.P_RLAND] = 0.5 * g.dm + (0.35 * g.D if guide == 0.0 else -0.35 * g.D)
         lub = get_lubricant(o.lubricant)
-        P[K.P_TRACTION] = {"lubricated": 0.0, "lubricated-curve": 0.0, "coulomb": 1.0, "kalker": 2.0}[o.traction]
+        P[K.P_TRACTION] = {"lubricated": 0.0, "lubricated-curve": 0.0, "coulomb": 1.0,
+                            "kalker": 2.0}[o.race_traction]
+        # cage lubrication (regime 'oil': lubricated pocket and land; viscosities set by apply_temperatures)
+        P[K.P_LUBE] = 1.0 if o.regime == "oil" else 0.0
+        P[K.P_MUBL] = o.mu_boundary
+        P[K.P_MUEHL] = o.mu_ehl_cage
+        from .hertz import reduced_modulus
+        from .materials import get_material
+        cm = get_material(g.cage.material)
+        P[K.P_EPK] = reduced_modulus(g.ball_material.E, g.ball_material.nu, cm.E, cm.nu)
+        P[K.P_SIGPK] = math.hypot(o.roughness if o.roughness > 0 else g.ball_roughness, o.cage_roughness)
+        # flooded land: the film force acts up to a minimum film of 3 composite roughnesses (the full-film
+        # limit Lambda = 3) in the oil regime; 0.95 for a land flooded through land_viscosity in the solid regime
+        P[K.P_EPSMAX] = (max(0.95, 1.0 - 3.0 * P[K.P_SIGPK] / (0.5 * g.cage.land_clearance))
+                         if o.regime == "oil" else 0.95)
         from .fastsim import combined_elastic
         P[K.P_GCOMB], P[K.P_NUCOMB] = combined_elastic(g.ring_material.E, g.ring_material.nu,
                                                        g.ball_material.E, g.ball_material.nu)
@@ -229,7 +295,7 @@ class DynamicModel:
         P[K.P_RHO_EFF] = 1.2 + o.oil_fraction * (lub.density - 1.2)
         P[K.P_CD] = o.cd
         self._tp = CK.traction_params(o.mu, o.v_reg, lub.A, lub.B, lub.C, lub.D, o.u_min)
-        if o.traction == "lubricated":
+        if o.race_traction == "lubricated":
             self._tp = self._ehl_params(o.oil_temperature)
         self._quad = CK.ellipse_quadrature(o.n_major, o.n_minor)
         P[K.P_COUPLING] = 1.0 if o.coupling == "displacement" else 0.0
@@ -270,10 +336,17 @@ class DynamicModel:
         self.P[K.P_CH_ETA] = 1.8e-5 + X * (eta - 1.8e-5)     # air 1.8e-5 Pa s (churning.churning_losses)
         if o.thermal and o.land_viscosity > 0:
             self.P[K.P_ETA_LAND] = eta
+        if o.regime == "oil":
+            # oil-lubricated cage: pocket films and the flooded guiding land at the oil temperature
+            # (an explicit land_viscosity is kept when the thermal network is off)
+            self.P[K.P_ETA_PK] = eta
+            self.P[K.P_ALPHA_PK] = oil.alpha(T_oil)
+            if o.land_viscosity <= 0 or o.thermal:
+                self.P[K.P_ETA_LAND] = eta
         self._T_oil = T_oil
-        if T_ball is not None and o.traction == "lubricated":
+        if T_ball is not None and o.race_traction == "lubricated":
             self._tp = self._ehl_params(T_ball)      # the oil enters the contacts at the ball temperature
-        elif T_ball is not None and o.traction == "lubricated-curve":
+        elif T_ball is not None and o.race_traction == "lubricated-curve":
             T_ball = min(max(float(T_ball), 233.15), 473.15)
             c = traction_curve_at(o.lubricant, T_ball)
             self._tp = CK.traction_params(o.mu, o.v_reg, c.A, c.B, c.C, c.D, o.u_min)
@@ -529,6 +602,31 @@ class DynamicModel:
     def _thermal_step(self, rec, dt):
         self.thermal.step(self.heat_sources(rec), dt)
         self._apply_thermal()
+        if self.thermal.runaway():
+            self.thermal_runaway = True
+
+    @property
+    def thermal_runaway(self) -> bool:
+        """True once a thermal-network temperature passed the oil's limit (thermal.OIL_T_MAX); stays set
+        until the thermal state is restored to one below the limit (set_thermal_state)."""
+        return getattr(self, "_runaway", False)
+
+    @thermal_runaway.setter
+    def thermal_runaway(self, v):
+        self._runaway = bool(v)
+
+    def skid(self) -> dict:
+        """Kinematic reference and skid classification at the current instant (bearing_core.skid): pure-
+        rolling cage speeds at the loaded balls' contact angles with outer / inner raceway control [rad/s],
+        seed 000's Eq. 26 value (spin-free, mean angles) [rad/s], cage speed [rad/s], cage_slip_ratio and
+        skid_state (+1 skidding, 0 pure rolling, -1 over-skidding) with its label."""
+        from .skid import SKID_LABELS, classify_skid
+        o = self.outputs()
+        state, s = classify_skid(o["cage_speed"], o["cage_speed_pure_rolling_outer"])
+        return {"cage_speed": o["cage_speed"], "cage_speed_pure_rolling_outer": o["cage_speed_pure_rolling_outer"],
+                "cage_speed_pure_rolling_inner": o["cage_speed_pure_rolling_inner"],
+                "cage_speed_seed000_eq26": o["pure_rolling_cage_speed"], "cage_slip_ratio": s,
+                "skid_state": state, "skid_label": SKID_LABELS[state]}
 
     def _apply_thermal(self):
         T = self.thermal.temperatures()
@@ -552,7 +650,13 @@ class DynamicModel:
             if np.max(np.abs(self.thermal.T - T_old)) < tol:
                 break
         else:
+            # not converged: past the oil's limit it is a runaway (the fixed point keeps heating up)
+            self.thermal.check_runaway(f"at {self.U[K.U_W1] * 30 / math.pi:.0f} rpm (thermal equilibrium not "
+                                       f"reached in {max_iter} iterations, losses {sum(Q.values()):.0f} W)")
             raise ConvergenceError(f"thermal equilibrium not reached in {max_iter} iterations of {window} s")
+        # a steady state past the oil's limit is a thermal runaway, not an equilibrium
+        self.thermal.check_runaway(f"at {self.U[K.U_W1] * 30 / math.pi:.0f} rpm (thermal equilibrium after "
+                                   f"{it} iterations, losses {sum(Q.values()):.0f} W)")
         # check: one more window at the final temperatures (no update); its losses must equal what the
         # network rejects at those temperatures
         th = self.thermal_state()
@@ -582,6 +686,7 @@ class DynamicModel:
         th.T[:] = st[0]
         th.E_generated, th.E_ambient, th.E_flow = st[1], st[2], st[3]
         self._apply_thermal()
+        self.thermal_runaway = th.runaway()
 
     def temperatures(self) -> dict:
         """Node temperatures [K] (ball, outer, inner, oil) and the heat flows to ambient and to the oil flow [W];

@@ -42,7 +42,8 @@ import numpy as np
 from numba import njit
 
 from .contact_kernels import (ball_race_contact, contact_kinematics, ellipse_traction, ball_pocket_contact,
-                              normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
+                              ball_pocket_lubricated, normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB,
+                              TRACTION_EHL, P_LUBMODEL)
 from .ehl_traction import ehl_ellipse_traction
 from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 from .churning import cylinder_churning_torque
@@ -60,7 +61,13 @@ NSB = 9  # states per ball
  # cage surface width / diameter / gap and its wall speed factor (0 fixed wall, 1 shaft-speed wall),
  # inner-ring churned width / shoulder diameter / gap
  P_CH_ON, P_CH_RHO, P_CH_ETA, P_CH_BC, P_CH_DC, P_CH_CC, P_CH_WALL, P_CH_BIR, P_CH_DLI, P_CH_CS,
- NPAR) = range(58)
+ # lubrication regime of the cage (0: dry Coulomb pocket and land, solid / dry bearings; 1: oil-lubricated
+ # pocket, contact_kernels.ball_pocket_lubricated, and land), boundary and full-film friction coefficients,
+ # oil viscosity and pressure-viscosity coefficient at the cage, reduced modulus ball-cage, composite
+ # roughness ball-pocket
+ # and the largest eccentricity ratio of the flooded land's film force (legacy 0.95)
+ P_LUBE, P_MUBL, P_MUEHL, P_ETA_PK, P_ALPHA_PK, P_EPK, P_SIGPK, P_EPSMAX,
+ NPAR) = range(66)
 
 # ---- input vector indices (float64 array U, held over an advance call) --------------------------
 (U_W0, U_W1, U_T0, U_T1, U_FX, U_FY, U_FZ, U_MX, U_MY,
@@ -84,6 +91,9 @@ OUT_NAMES = (
     "ball0_slide_roll_i", "ball0_slide_roll_o", "ball0_spin_roll_i", "ball0_spin_roll_o",
     "ball0_alpha_i", "ball0_alpha_o", "ball0_Q_i", "ball0_Q_o", "ball0_Ft_i", "ball0_Ft_o",
     "p_max", "outer_x", "outer_y", "housing_Fx", "housing_Fy",
+    # pure-rolling cage speed at each loaded ball's own contact angles (Harris & Kotzalas Vol. 2 Ch. 3
+    # cage speed with raceway control), averaged over the balls loaded at both races: outer / inner control
+    "cage_speed_pure_rolling_outer", "cage_speed_pure_rolling_inner",
 )
 NOUT = len(OUT_NAMES)
 OUT_INDEX = {n: i for i, n in enumerate(OUT_NAMES)}
@@ -197,6 +207,9 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     mupk = P[P_MUPOCKET]
     rho_eff = P[P_RHO_EFF]
     cd = P[P_CD]
+    lube = P[P_LUBE] > 0.5
+    sco = 0.0; sci = 0.0; npr = 0.0        # pure-rolling cage speeds of the loaded balls
+    gD = D / dm
     for j in range(nb):
         o = NSTATE_FIXED + NSB * j
         th = y[o]; rb = y[o + 1]; zb = y[o + 2]
@@ -289,9 +302,29 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         thb_d = (bx_ * vby - by_ * vbx) / rr2
         vcr_ = vxc * c + vyc * s
         rbc = math.sqrt(rr2)   # ball radius about the cage centre: the arm of the pocket force
-        Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact(thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, mupk, 0.01,
-                                                           D, rd, zd, Wr, Wz, vcr_, 0.0)
-        if Fpk > 0.0:
+        if lube:
+            (Fpk, fpt, fpr, fpz, mpr, mpz, tw_, pl_, pd_, ue_) = ball_pocket_lubricated(
+                thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, P[P_MUBL], P[P_MUEHL], 0.01, P[P_ETA_PK],
+                P[P_ALPHA_PK], P[P_EPK], P[P_SIGPK], D, rd, zd, Wr, Wz, vcr_, 0.0)
+            tpx = -math.sin(thb)
+            tpy = math.cos(thb)
+            fx = fpt * tpx + fpr * c
+            fy = fpt * tpy + fpr * s
+            Fr += fx * c + fy * s
+            Ft += -fx * s + fy * c
+            Fz += fpz
+            Mr += mpr
+            Mz += mpz
+            FCx -= fx
+            FCy -= fy
+            TC += by_ * fx - bx_ * fy + tw_
+            Uel += ue_
+            P_dp += pd_
+            P_pk += pl_
+        else:
+            Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact(thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, mupk,
+                                                               0.01, D, rd, zd, Wr, Wz, vcr_, 0.0)
+        if Fpk > 0.0 and not lube:
             # pocket force along the cage-frame tangential direction at the ball
             tpx = -math.sin(thb)
             tpy = math.cos(thb)
@@ -346,6 +379,9 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             Qimax = max(Qimax, Qi)
             pmax = max(pmax, 1.5 * Qi / (math.pi * ai_s * bi_s))
         Qimin = min(Qimin, Qi)
+        if Qi > 0.0 and Qo > 0.0:
+            wco, wci = pure_rolling_cage_speeds(w, ai, ao, gD)
+            sco += wco; sci += wci; npr += 1.0
         if Qo > 0.0:
             sao += ao; nao += 1.0
             Qomax = max(Qomax, Qo)
@@ -410,7 +446,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         vsl = wc * P[P_RLAND]    # land fixed (outer) or turning with the shaft (inner)
         if P[P_GUIDE] > 0.5:
             vsl = (wc - w) * P[P_RLAND]
-        muf = P[P_MULAND] * math.tanh(vsl / 0.01)
+        muf = (P[P_MUBL] if lube else P[P_MULAND]) * math.tanh(vsl / 0.01)
         TC -= muf * Fl * P[P_RLAND]
         P_ld += muf * Fl * vsl
         if P[P_GUIDE] > 0.5:
@@ -423,7 +459,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         R = P[P_RLAND]
         B = P[P_WLAND]
         wg = w if P[P_GUIDE] > 0.5 else 0.0
-        eps = min(e / cg, 0.95)
+        eps = min(e / cg, P[P_EPSMAX])
         Us = R * (wg + wc)
         if e > 1e-15:
             ex = xc / e
@@ -579,6 +615,25 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     co_ = math.cos(amo - bet)
     diag[O_PURE_ROLLING_CAGE_SPEED_JH] = w * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci_ / co_)
     diag[O_P_MAX] = pmax
+    diag[O_CAGE_SPEED_PURE_ROLLING_OUTER] = sco / npr if npr > 0 else diag[O_PURE_ROLLING_CAGE_SPEED_JH]
+    diag[O_CAGE_SPEED_PURE_ROLLING_INNER] = sci / npr if npr > 0 else diag[O_PURE_ROLLING_CAGE_SPEED_JH]
+
+
+@njit(cache=True)
+def pure_rolling_cage_speeds(w, ai, ao, gD):
+    """Pure-rolling cage (ball orbital) speed [rad/s] of one ball with contact angles ai, ao [rad] at shaft
+    speed w [rad/s] (inner ring turning, outer fixed), gD = D / dm: (outer-raceway control, inner-raceway
+    control). Harris & Kotzalas Vol. 2 Ch. 3 (Jones' raceway control): the ball rolls without slip at both
+    contact centres, its spin axis at tan(beta) = sin(ao) / (cos(ao) + gD) (outer control) or
+    sin(ai) / (cos(ai) - gD) (inner control), and
+    w_c = w (1 - gD cos ai) / [(1 - gD cos ai) + (1 + gD cos ao) cos(ai - beta) / cos(ao - beta)]."""
+    gi = gD * math.cos(ai)
+    go = gD * math.cos(ao)
+    bo = math.atan2(math.sin(ao), math.cos(ao) + gD)
+    bi = math.atan2(math.sin(ai), math.cos(ai) - gD)
+    wo = w * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * math.cos(ai - bo) / math.cos(ao - bo))
+    wi = w * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * math.cos(ai - bi) / math.cos(ao - bi))
+    return wo, wi
 
 
 @njit(cache=True)

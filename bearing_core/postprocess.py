@@ -86,12 +86,17 @@ def plot_dynamics(d: dict, path, title: str = ""):
     a = ax[0, 0]
     a.plot(t, d["shaft_speed"] * rpm, label="shaft")
     a.plot(t, d["cage_speed"] * rpm, label="cage")
-    a.plot(t, d["pure_rolling_cage_speed"] * rpm, "--", label="cage, theoretical (seed 000 Eq. 26)")
+    a.plot(t, d["pure_rolling_cage_speed"] * rpm, "--", label="seed 000 Eq. 26 (spin-free, mean angles)")
+    if "cage_speed_pure_rolling_outer" in d:    # raceway-control pure rolling at the balls' angles (skid.py)
+        a.plot(t, d["cage_speed_pure_rolling_outer"] * rpm, "-.", label="pure rolling, outer-raceway control")
+        a.plot(t, d["cage_speed_pure_rolling_inner"] * rpm, ":", label="pure rolling, inner-raceway control")
     a.set_ylabel("speed [rpm]")
     a = ax[0, 1]
     w = np.where(d["shaft_speed"] > 0, d["shaft_speed"], np.nan)
     a.plot(t, d["cage_speed"] / w, label="CSR")
-    a.plot(t, d["pure_rolling_cage_speed"] / w, "--", label="theoretical CSR")
+    a.plot(t, d["pure_rolling_cage_speed"] / w, "--", label="seed 000 Eq. 26 CSR")
+    if "cage_speed_pure_rolling_outer" in d:
+        a.plot(t, d["cage_speed_pure_rolling_outer"] / w, "-.", label="outer-raceway control CSR")
     a.set_ylabel("cage / shaft speed [-]")
     a = ax[1, 0]
     a.plot(t, d["friction_torque"])

@@ -78,6 +78,49 @@ MATERIAL_THERMAL = {
 }
 
 
+# Highest temperature [K] at which each oil may run (bulk / component temperature); beyond it the oil
+# oxidises or cokes quickly and the bearing is in thermal runaway. Values recalled from memory, not
+# re-checked against the sources:
+#  * mineral oils (ISO VG 32 / 68, naphthenic, seed 003's oil): 120 degC -- the upper operating temperature
+#    of mineral oils in rolling bearings (SKF Rolling bearings catalogue PUB BU/P1 17000 EN (2018),
+#    'Lubrication', oil selection: mineral oils up to about 100-120 degC);
+#  * MIL-PRF-23699 polyol ester: 200 degC -- the bulk oil temperature these turbine oils are qualified for
+#    (MIL-PRF-23699 class; Zaretsky (ed.), STLE Tribology for Aerospace Applications (1997), oil chapter);
+#  * synthetic paraffinic (PAO): 150 degC (same SKF catalogue chapter: synthetic hydrocarbons ~150 degC).
+OIL_T_MAX = {
+    "iso-vg32-mineral": (393.15, "mineral oil, SKF Rolling bearings catalogue (2018) 'Lubrication'"),
+    "iso-vg68-mineral": (393.15, "mineral oil, SKF Rolling bearings catalogue (2018) 'Lubrication'"),
+    "naphthenic-mineral": (393.15, "mineral oil, SKF Rolling bearings catalogue (2018) 'Lubrication'"),
+    "seed003-oil": (393.15, "taken as a mineral oil (seed 003 gives no type)"),
+    "mil-prf-23699-ester": (473.15, "MIL-PRF-23699 ester turbine oil bulk temperature limit"),
+    "synthetic-paraffinic": (423.15, "synthetic hydrocarbon (PAO), SKF Rolling bearings catalogue (2018)"),
+    "santotrac-50": (393.15, "traction fluid (cycloaliphatic hydrocarbon): no limit at hand, the mineral-oil "
+                             "limit is assumed"),
+}
+OIL_T_MAX_DEFAULT = (393.15, "unknown oil: the mineral-oil limit")
+
+
+class ThermalRunaway(RuntimeError):
+    """A node of the thermal network passed the lubricant's temperature limit (the losses exceed what the
+    bearing can reject): ``temperatures`` [K] by node, ``T_max`` [K] and ``oil``."""
+
+    def __init__(self, temperatures: dict, T_max: float, oil: str, where: str = ""):
+        self.temperatures = dict(temperatures)
+        self.T_max = T_max
+        self.oil = oil
+        hot = max(self.temperatures, key=self.temperatures.get)
+        super().__init__(
+            f"thermal runaway{(' ' + where) if where else ''}: {hot} temperature "
+            f"{self.temperatures[hot]:.0f} K ({self.temperatures[hot] - 273.15:.0f} degC) exceeds the "
+            f"{T_max:.0f} K ({T_max - 273.15:.0f} degC) limit of oil '{oil}'; the losses are more than the "
+            "bearing and its cooling can reject (more oil flow, a lower speed or load, or a lighter oil)")
+
+
+def oil_temperature_limit(oil_name: str) -> float:
+    """Highest permissible temperature [K] of the named oil (OIL_T_MAX)."""
+    return OIL_T_MAX.get(oil_name, OIL_T_MAX_DEFAULT)[0]
+
+
 def material_thermal(name: str) -> tuple[float, float]:
     if name not in MATERIAL_THERMAL:
         raise BearingInputError("material", name, "one of " + ", ".join(sorted(MATERIAL_THERMAL)))
@@ -409,6 +452,21 @@ class ThermalNetwork:
     def energy_residual(self) -> float:
         """E_generated - E_ambient - E_flow - stored [J] (zero to round-off for the backward-Euler ledger)."""
         return self.E_generated - self.E_ambient - self.E_flow - self.stored_energy()
+
+    @property
+    def T_max(self) -> float:
+        """Temperature limit [K] of the network's oil (OIL_T_MAX)."""
+        return oil_temperature_limit(self.oil.name)
+
+    def runaway(self, T=None) -> bool:
+        """True when a node temperature (default: current) is past the oil's limit, or not finite."""
+        T = self.T if T is None else np.asarray(T)
+        return bool(not np.all(np.isfinite(T)) or np.max(T) > self.T_max)
+
+    def check_runaway(self, where: str = ""):
+        """Raise ThermalRunaway if runaway()."""
+        if self.runaway():
+            raise ThermalRunaway(self.temperatures(), self.T_max, self.oil.name, where)
 
     def time_constants(self) -> np.ndarray:
         """Thermal time constants [s] of the network: 1 / eigenvalues of C^-1 (L + diag(g_out))."""

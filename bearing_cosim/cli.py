@@ -52,6 +52,12 @@ def build_parser():
     s.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                    help="set any FMU parameter by its modelDescription name, typed from it (repeatable), "
                         "e.g. --param integrator=rk4 --param thermal=true")
+    s.add_argument("--lubrication", choices=("auto", "oil", "solid", "dry"), default="auto",
+                   help="lubrication regime (FMU parameter lubrication): oil | solid | dry | auto (from --traction)")
+    s.add_argument("--oil", default="", help="oil name for viscosity (bearing_core.lubricants; default: the "
+                                             "traction curve's oil)")
+    s.add_argument("--oil-temperature-c", type=core_cli._finite("--oil-temperature-c"), default=40.0,
+                   help="oil temperature [degC] (thermal network off)")
     s.add_argument("--out", default="out")
     s.set_defaults(func=cmd_simulate)
     _accept_negative_numbers(p)
@@ -105,7 +111,8 @@ def cmd_simulate(a) -> int:
     if a.stop_time is not None and a.stop_time <= 0:
         raise core_cli._BadArg(f"--stop-time = {a.stop_time} is invalid; allowed: > 0 s")
     params = {"bearing": a.bearing, "traction_model": a.traction, "friction_coefficient": a.mu,
-              "cage_friction_coefficient": a.mu_cage}
+              "cage_friction_coefficient": a.mu_cage, "lubrication": a.lubrication, "oil": a.oil,
+              "oil_temperature": a.oil_temperature_c + 273.15}
     params.update(fmu_parameters(a.fmu, a.param))
     s = simulate(a.fmu, a.profile, (a.fx, a.fy, a.fz, a.mx, a.my), a.step, params, a.out, stop_time=a.stop_time)
     print(f"wrote {s['csv']}, {s['plot']} and {Path(a.out) / 'fmu_simulation_summary.json'}")

@@ -74,7 +74,7 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
     outd.mkdir(parents=True, exist_ok=True)
     from bearing_core.postprocess import plot_dynamics
     csv_path = outd / "fmu_simulation.csv"
-    units = {v.name: (v.unit or "1") for v in md.modelVariables}
+    units = {v.name: (getattr(v, "unit", None) or "1") for v in md.modelVariables}
     with csv_path.open("w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["time [s]", "shaft_speed [rad/s]"] + [f"{k} [{units[k]}]" for k in outputs])
@@ -90,9 +90,13 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
          "P_damping": res["heat_flux_damping"], "Fx": res["reaction_Fx"], "Fy": res["reaction_Fy"],
          "Fz": res["reaction_Fz"], "ball0_wr": res["ball0_omega_r"], "ball0_wt": res["ball0_omega_t"],
          "ball0_wz": res["ball0_omega_z"]}
+    if "cage_speed_pure_rolling_outer" in res.dtype.names:
+        d["cage_speed_pure_rolling_outer"] = res["cage_speed_pure_rolling_outer"]
+        d["cage_speed_pure_rolling_inner"] = res["cage_speed_pure_rolling_inner"]
     png = plot_dynamics(d, outd / "fmu_simulation.png", title=f"bearing FMU via fmpy, profile {profile}, "
                                                               f"loads {tuple(loads)} N / N m, step {step:g} s")
     tail = res["time"] >= res["time"][-1] - 0.1
+    fr_png, refs = plot_friction_references(res, speed, params or {}, outd / "fmu_friction.png", loads, prof_loads, t)
     summary = {"fmu": str(fmu), "profile": profile, "loads": dict(zip(LOAD_COLS, map(float, loads))),
                "step_s": step, "parameters": params or {}, "simulated_s": float(t[-1] - t[0]), "wall_s": wall,
                "final_cage_speed_rpm": float(res["cage_speed"][tail].mean() / RPM),
@@ -100,6 +104,76 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
                "final_cage_shaft_ratio_theory": float(res["cage_shaft_ratio_theory"][tail].mean()),
                "final_friction_torque_Nm": float(res["friction_torque"][tail].mean()),
                "final_heat_flux_W": float(res["heat_flux_total"][tail].mean()),
-               "csv": str(csv_path), "plot": str(png)}
+               "csv": str(csv_path), "plot": str(png), "friction_plot": str(fr_png)}
+    if "cage_speed_pure_rolling_outer" in res.dtype.names:
+        from bearing_core.skid import SKID_LABELS, classify_skid
+        wc = float(res["cage_speed"][tail].mean())
+        wo = float(res["cage_speed_pure_rolling_outer"][tail].mean())
+        st, slip = classify_skid(wc, wo)
+        summary.update({"final_cage_speed_pure_rolling_outer_rpm": wo / RPM,
+                        "final_cage_speed_pure_rolling_inner_rpm":
+                            float(res["cage_speed_pure_rolling_inner"][tail].mean() / RPM),
+                        "final_cage_slip_ratio": slip, "final_skid_state": SKID_LABELS[st]})
+    if refs is not None:
+        summary.update({"final_skf_friction_torque_Nm": float(refs["skf"][tail].mean()),
+                        "final_palmgren_friction_torque_Nm": float(refs["palmgren"][tail].mean()),
+                        "reference_viscosity_mm2_s": refs["nu_mm2s"], "reference_envelope": refs["envelope"]})
+    if "thermal_runaway" in res.dtype.names:
+        summary["thermal_runaway"] = bool(np.any(res["thermal_runaway"] > 0))
     (outd / "fmu_simulation_summary.json").write_text(json.dumps(summary, indent=1))
     return summary
+
+
+HEAT_SOURCES = (("heat_flux_race_inner", "ball-inner race"), ("heat_flux_race_outer", "ball-outer race"),
+                ("heat_flux_pocket", "ball-pocket"), ("heat_flux_land", "cage land"), ("heat_flux_drag", "ball drag"),
+                ("heat_flux_churn_cage", "churning, cage"), ("heat_flux_churn_ring", "churning, inner ring"),
+                ("heat_flux_damping", "contact damping"))
+
+
+def plot_friction_references(res, speed, params, path, loads, prof_loads, t_prof):
+    """Friction torque of the run next to the SKF (2004) and Palmgren estimates at the same speed, loads and
+    oil viscosity (bearing_core.friction_models; oil at the oil_temperature parameter), and the heat by
+    source (stacked). Returns (png path, reference dict or None when the run is not oil-lubricated)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from bearing_core.geometry import load_preset
+    from bearing_core.lubricants import TRACTION_OIL, get_oil
+    from bearing_core.friction_models import reference_torques
+
+    tt = res["time"]
+    lub = params.get("lubrication", "auto")
+    oil_run = lub == "oil" or (lub == "auto" and params.get("traction_model", "lubricated") == "lubricated")
+    refs = None
+    fig, ax = plt.subplots(2, 1, figsize=(9, 7), sharex=True)
+    ax[0].plot(tt, res["friction_torque"], lw=1, label="dynamics (FMU)")
+    if oil_run:
+        g = load_preset(params.get("bearing", "7218B"))
+        oil = params.get("oil") or TRACTION_OIL.get(params.get("lubricant", "generic-mineral-oil"), "iso-vg32-mineral")
+        T = float(params.get("oil_temperature", 313.15))
+        nu = get_oil(oil).nu(T) * 1e6
+        Fr = np.hypot(res["reaction_Fx"], res["reaction_Fy"])
+        Fa = np.abs(res["reaction_Fz"])
+        refs = reference_torques(g, speed / RPM, nu, Fr, Fa)
+        refs["nu_mm2s"] = nu
+        ax[0].plot(tt, refs["skf"], "--", lw=1.2, label="SKF model (2004), 72 B constants")
+        ax[0].plot(tt, refs["palmgren"], ":", lw=1.5, label="Palmgren (f0 = 2)")
+        ax[0].set_title(f"friction torque, {oil} at {T - 273.15:.0f} degC (nu = {nu:.1f} mm^2/s); "
+                        f"d x D {refs['d_mm']:.0f} x {refs['D_mm']:.0f} mm ({refs['envelope']})", fontsize=8)
+    else:
+        ax[0].set_title(f"friction torque ({lub} lubrication: the oil-film references do not apply)", fontsize=8)
+    ax[0].set_ylabel("torque [N m]")
+    ax[0].legend(fontsize=8)
+    base = np.zeros_like(tt)
+    for k, lab in HEAT_SOURCES:
+        if k in res.dtype.names:
+            v = np.clip(res[k], 0.0, None)
+            ax[1].fill_between(tt, base, base + v, label=lab, lw=0)
+            base = base + v
+    ax[1].set_ylabel("heat by source [W]")
+    ax[1].set_xlabel("time [s]")
+    ax[1].legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path, refs

@@ -10,11 +10,11 @@ from __future__ import annotations
 import math
 from xml.etree.ElementTree import Element, SubElement
 
-from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Real, String
+from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
 from pythonfmu.enums import Fmi2Initial, Fmi2Status
 from pythonfmu.default_experiment import DefaultExperiment
 
-from bearing_core.cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_SPEC  # light, no numba
+from bearing_core.cosim_spec import INPUT_NAMES, INPUT_UNITS, INT_OUTPUT_SPEC, OUTPUT_SPEC  # light, no numba
 
 # Start values of the inputs: a loaded bearing at a moderate speed, so that the default experiment
 # initialises and runs in every master (7218B: 3000 rpm, Fx 1 kN radial, Fz 3 kN axial; the axial load
@@ -62,6 +62,9 @@ _PARAMS = (
     ("oil_inlet_temperature", float, 0.0, "K", "oil supply temperature (0: ambient)", (0.0, 473.15)),
     ("oil_flow_rate", float, 0.0, "m^3/s", "circulating oil flow through the bearing", (0.0, 0.1)),
     ("thermal_time_scale", float, 1.0, "1", "thermal seconds per simulated second (> 1 fast-forwards heating)", (1e-3, 1e6)),
+    ("lubrication", str, "auto", None, "lubrication regime of races and cage: oil (lubricated traction, oil-lubricated "
+     "pocket and land) | solid (Kalker/Coulomb traction with friction_coefficient, dry cage) | dry (Coulomb "
+     "everywhere) | auto (oil for traction_model lubricated, else solid)", None),
 )
 
 
@@ -102,6 +105,11 @@ class BearingFMU(Fmi2Slave):
             self.register_variable(Real(name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
                                         initial=Fmi2Initial.calculated, description=desc))
             self._units[name] = unit
+        for name, unit, desc in INT_OUTPUT_SPEC:
+            setattr(self, name, 0)
+            self.register_variable(Integer(name, causality=Fmi2Causality.output,
+                                           variability=Fmi2Variability.discrete, initial=Fmi2Initial.calculated,
+                                           description=desc))
 
     # ---- model description: units, ranges and InitialUnknowns (plain pythonfmu writes neither) ----
     def to_xml(self, model_options=dict()) -> Element:
@@ -161,6 +169,7 @@ class BearingFMU(Fmi2Slave):
             self._session.step(current_time, step_size, self._inputs())
         except StepRejected as e:
             self.log(f"step at t = {current_time:.9g} s rejected: {e}", Fmi2Status.discard)
+            self._publish()          # flags such as thermal_runaway are visible after the discarded step
             return False
         except Exception as e:  # never let an exception reach the host (it would be fmi2Fatal)
             self.log(f"step at t = {current_time:.9g} s failed: {type(e).__name__}: {e}", Fmi2Status.error)
