@@ -1,0 +1,176 @@
+"""Metadata, enumerations, geometry parameters and packaging of the bearing FMU (FMI 2.0, modelDescription.xml as
+the FMI 2.0.4 standard defines it; checked by fmpy's validator and by the independent FMU Manipulation Toolbox)."""
+import math
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+from xml.etree import ElementTree as ET
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(HERE))
+from test_fmu import drive, fmu  # noqa: E402,F401  (session fixture: the FMU built once)
+
+
+def _md(path):
+    with zipfile.ZipFile(path) as z:
+        return ET.fromstring(z.read("modelDescription.xml"))
+
+
+def _var(md, name):
+    return md.find(f"ModelVariables/ScalarVariable[@name='{name}']")
+
+
+def _items(md, name):
+    st = md.find(f"TypeDefinitions/SimpleType[@name='{_var(md, name).find('Enumeration').get('declaredType')}']")
+    return {it.get("name"): int(it.get("value")) for it in st.find("Enumeration")}
+
+
+def test_fmpy_validate_no_messages(fmu):
+    from fmpy.validation import validate_fmu
+    assert validate_fmu(fmu["path"]) == []
+
+
+def test_fmutool_check_no_messages(fmu):
+    """fmutool -check (FMU Manipulation Toolbox, pip fmu-manipulation-toolbox): generic conformity (XSD) and
+    semantic checks against FMI 2.0: no warning or error."""
+    exe = shutil.which("fmutool") or str(Path(sys.executable).parent / "fmutool")
+    if not Path(exe).exists():
+        pytest.skip("fmu-manipulation-toolbox (fmutool) is not installed")
+    r = subprocess.run([exe, "-input", fmu["path"], "-check"], capture_output=True, text=True, timeout=120)
+    text = r.stdout + r.stderr
+    assert r.returncode == 0, text
+    bad = [ln for ln in text.splitlines() if ln.split("|")[0].strip() not in ("INFO", "")]
+    assert not bad, text
+    assert "compliant with FMI-2.0" in text and "No semantic error" in text
+
+
+def test_metadata_units_and_structure(fmu):
+    """Version/license from pyproject.toml; display units rpm (factor 30/pi) and degC (offset -273.15) as FMI 2.0
+    DisplayUnit (display = factor * value + offset, FMI 2.0.4 section 2.2.2); quantities; Modelica unit syntax;
+    outputs without direct feedthrough (dependencies="")."""
+    import tomllib
+    proj = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    md = _md(fmu["path"])
+    assert md.get("version") == proj["version"] and md.get("license") == proj["license"]
+    assert md.get("copyright") and md.get("author") and md.get("author") != "bearing-tribodynamics"
+    units = {u.get("name"): u for u in md.find("UnitDefinitions")}
+    rpm = units["rad/s"].find("DisplayUnit[@name='rpm']")
+    assert abs(float(rpm.get("factor")) - 30.0 / math.pi) < 1e-12
+    degc = units["K"].find("DisplayUnit[@name='degC']")
+    assert float(degc.get("factor", 1.0)) == 1.0 and float(degc.get("offset")) == -273.15
+    for u in units:   # Modelica unit syntax: no '^', no spaces
+        assert "^" not in u and " " not in u, u
+    assert "m3/s" in units
+    sp = _var(md, "shaft_speed").find("Real")
+    assert sp.get("unit") == "rad/s" and sp.get("displayUnit") == "rpm" and sp.get("quantity") == "AngularVelocity"
+    assert _var(md, "temperature_ball").find("Real").get("displayUnit") == "degC"
+    assert _var(md, "friction_torque").find("Real").get("quantity") == "Torque"
+    assert float(_var(md, "reaction_Fx").find("Real").get("nominal")) > 0
+    outs = md.find("ModelStructure/Outputs")
+    assert len(outs) > 0 and all(u.get("dependencies") == "" for u in outs)
+
+
+def test_guid_is_a_content_hash(fmu, tmp_path):
+    """Two builds of the same sources carry the same GUID; another start value gives another GUID."""
+    from build_fmu import build, build_variant
+    g1 = _md(fmu["path"]).get("guid")
+    g2 = _md(build(tmp_path / "b2")).get("guid")
+    assert g1 == g2 and len(g1) == 38
+    g3 = _md(build_variant("BearingFMUCoulomb", {"traction_model": "coulomb"}, tmp_path / "b3")).get("guid")
+    assert g3 != g1
+
+
+def test_enumerations_declared_for_choices(fmu):
+    """Every choice has an FMI Enumeration (drop-down) beside its String parameter, starting at the same item."""
+    md = _md(fmu["path"])
+    for name, items in (("traction_model", {"lubricated", "coulomb", "kalker"}), ("coupling", {"load", "displacement"}),
+                        ("outer_mounting", {"fixed", "elastic"}),
+                        ("integrator", {"auto", "adaptive", "implicit", "rk4"}), ("bearing", {"7218B", "7008-ma2023"})):
+        ename = "bearing_preset" if name == "bearing" else f"{name}_choice"
+        en = _var(md, ename).find("Enumeration")
+        assert en is not None and items <= set(_items(md, ename))
+        start = _var(md, name).find("String").get("start")
+        assert _items(md, ename)[start] == int(en.get("start"))
+    assert _var(md, "number_of_balls").find("Integer").get("min") == "0"
+
+
+def test_enumerations_settable_by_value(fmu, tmp_path):
+    """bearing_preset and traction_model_choice set through fmi2SetInteger (item values, as SSP runners do) give
+    exactly the run of the String parameters with the same items; an out-of-range item value and a conflicting
+    String/Enumeration pair are refused with fmi2Error naming the parameters."""
+    md = _md(fmu["path"])
+    pre, tm = _items(md, "bearing_preset"), _items(md, "traction_model_choice")
+    inp = {"shaft_speed": 500 * math.pi / 30, "Fx": 200.0, "Fz": 1000.0}
+    spec = {"start_inputs": inp, "steps": [[1e-3, inp]] * 5, "outputs": ["cage_speed", "friction_torque"]}
+    a = drive(fmu, dict(spec, params={"bearing_preset": pre["7008-ma2023"], "traction_model_choice": tm["coulomb"]}),
+              tmp_path, "a.json")
+    b = drive(fmu, dict(spec, params={"bearing": "7008-ma2023", "traction_model": "coulomb"}), tmp_path, "b.json")
+    assert a["init_error"] is None and [r["values"] for r in a["rows"]] == [r["values"] for r in b["rows"]]
+    c = drive(fmu, dict(spec, params={"bearing": "7218B"}), tmp_path, "c.json")
+    assert [r["values"] for r in a["rows"]] != [r["values"] for r in c["rows"]]
+    bad = drive(fmu, dict(spec, params={"traction_model_choice": 9}), tmp_path, "bad.json")
+    assert bad["init_error"] and "traction_model_choice = 9 is not an item value" in bad["log"]
+    both = drive(fmu, dict(spec, params={"bearing": "wan-105", "bearing_preset": pre["7008-ma2023"]}), tmp_path,
+                 "both.json")
+    assert both["init_error"] and "bearing_preset" in both["log"] and "wan-105" in both["log"]
+
+
+def test_geometry_parameters(fmu, tmp_path):
+    """number_of_balls / ball_diameter override the bearing definition: a 7218B with Z = 12 instead of 16 carries
+    the same load on fewer balls, so its largest contact load rises (Stribeck: Q_max ~ 1/Z); impossible geometry
+    is refused with fmi2Error naming the parameter and its allowed range."""
+    inp = {"shaft_speed": 1000 * math.pi / 30, "Fx": 1000.0, "Fz": 3000.0}
+    spec = {"start_inputs": inp, "steps": [[1e-3, inp]] * 2, "outputs": ["Q_i_max"]}
+    z16 = drive(fmu, dict(spec, params={}), tmp_path, "z16.json")
+    z12 = drive(fmu, dict(spec, params={"number_of_balls": 12}), tmp_path, "z12.json")
+    ratio = z12["rows"][-1]["values"][0] / z16["rows"][-1]["values"][0]
+    assert 1.2 < ratio < 1.45, ratio     # 16/12 = 1.33 with the load shared alike
+    for params, name in (({"number_of_balls": 40}, "number_of_balls"), ({"ball_diameter": 0.07}, "ball_diameter"),
+                         ({"inner_groove_conformity": 0.45}, "inner_groove_conformity")):
+        bad = drive(fmu, dict(spec, params=params), tmp_path, f"{name}.json")
+        assert bad["init_error"] and f"{name} = " in bad["log"] and "allowed" in bad["log"], bad["log"][-600:]
+
+
+def _cli(*args, cwd=None):
+    import os
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    return subprocess.run([sys.executable, "-m", "bearing_cosim.cli", *args], capture_output=True, text=True,
+                          env=env, cwd=cwd, timeout=300)
+
+
+def test_cli_build_and_validate_fmu(tmp_path):
+    """`bearing build-fmu` builds from the package's sources (any working directory); `bearing validate-fmu`
+    prints fmpy's verdict, exit 0 on a valid FMU and 1 with the problem on a broken one."""
+    r = _cli("build-fmu", "--dest", str(tmp_path / "d"), cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    fmu = tmp_path / "d" / "BearingFMU.fmu"
+    r = _cli("validate-fmu", str(fmu))
+    assert r.returncode == 0 and "valid" in r.stdout, r.stdout + r.stderr
+    bad = tmp_path / "bad.fmu"
+    bad.write_text("not a zip")
+    r = _cli("validate-fmu", str(bad))
+    assert r.returncode == 1 and "problem" in r.stdout
+
+
+def test_wheel_ships_fmu_sources(tmp_path):
+    """`pip wheel --no-deps .` gives a wheel with the FMU sources (slave, bridge, native C layer) as package data of
+    bearing_cosim, the build module, and the `fmu` extra."""
+    r = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(tmp_path), str(ROOT)],
+                       capture_output=True, text=True, timeout=600)
+    if r.returncode != 0 and ("Could not find a version" in r.stderr or "No matching distribution" in r.stderr):
+        pytest.skip("build backend (setuptools>=77) not available offline: " + r.stderr[-300:])
+    assert r.returncode == 0, r.stderr[-2000:]
+    whl = next(tmp_path.glob("bearing_tribodynamics-*.whl"))
+    names = set(zipfile.ZipFile(whl).namelist())
+    for f in ("bearing_cosim/fmu_build.py", "bearing_cosim/fmu_src/bearing_fmu.py",
+              "bearing_cosim/fmu_src/native/bearing_fmi2.c", "bearing_cosim/fmu_src/native/fmi2_min.h",
+              "bearing_cosim/fmu_src/native/bearing_fmi2_bridge.py", "bearing_core/presets/7218B.json"):
+        assert f in names, f
+    meta = next(n for n in names if n.endswith(".dist-info/METADATA"))
+    text = zipfile.ZipFile(whl).read(meta).decode()
+    assert "Provides-Extra: fmu" in text and "Requires-Dist: fmpy" in text
