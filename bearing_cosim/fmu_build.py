@@ -114,7 +114,7 @@ def _compile(out: Path, target: str):
         raise RuntimeError(f"compiling the native FMI layer failed ({' '.join(cmd)}):\n{r.stderr}")
 
 
-def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path) -> Path:
+def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, reference: bool = False) -> Path:
     """slave_sources: {module name: source text}; main_module holds class_name."""
     import pythonfmu
     dest = Path(dest)
@@ -208,26 +208,175 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path) -
             binaries[dll] = 0o755
 
         fmu = dest / f"{model_id}.fmu"
-        tmp = fmu.with_suffix(".fmu.tmp")
-        with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
-            def add(arcname, data, mode=0o644):
-                zi = zipfile.ZipInfo(arcname, date_time=(2020, 1, 1, 0, 0, 0))
-                zi.external_attr = (0o100000 | mode) << 16
-                zi.compress_type = zipfile.ZIP_DEFLATED
-                z.writestr(zi, data)
-            add("modelDescription.xml", md)
-            for f in sorted(binaries):
-                add(str(f.relative_to(stage)).replace(os.sep, "/"), f.read_bytes(), binaries[f])
-            for f in sorted((stage / "resources").rglob("*")):
-                if f.is_file() and "__pycache__" not in f.parts:
-                    add(str(f.relative_to(stage)).replace(os.sep, "/"), f.read_bytes())
-        os.replace(tmp, fmu)
+        doc = stage / "documentation"
+        doc.mkdir()
+        osp = osp_model_description(xml)
+        (doc / f"{model_id}_OspModelDescription.xml").write_text(osp, encoding="utf-8")
+        (dest / f"{model_id}_OspModelDescription.xml").write_text(osp, encoding="utf-8")   # libcosim reads it there
+        (doc / "index.html").write_text(documentation_html(xml), encoding="utf-8")
+        _zip(stage, md, binaries, fmu)
+        if reference:
+            # run the cross-check experiment on the FMU just built (own process), then ship the results
+            env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT)] + [p for p in [os.environ.get("PYTHONPATH")]
+                                                                             if p]))
+            r = subprocess.run([sys.executable, "-m", "bearing_cosim.fmu_reference", str(fmu), str(doc)],
+                               capture_output=True, text=True, env=env)
+            if r.returncode != 0 or not (doc / f"{model_id}_ref.csv").is_file():
+                raise RuntimeError(f"the reference run failed:\n{r.stdout[-2000:]}\n{r.stderr[-3000:]}")
+            (doc / "index.html").write_text(documentation_html(xml, ref_files=True), encoding="utf-8")
+            for f in doc.glob(f"{model_id}_*"):
+                if f.suffix in (".csv", ".opt"):
+                    shutil.copyfile(f, dest / f.name)
+            _zip(stage, md, binaries, fmu)
     return fmu
 
 
-def build(dest: Path | str = "dist") -> Path:
+def _zip(stage: Path, md: bytes, binaries: dict, fmu: Path):
+    tmp = fmu.with_suffix(".fmu.tmp")
+    with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
+        def add(arcname, data, mode=0o644):
+            zi = zipfile.ZipInfo(arcname, date_time=(2020, 1, 1, 0, 0, 0))
+            zi.external_attr = (0o100000 | mode) << 16
+            zi.compress_type = zipfile.ZIP_DEFLATED
+            z.writestr(zi, data)
+        add("modelDescription.xml", md)
+        for f in sorted(binaries):
+            add(str(f.relative_to(stage)).replace(os.sep, "/"), f.read_bytes(), binaries[f])
+        for top in ("documentation", "resources"):
+            for f in sorted((stage / top).rglob("*")):
+                if f.is_file() and "__pycache__" not in f.parts:
+                    add(str(f.relative_to(stage)).replace(os.sep, "/"), f.read_bytes())
+    os.replace(tmp, fmu)
+
+
+# ---- OSP model description (OSP Interface Specification 1.0: variable groups of the FMU's variables) ----------
+_OSP_NS = "https://open-simulation-platform.com/OspModelDescription/1.0.0"
+
+
+def osp_model_description(xml) -> str:
+    """<modelIdentifier>_OspModelDescription.xml: shaft speed with friction torque as an angular mechanical port
+    (AngularVelocity in, Torque out), and forces with displacements as linear mechanical quasi-ports (load
+    coupling: loads Fx, Fy, Fz in, inner-ring displacements out; displacement coupling: pose dx, dy, dz in,
+    reactions out)."""
+    from xml.sax.saxutils import quoteattr
+    units = {sv.get("name"): sv.find("Real").get("unit") for sv in xml.find("ModelVariables")
+             if sv.find("Real") is not None}
+    used = set()
+
+    def group(tag, name, refs, ind):
+        for r in refs:
+            used.add(units[r])
+        inner = "".join(f'\n{ind}  <Variable ref={quoteattr(r)} unit={quoteattr(units[r])}/>' for r in refs)
+        return f'{ind}<{tag} name={quoteattr(name)}>{inner}\n{ind}</{tag}>'
+
+    def port(tag, name, effort, eff_refs, flow, flow_refs):
+        return "\n".join([f'    <{tag} name={quoteattr(name)}>', group(effort, f"{name}.{effort.lower()}", eff_refs, "      "),
+                          group(flow, f"{name}.{flow.lower()}", flow_refs, "      "), f'    </{tag}>'])
+
+    groups = [port("AngularMechanicalPort", "shaft", "Torque", ["friction_torque"], "AngularVelocity", ["shaft_speed"]),
+              port("LinearMechanicalQuasiPort", "load_coupling", "Force", ["Fx", "Fy", "Fz"], "LinearDisplacement",
+                   ["ir_x", "ir_y", "ir_z"]),
+              port("LinearMechanicalQuasiPort", "displacement_coupling", "Force",
+                   ["reaction_Fx", "reaction_Fy", "reaction_Fz"], "LinearDisplacement", ["dx", "dy", "dz"]),
+              port("AngularMechanicalQuasiPort", "tilt_load_coupling", "Torque", ["Mx", "My"], "AngularDisplacement",
+                   ["ir_tx", "ir_ty"]),
+              port("AngularMechanicalQuasiPort", "tilt_displacement_coupling", "Torque", ["reaction_Mx", "reaction_My"],
+                   "AngularDisplacement", ["tx", "ty"])]
+    ud = {u.get("name"): u.find("BaseUnit") for u in xml.find("UnitDefinitions")}
+    unit_xml = []
+    for u in sorted(used):
+        exps = " ".join(f'{k}="{v}"' for k, v in ud[u].attrib.items())
+        unit_xml.append(f'    <Unit name={quoteattr(u)}><BaseUnit {exps}/></Unit>')
+    return "\n".join(['<?xml version="1.0" encoding="UTF-8"?>',
+                      f'<OspModelDescription xmlns="{_OSP_NS}" version="1.0">', '  <UnitDefinitions>', *unit_xml,
+                      '  </UnitDefinitions>', '  <VariableGroups>', *groups, '  </VariableGroups>',
+                      '</OspModelDescription>']) + "\n"
+
+
+# ---- documentation/index.html --------------------------------------------------------------------------------
+_SOURCES = (
+    "T. A. Harris, M. N. Kotzalas, Rolling Bearing Analysis, 5th ed., Vols. 1-2, CRC Press, 2007 (geometry, "
+    "quasi-statics, Jones-Harris race control)",
+    "P. K. Gupta, Advanced Dynamics of Rolling Elements, Springer, 1984 (ball and cage dynamics)",
+    "B. J. Hamrock, D. Dowson, Ball Bearing Lubrication, Wiley, 1981 (Hertz contact approximations, EHL film)",
+    "J. J. Kalker, Three-Dimensional Elastic Bodies in Rolling Contact, Kluwer, 1990; FASTSIM, Vehicle System "
+    "Dynamics 11 (1982) 1-13 (traction_model = kalker)",
+    "C. R. Evans, K. L. Johnson, Proc. IMechE 200C (1986) 313-324 (traction of lubricated contacts)",
+    "The seed papers of the project (acceleration profile and figures of seed 000; churning and the thermal "
+    "network of seed 001); docs/ of the source distribution",
+)
+
+
+def documentation_html(xml, ref_files: bool = False) -> str:
+    """documentation/index.html: model, variables (unit, start, range, description), sources, reference run."""
+    from html import escape
+    mid = xml.find("CoSimulation").get("modelIdentifier")
+    de = xml.find("DefaultExperiment")
+    types = {st.get("name"): {it.get("value"): it.get("name") for it in st.find("Enumeration")}
+             for st in (xml.find("TypeDefinitions") or [])}
+    rows = []
+    for sv in xml.find("ModelVariables"):
+        t = sv[0]
+        start = t.get("start", "")
+        if t.tag == "Enumeration" and start:
+            start = f"{start} ({types[t.get('declaredType')][start]})"
+        rng = f"[{t.get('min')}, {t.get('max')}]" if t.get("min") is not None else ""
+        unit = t.get("unit", "") + (f" (display {t.get('displayUnit')})" if t.get("displayUnit") else "")
+        items = (", ".join(f"{v} = {n}" for v, n in types[t.get("declaredType")].items())
+                 if t.tag == "Enumeration" else "")
+        rows.append("<tr>" + "".join(f"<td>{escape(str(c))}</td>" for c in (
+            sv.get("name"), sv.get("causality"), sv.get("variability"), t.tag, unit, start, rng,
+            (sv.get("description") or "") + (f" [items: {items}]" if items else ""))) + "</tr>")
+    ref = ""
+    if ref_files:
+        ref = (f"<h2>Reference run</h2><p>The default experiment ({de.get('startTime')} to {de.get('stopTime')} s, "
+               f"communication step {de.get('stepSize')} s) driven by the seed 000 acceleration profile "
+               f"(<code>{mid}_in.csv</code>: 1000 rpm to 0.5 s, then 10,000 rpm/s; Fx = 1 kN, Fz = 3 kN), run by "
+               f"fmpy: <code>{mid}_ref.csv</code>, options <code>{mid}_ref.opt</code> (FMI cross-check layout).</p>"
+               f'<p><img src="{mid}_ref.png" alt="reference run: cage speed, cage/shaft speed ratio and friction '
+               'torque"></p>')
+    else:
+        ref = ("<h2>Reference run</h2><p>Not included in this build (<code>bearing build-fmu --with-reference</code> "
+               "adds the cross-check files and a plot of the default experiment).</p>")
+    attrs = {k: xml.get(k, "") for k in ("modelName", "version", "author", "copyright", "license", "guid",
+                                          "generationTool")}
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>{escape(mid)}</title>
+<style>body{{font-family:sans-serif;max-width:70em}} td,th{{border:1px solid #ccc;padding:2px 4px;font-size:90%}}
+table{{border-collapse:collapse}}</style></head><body>
+<h1>{escape(mid)} {escape(attrs['version'])}</h1>
+<p>{escape(xml.get('description', ''))}</p>
+<p>FMI 2.0 co-simulation. {escape(attrs['copyright'])}. License: {escape(attrs['license'])}. Author:
+{escape(attrs['author'])}. GUID {escape(attrs['guid'])}. Generated by {escape(attrs['generationTool'])}.</p>
+<h2>The model</h2>
+<p>An angular-contact ball bearing with its balls, cage and inner ring as rigid bodies (Gupta-style dynamics):
+Hertz contacts between balls and races, traction integrated over each contact ellipse (lubricated traction curve,
+Coulomb friction or Kalker's FASTSIM), ball-pocket and cage-land contacts, optional oil churning and a thermal
+network. The inner ring is driven by <code>shaft_speed</code> and either loaded (<code>coupling</code> = load:
+inputs Fx..My, outputs the ring's displacements) or moved (<code>coupling</code> = displacement: inputs the ring
+pose dx..wy, outputs the reactions). Initialisation solves the quasi-static state at the initial inputs. Each
+fmi2DoStep integrates exactly to t + h with the inputs held; outputs are the state at the communication point
+(no direct feedthrough). Bad inputs return fmi2Discard (the state is kept) or fmi2Error with the reason logged.
+Choice parameters are Enumerations with String twins (set either); geometry parameters of 0 keep the bearing
+definition. SI units; display units rpm, degC, deg, mm.</p>
+{ref}
+<h2>Variables</h2>
+<table><tr><th>name</th><th>causality</th><th>variability</th><th>type</th><th>unit</th><th>start</th>
+<th>range</th><th>description</th></tr>
+{chr(10).join(rows)}
+</table>
+<h2>Sources</h2><ul>{''.join(f'<li>{escape(s)}</li>' for s in _SOURCES)}</ul>
+<p>OSP model description (libcosim): <code>{mid}_OspModelDescription.xml</code> in this folder.</p>
+</body></html>
+"""
+
+
+def build(dest: Path | str = "dist", reference: bool = False) -> Path:
+    """Build dest/BearingFMU.fmu; ``reference`` also runs the cross-check experiment on it (fmpy, a few seconds
+    to a minute with an empty numba cache) and ships <id>_in.csv, _ref.opt, _ref.csv and a plot in
+    documentation/ (copies of the CSV/opt files next to the FMU)."""
     return _build("BearingFMU", {"bearing_fmu": (FMU_SRC / "bearing_fmu.py").read_text()}, "bearing_fmu",
-                  Path(dest))
+                  Path(dest), reference)
 
 
 def build_variant(class_name: str, start_values: dict, dest: Path | str = "dist") -> Path:
@@ -254,8 +403,10 @@ def build_variant(class_name: str, start_values: dict, dest: Path | str = "dist"
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--dest", default="dist", help="output folder (default dist/)")
+    ap.add_argument("--with-reference", action="store_true",
+                    help="also run the default experiment and ship the cross-check reference files and a plot")
     a = ap.parse_args(argv)
-    fmu = build(a.dest)
+    fmu = build(a.dest, reference=a.with_reference)
     print(f"built {fmu} ({fmu.stat().st_size / 1024:.0f} KiB)")
     return 0
 

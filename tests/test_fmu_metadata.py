@@ -174,3 +174,55 @@ def test_wheel_ships_fmu_sources(tmp_path):
     meta = next(n for n in names if n.endswith(".dist-info/METADATA"))
     text = zipfile.ZipFile(whl).read(meta).decode()
     assert "Provides-Extra: fmu" in text and "Requires-Dist: fmpy" in text
+
+
+def test_documentation_and_osp_model_description(fmu):
+    """documentation/index.html lists every variable with its unit and start value; the OSP model description
+    (OSP-IS 1.0) groups shaft speed with friction torque as an AngularMechanicalPort and forces with displacements
+    as LinearMechanicalQuasiPorts, each variable an existing FMU variable with its FMU unit."""
+    md = _md(fmu["path"])
+    with zipfile.ZipFile(fmu["path"]) as z:
+        html = z.read("documentation/index.html").decode()
+        osp = ET.fromstring(z.read("documentation/BearingFMU_OspModelDescription.xml"))
+    for sv in md.find("ModelVariables"):
+        assert f"<td>{sv.get('name')}</td>" in html
+    assert "<td>rad/s (display rpm)</td>" in html
+    ns = {"o": "https://open-simulation-platform.com/OspModelDescription/1.0.0"}
+    port = osp.find("o:VariableGroups/o:AngularMechanicalPort", ns)
+    assert [v.get("ref") for v in port.findall("o:Torque/o:Variable", ns)] == ["friction_torque"]
+    assert [v.get("ref") for v in port.findall("o:AngularVelocity/o:Variable", ns)] == ["shaft_speed"]
+    quasi = osp.findall("o:VariableGroups/o:LinearMechanicalQuasiPort", ns)
+    assert quasi and all(len(q.findall("o:Force/o:Variable", ns)) == len(q.findall("o:LinearDisplacement/o:Variable",
+                                                                                    ns)) == 3 for q in quasi)
+    units = {u.get("name") for u in osp.find("o:UnitDefinitions", ns)}
+    for v in osp.iter(f"{{{ns['o']}}}Variable"):
+        assert _var(md, v.get("ref")).find("Real").get("unit") == v.get("unit") and v.get("unit") in units
+    assert (Path(fmu["path"]).parent / "BearingFMU_OspModelDescription.xml").is_file()   # next to the FMU (libcosim)
+
+
+def test_reference_results_reproduce(fmu, tmp_path, monkeypatch):
+    """build --with-reference ships the FMI cross-check files (<id>_in.csv, _ref.opt, _ref.csv; default experiment
+    0-1 s, 1 ms steps, seed 000 acceleration profile) and a plot; rerunning the experiment from those files with
+    fmpy on the FMU reproduces _ref.csv (same master, deterministic: relative difference < 1e-9)."""
+    import numpy as np
+    from build_fmu import build
+    monkeypatch.setenv("BEARING_FMU_CACHE", fmu["cache"])
+    path = build(tmp_path / "ref", reference=True)
+    names = set(zipfile.ZipFile(path).namelist())
+    for f in ("BearingFMU_in.csv", "BearingFMU_ref.opt", "BearingFMU_ref.csv", "BearingFMU_ref.png", "index.html"):
+        assert f"documentation/{f}" in names
+    assert _md(path).get("guid") == _md(fmu["path"]).get("guid")    # documentation does not change the model
+    d = tmp_path / "ref"
+    code = ("import sys, numpy as np, os; from bearing_cosim.fmu_reference import simulate_reference as s; "
+            "r = s(sys.argv[1], sys.argv[2], sys.argv[3]); np.save(sys.argv[4], r); sys.stdout.flush(); os._exit(0)")
+    import os
+    env = dict(os.environ, PYTHONPATH=str(ROOT), BEARING_FMU_CACHE=fmu["cache"])
+    r = subprocess.run([sys.executable, "-c", code, str(path), str(d / "BearingFMU_in.csv"),
+                        str(d / "BearingFMU_ref.opt"), str(tmp_path / "again.npy")], capture_output=True, text=True,
+                       env=env, timeout=600)
+    assert r.returncode == 0, r.stderr[-2000:]
+    again = np.load(tmp_path / "again.npy")
+    ref = np.genfromtxt(d / "BearingFMU_ref.csv", delimiter=",", names=True)
+    assert len(ref) == len(again) == 1001
+    for k in ref.dtype.names:
+        assert np.allclose(again[k], ref[k], rtol=1e-9, atol=1e-12 * np.abs(ref[k]).max()), k
