@@ -57,6 +57,9 @@ def build_parser():
     b = sub.add_parser("build-fmu", help="build the bearing FMU (FMI 2.0 co-simulation) from the sources shipped "
                                          "in this package (needs pythonfmu and a C compiler: pip install '.[fmu]')")
     b.add_argument("--dest", default="dist", help="output folder (default dist/)")
+    b.add_argument("--with-reference", action="store_true",
+                   help="also run the default experiment and ship the FMI cross-check reference files and a plot "
+                        "(documentation/; takes a few seconds, about a minute with an empty numba cache)")
     b.set_defaults(func=cmd_build_fmu)
     v = sub.add_parser("validate-fmu", help="check an FMU with fmpy's validate_fmu; prints every problem, exit "
                                             "status 1 if there is any")
@@ -104,7 +107,7 @@ def fmu_parameters(fmu: str, pairs) -> dict:
 
 def cmd_build_fmu(a) -> int:
     from .fmu_build import build
-    fmu = build(a.dest)
+    fmu = build(a.dest, reference=a.with_reference)
     print(f"built {fmu} ({fmu.stat().st_size / 1024:.0f} KiB)")
     return 0
 
