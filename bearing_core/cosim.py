@@ -49,6 +49,11 @@ class CoSimParameters:
     free_contact_angle: float = 0.0        # rad
     pocket_clearance: float = 0.0          # m, diametral
     land_clearance: float = 0.0            # m, diametral
+    ball_diameter: float = 0.0             # m (D)
+    pitch_diameter: float = 0.0            # m (dm)
+    number_of_balls: int = 0               # Z
+    inner_groove_conformity: float = 0.0   # fi = inner groove radius / D
+    outer_groove_conformity: float = 0.0   # fo = outer groove radius / D
     # oil, churning and the thermal network (issue 5)
     oil: str = ""                          # lubricants.OILS name ("" = the traction curve's oil)
     oil_fraction: float = 0.0              # oil volume fraction of the oil-air mixture (drag, churning)
@@ -91,6 +96,39 @@ class CoSimSession:
             cage = dataclasses.replace(cage, land_clearance=float(p.land_clearance))
         if cage is not g.cage:
             g = g.with_overrides(cage=cage)
+        # main geometry values (0 keeps the bearing definition); ranges of Harris & Kotzalas, Rolling Bearing
+        # Analysis 5th ed., Vol. 1 Ch. 2 (conformity r/D > 0.5 for a ball to fit its groove; 0.515-0.54 usual)
+        over = {}
+        for name, field_, lo, hi, unit in (("ball_diameter", "D", 1e-4, 0.2, "m"), ("pitch_diameter", "dm", 1e-3, 2.0, "m"),
+                                           ("inner_groove_conformity", "fi", 0.5, 1.0, ""),
+                                           ("outer_groove_conformity", "fo", 0.5, 1.0, "")):
+            v = getattr(p, name)
+            if v != 0.0:
+                check_range(name, v, lo, hi, lo_incl=False, unit=unit)
+                over[field_] = float(v)
+        if p.number_of_balls != 0:
+            if p.number_of_balls != int(p.number_of_balls) or not 3 <= p.number_of_balls <= 200:
+                raise BearingInputError("number_of_balls", p.number_of_balls, "an integer 3 <= Z <= 200 (0: from the "
+                                        "bearing definition)")
+            over["Z"] = int(p.number_of_balls)
+        if over:
+            D, dm, Z = over.get("D", g.D), over.get("dm", g.dm), over.get("Z", g.Z)
+            set_ = ", ".join(n for n, f in (("ball_diameter", "D"), ("pitch_diameter", "dm"), ("number_of_balls", "Z"),
+                                            ("inner_groove_conformity", "fi"), ("outer_groove_conformity", "fo"))
+                             if f in over)
+            if not D < 0.5 * dm:
+                raise BearingInputError("ball_diameter" if "D" in over else "pitch_diameter", D if "D" in over else dm,
+                                        f"ball_diameter < pitch_diameter / 2 (here D = {D:.6g} m, dm = {dm:.6g} m)")
+            # balls must not overlap on the pitch circle: Z D < pi dm, i.e. Z <= pi / asin(D / dm)
+            zmax = int(math.pi / math.asin(D / dm))
+            if Z > zmax:
+                raise BearingInputError("number_of_balls", Z, f"Z <= {zmax} (balls of D = {D:.6g} m touch on the "
+                                        f"pitch circle dm = {dm:.6g} m)")
+            try:
+                g = g.with_overrides(**over)
+            except BearingInputError as e:
+                raise BearingInputError(set_, [getattr(p, n.strip()) for n in set_.split(",")],
+                                        "a consistent bearing geometry", str(e)) from None
         return g
 
     def _options(self) -> DynamicsOptions:
@@ -106,7 +144,7 @@ class CoSimSession:
         check_range("ambient_temperature", p.ambient_temperature, 233.15, 473.15, unit="K")
         T_in = p.oil_inlet_temperature or p.ambient_temperature
         check_range("oil_inlet_temperature", T_in, 233.15, 473.15, unit="K")
-        check_range("oil_flow_rate", p.oil_flow_rate, 0.0, 0.1, unit="m^3/s")
+        check_range("oil_flow_rate", p.oil_flow_rate, 0.0, 0.1, unit="m3/s")
         td = None
         if p.thermal:
             from .thermal import ThermalData

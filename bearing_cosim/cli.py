@@ -37,7 +37,7 @@ def build_parser():
     sub = next(a for a in p._actions if a.dest == "cmd")
     s = sub.add_parser("simulate", help="drive the bearing FMU with fmpy through a speed profile "
                                         "(CSV time_s, speed_rpm [, Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm]) or 'seed000'")
-    s.add_argument("--fmu", default="dist/BearingFMU.fmu", help="FMU file (python build_fmu.py builds it)")
+    s.add_argument("--fmu", default="dist/BearingFMU.fmu", help="FMU file (bearing build-fmu builds it)")
     s.add_argument("--profile", default="seed000")
     for nm, unit in (("fx", "N"), ("fy", "N"), ("fz", "N"), ("mx", "N m"), ("my", "N m")):
         s.add_argument(f"--{nm}", type=core_cli._finite(f"--{nm}"), default=0.0,
@@ -60,6 +60,17 @@ def build_parser():
                    help="oil temperature [degC] (thermal network off)")
     s.add_argument("--out", default="out")
     s.set_defaults(func=cmd_simulate)
+    b = sub.add_parser("build-fmu", help="build the bearing FMU (FMI 2.0 co-simulation) from the sources shipped "
+                                         "in this package (needs pythonfmu and a C compiler: pip install '.[fmu]')")
+    b.add_argument("--dest", default="dist", help="output folder (default dist/)")
+    b.add_argument("--with-reference", action="store_true",
+                   help="also run the default experiment and ship the FMI cross-check reference files and a plot "
+                        "(documentation/; takes a few seconds, about a minute with an empty numba cache)")
+    b.set_defaults(func=cmd_build_fmu)
+    v = sub.add_parser("validate-fmu", help="check an FMU with fmpy's validate_fmu; prints every problem, exit "
+                                            "status 1 if there is any")
+    v.add_argument("fmu", help="FMU file")
+    v.set_defaults(func=cmd_validate_fmu)
     _accept_negative_numbers(p)
     return p
 
@@ -100,10 +111,31 @@ def fmu_parameters(fmu: str, pairs) -> dict:
     return out
 
 
+def cmd_build_fmu(a) -> int:
+    from .fmu_build import build
+    fmu = build(a.dest, reference=a.with_reference)
+    print(f"built {fmu} ({fmu.stat().st_size / 1024:.0f} KiB)")
+    return 0
+
+
+def cmd_validate_fmu(a) -> int:
+    if not Path(a.fmu).is_file():
+        raise core_cli._BadArg(f"FMU = {a.fmu!r} is not a file")
+    from fmpy.validation import validate_fmu
+    try:
+        problems = list(validate_fmu(a.fmu))
+    except Exception as e:   # not an FMU archive, unreadable modelDescription.xml, ...
+        problems = [f"{type(e).__name__}: {e}"]
+    for msg in problems:
+        print(msg)
+    print(f"{a.fmu}: {len(problems)} problem(s)" if problems else f"{a.fmu}: valid (fmpy validate_fmu: no messages)")
+    return 1 if problems else 0
+
+
 def cmd_simulate(a) -> int:
     from .simulate import simulate
     if not Path(a.fmu).is_file():
-        raise core_cli._BadArg(f"--fmu = {a.fmu!r} is not a file; build it with: python build_fmu.py")
+        raise core_cli._BadArg(f"--fmu = {a.fmu!r} is not a file; build it with: bearing build-fmu")
     if not (1e-5 <= a.step <= 0.1):
         raise core_cli._BadArg(f"--step = {a.step} is invalid; allowed: 1e-5 <= step <= 0.1 s")
     if not (0.0 <= a.mu <= 1.0) or not (0.0 <= a.mu_cage <= 1.0):

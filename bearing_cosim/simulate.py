@@ -22,6 +22,24 @@ def _clip_profile(t, n, loads, t_stop):
     return tt, f(n), ({k: f(v) for k, v in loads.items()} if loads else loads)
 
 
+def enumeration_values(md, values: dict) -> dict:
+    """``values`` with the item names of Enumeration variables replaced by their item values (what
+    fmi2SetInteger takes); an unknown item name is an error naming the variable and its items."""
+    from bearing_core.errors import BearingInputError
+    out = dict(values)
+    for v in md.modelVariables:
+        if v.type == "Enumeration" and isinstance(out.get(v.name), str):
+            items = {it.name: int(it.value) for it in v.declaredType.items}
+            val = out[v.name]
+            if val in items:
+                out[v.name] = items[val]
+            elif val.strip().lstrip("-").isdigit():
+                out[v.name] = int(val)
+            else:
+                raise BearingInputError(v.name, val, " | ".join(items))
+    return out
+
+
 def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: float = 1e-3, params=None,
              out: str = "out", progress: bool = True, stop_time: float | None = None) -> dict:
     """Run the FMU through the profile with fmpy; returns the summary dict (files written to out/).
@@ -59,9 +77,10 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
         if status >= 2:   # discard, error, fatal: the FMU's reason, reported with the failure
             reasons.append(message.decode("utf-8", "replace") if isinstance(message, bytes) else str(message))
 
+    start_values = enumeration_values(md, params or {})
     try:
         res = fmpy.simulate_fmu(fmu, start_time=float(t[0]), stop_time=float(t[-1]), step_size=step,
-                                output_interval=step, input=sig, output=outputs, start_values=params or {},
+                                output_interval=step, input=sig, output=outputs, start_values=start_values,
                                 step_finished=step_finished, logger=logger)
     except Exception as e:
         if progress:

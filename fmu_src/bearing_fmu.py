@@ -26,9 +26,65 @@ _UNITS = {
     "m": dict(m=1), "m/s": dict(m=1, s=-1), "m/s2": dict(m=1, s=-2), "rad": dict(rad=1),
     "rad/s": dict(rad=1, s=-1), "N": dict(kg=1, m=1, s=-2), "N.m": dict(kg=1, m=2, s=-2),
     "W": dict(kg=1, m=2, s=-3), "Pa": dict(kg=1, m=-1, s=-2), "N/m": dict(kg=1, s=-2), "Pa.s": dict(kg=1, m=-1, s=-1),
-    "K": dict(K=1), "m^3/s": dict(m=3, s=-1),
+    "K": dict(K=1), "m3/s": dict(m=3, s=-1),
     "1": dict(),
 }
+# Modelica unit syntax (FMI 2.0 section 2.2.2) for unit strings written otherwise in the tables
+_MODELICA_UNIT = {"m^3/s": "m3/s", "m^3": "m3", "m/s^2": "m/s2"}
+# display units (FMI 2.0 DisplayUnit: display = factor * value + offset)
+_DISPLAY_UNITS = {"rad/s": (("rpm", 30.0 / math.pi, 0.0),), "K": (("degC", 1.0, -273.15),),
+                  "rad": (("deg", 180.0 / math.pi, 0.0),), "m": (("mm", 1e3, 0.0), ("um", 1e6, 0.0)),
+                  "Pa": (("MPa", 1e-6, 0.0),)}
+_DISPLAY_DEFAULT = {"rad/s": "rpm", "K": "degC", "rad": "deg"}
+# FMI quantity of each unit
+_QUANTITY = {"m": "Length", "m/s": "Velocity", "m/s2": "Acceleration", "rad": "Angle", "rad/s": "AngularVelocity",
+             "N": "Force", "N.m": "Torque", "W": "Power", "Pa": "Pressure", "N/m": "TranslationalSpringConstant",
+             "Pa.s": "DynamicViscosity", "K": "ThermodynamicTemperature", "m3/s": "VolumeFlowRate"}
+# typical magnitudes (FMI nominal) of the quantities in this bearing model, for masters' error control
+_NOMINAL = {"m": 1e-5, "m/s": 1e-3, "m/s2": 10.0, "rad": 1e-3, "rad/s": 100.0, "N": 1e3, "N.m": 1.0, "W": 100.0,
+            "Pa": 1e9, "K": 300.0}
+
+# Choice parameters: every String parameter listed here gets an Enumeration twin (ENUM_NAME, default
+# <parameter>_choice) over these items, valued 1..n in this order (SimpleType <parameter>_choices), so that masters
+# offer a drop-down and masters that cannot set Strings (fmpy's simulate_ssp) set the choice through fmi2SetInteger.
+# The String stays for masters without FMI Enumerations (libcosim) and for free-form values (bearing: catalogue
+# designations and bearing files). Precedence: set either; both start at the same item, whichever was changed from
+# its start value is used; if both were changed they must name the same item, else the initialisation fails naming
+# both. Applies to every parameter of the tables below listed here.
+ENUMERATIONS = {
+    "bearing": None,   # the two-point presets (bearing_preset_items), resolved when the slave is created
+    "traction_model": ("lubricated", "coulomb", "kalker", "lubricated-curve"),
+    "coupling": ("load", "displacement"),
+    "outer_mounting": ("fixed", "elastic"),
+    "integrator": ("auto", "adaptive", "implicit", "rk4"),
+    "lubrication": ("auto", "oil", "solid", "dry"),
+}
+ENUM_NAME = {"bearing": "bearing_preset"}
+
+
+def bearing_preset_items() -> tuple:
+    """The presets the dynamics model takes (two-point bearings; it refuses four-point ones)."""
+    from bearing_core.geometry import list_presets, load_bearing
+    return tuple(p for p in list_presets() if not load_bearing(p).is_four_point)
+
+
+_ENUM_DESC = {
+    "traction_model": ("traction over the contact ellipse with the lubricant's traction curve",
+                       "Coulomb friction (friction_coefficient)", "Kalker's FASTSIM (dry rolling contact)"),
+    "coupling": ("loads Fx..My are inputs", "the inner-ring pose dx..wy is an input"),
+    "outer_mounting": ("outer ring fixed", "outer ring on a radial housing spring (housing_stiffness)"),
+    "integrator": ("the cheaper of adaptive and implicit per 5 ms", "Dormand-Prince 5(4)", "Rosenbrock-W",
+                   "fixed-step RK4 (1e-5 s)"),
+}
+# Geometry of the bearing as parameters (0: keep the value of the bearing definition); applied by
+# bearing_core.cosim over the loaded bearing. name, type, unit, description, (min, max)
+_GEOMETRY_PARAMS = (
+    ("ball_diameter", float, "m", "ball diameter D (0: from the bearing definition)", (0.0, 0.2)),
+    ("pitch_diameter", float, "m", "pitch diameter dm (0: from the bearing definition)", (0.0, 2.0)),
+    ("number_of_balls", int, None, "number of balls Z (0: from the bearing definition)", (0, 200)),
+    ("inner_groove_conformity", float, "1", "inner groove radius / D, fi (0: from the bearing definition)", (0.0, 1.0)),
+    ("outer_groove_conformity", float, "1", "outer groove radius / D, fo (0: from the bearing definition)", (0.0, 1.0)),
+)
 _INPUT_DESC = {
     "shaft_speed": "inner-ring (shaft) speed, held over a step", "Fx": "load on the inner ring, x",
     "Fy": "load on the inner ring, y", "Fz": "load on the inner ring, z (axial)", "Mx": "moment on the inner ring about x",
@@ -85,15 +141,31 @@ class BearingFMU(Fmi2Slave):
         self._session = None
         self._units = {}
         self._ranges = {}
+        self._enums = {}      # Enumeration name -> (String parameter, items); FMI values 1..n
+        self._choice = {}     # String parameter -> item selected through its Enumeration
+        self._start = {}
         for name, typ, start, unit, desc, rng in _PARAMS:
             setattr(self, name, start)
+            self._start[name] = start
             cls = {str: String, float: Real, bool: Boolean}[typ]
             self.register_variable(cls(name, causality=Fmi2Causality.parameter, variability=Fmi2Variability.fixed,
                                        initial=Fmi2Initial.exact, description=desc))
             if unit:
-                self._units[name] = unit
+                self._units[name] = _MODELICA_UNIT.get(unit, unit)
             if rng:
                 self._ranges[name] = rng
+        for name, typ, start, unit, desc, rng in _PARAMS:
+            if name in ENUMERATIONS:
+                items = ENUMERATIONS[name] if ENUMERATIONS[name] is not None else bearing_preset_items()
+                self._register_enum(name, items, desc)
+        for name, typ, unit, desc, rng in _GEOMETRY_PARAMS:
+            setattr(self, name, typ(0))
+            cls = {float: Real, int: Integer}[typ]
+            self.register_variable(cls(name, causality=Fmi2Causality.parameter, variability=Fmi2Variability.fixed,
+                                       initial=Fmi2Initial.exact, description=desc))
+            if unit:
+                self._units[name] = unit
+            self._ranges[name] = rng
         for name, unit in zip(INPUT_NAMES, INPUT_UNITS):
             setattr(self, name, INPUT_START.get(name, 0.0))
             self.register_variable(Real(name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
@@ -104,12 +176,46 @@ class BearingFMU(Fmi2Slave):
             setattr(self, name, 0.0)
             self.register_variable(Real(name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
                                         initial=Fmi2Initial.calculated, description=desc))
-            self._units[name] = unit
+            self._units[name] = _MODELICA_UNIT.get(unit, unit)
         for name, unit, desc in INT_OUTPUT_SPEC:
             setattr(self, name, 0)
             self.register_variable(Integer(name, causality=Fmi2Causality.output,
                                            variability=Fmi2Variability.discrete, initial=Fmi2Initial.calculated,
                                            description=desc))
+
+    def _register_enum(self, param, items, desc):
+        """The Enumeration twin of the String parameter ``param`` (fmi2Set/GetInteger: item value)."""
+        items = tuple(items)
+        ename = ENUM_NAME.get(param, f"{param}_choice")
+        if self._start[param] not in items:
+            raise ValueError(f"start value {self._start[param]!r} of {param} is not one of its items {items}")
+        self._enums[ename] = (param, items)
+        self._choice[param] = self._start[param]
+
+        def setter(v):
+            v = int(v)
+            if not 1 <= v <= len(items):
+                raise ValueError(f"{ename} = {v} is not an item value; allowed: "
+                                 + ", ".join(f"{i + 1} ({it})" for i, it in enumerate(items)))
+            self._choice[param] = items[v - 1]
+
+        self.register_variable(Integer(ename, causality=Fmi2Causality.parameter, variability=Fmi2Variability.fixed,
+                                       initial=Fmi2Initial.exact, getter=lambda: items.index(self._choice[param]) + 1,
+                                       setter=setter,
+                                       description=f"{desc} (Enumeration of the String parameter {param}: set either; "
+                                                   "if both are changed they must agree)"))
+
+    def _resolve_choices(self):
+        """Each choice from its String or its Enumeration, whichever was changed (both: they must agree)."""
+        from bearing_core.errors import BearingInputError
+        for ename, (param, items) in self._enums.items():
+            s, e, start = getattr(self, param), self._choice[param], self._start[param]
+            if e != start:
+                if s != start and str(s).lower() != e.lower():
+                    raise BearingInputError(ename, e, f"the value of {param} ({s!r}) or {param}'s start value "
+                                            f"({start!r})", f"{param} = {s!r} and {ename} = {e!r} both set a "
+                                            "different choice; set only one")
+                setattr(self, param, e)
 
     # ---- model description: units, ranges and InitialUnknowns (plain pythonfmu writes neither) ----
     def to_xml(self, model_options=dict()) -> Element:
@@ -120,19 +226,48 @@ class BearingFMU(Fmi2Slave):
         for u in sorted(set(self._units.values())):
             ue = SubElement(units, "Unit", name=u)
             SubElement(ue, "BaseUnit", {k: str(v) for k, v in _UNITS[u].items()})
+            for du, factor, offset in _DISPLAY_UNITS.get(u, ()):
+                SubElement(ue, "DisplayUnit", {"name": du, "factor": repr(factor), **({"offset": repr(offset)}
+                                                                                    if offset else {})})
         root.insert(pos, units)
+        types = Element("TypeDefinitions")
+        for name, (param, items) in self._enums.items():
+            st = SubElement(types, "SimpleType", name=f"{param}_choices")
+            en = SubElement(st, "Enumeration")
+            descs = _ENUM_DESC.get(param, ())
+            for i, it in enumerate(items):
+                SubElement(en, "Item", {"name": it, "value": str(i + 1),
+                                        **({"description": descs[i]} if i < len(descs) else {})})
+        if len(types):
+            root.insert(pos + 1, types)
         for sv in root.find("ModelVariables"):
             name = sv.get("name")
             real = sv.find("Real")
             if real is not None:
-                if name in self._units:
-                    real.set("unit", self._units[name])
+                u = self._units.get(name)
+                if u:
+                    real.set("unit", u)
+                    if u in _QUANTITY:
+                        real.set("quantity", _QUANTITY[u])
+                    if u in _DISPLAY_DEFAULT:
+                        real.set("displayUnit", _DISPLAY_DEFAULT[u])
+                    if u in _NOMINAL and sv.get("variability") == "continuous":
+                        real.set("nominal", repr(_NOMINAL[u]))
                 if name in self._ranges:
                     real.set("min", repr(float(self._ranges[name][0])))
                     real.set("max", repr(float(self._ranges[name][1])))
+            integer = sv.find("Integer")
+            if integer is not None and name in self._enums:
+                integer.tag = "Enumeration"
+                integer.set("declaredType", f"{self._enums[name][0]}_choices")
+            elif integer is not None and name in self._ranges:
+                integer.set("min", str(int(self._ranges[name][0])))
+                integer.set("max", str(int(self._ranges[name][1])))
         ms = root.find("ModelStructure")
         outs = ms.find("Outputs")
         if outs is not None:
+            for u in outs:   # no direct feedthrough: outputs are functions of the state at the communication point
+                u.set("dependencies", "")
             init = SubElement(ms, "InitialUnknowns")
             for u in outs:
                 SubElement(init, "Unknown", index=u.get("index"))
@@ -144,7 +279,8 @@ class BearingFMU(Fmi2Slave):
 
     def exit_initialization_mode(self):
         from bearing_core.cosim import CoSimParameters, CoSimSession
-        params = CoSimParameters(**{name: getattr(self, name) for name, *_ in _PARAMS})
+        self._resolve_choices()
+        params = CoSimParameters(**{name: getattr(self, name) for name, *_ in _PARAMS + _GEOMETRY_PARAMS})
         self._session = None
         session = CoSimSession(params)
         session.initialize(self._t0, self._inputs())   # raises with the reason (BearingInputError ...)

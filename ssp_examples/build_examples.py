@@ -2,8 +2,8 @@
 
     python ssp_examples/build_examples.py [--dest ssp_examples/build]
 
--> build/fmus/BearingFMU.fmu (= dist/BearingFMU.fmu, via build_fmu.build), build/fmus/BearingFMUDisplacement.fmu
-(the same FMU with coupling = displacement as start value, via build_fmu.build_variant), the helper FMUs
+-> build/fmus/BearingFMU.fmu (= dist/BearingFMU.fmu, via build_fmu.build; the SSDs choose bearing preset and
+coupling through its Enumeration parameters, so every master that sets Integer values can run them), the helper FMUs
 (JeffcottRotor, SpeedRamp, InductionMotor, ShaftInertia, FanLoad; sources in <example>/fmus/), and
 build/rotor_bearings.ssp, build/drivetrain.ssp (by each example's make_ssp.py). Nothing here is committed.
 """
@@ -29,7 +29,6 @@ def build_fmus(dest: Path) -> Path:
     fmus = Path(dest) / "fmus"
     fmus.mkdir(parents=True, exist_ok=True)
     build_fmu.build(fmus)
-    build_fmu.build_variant("BearingFMUDisplacement", {"coupling": "displacement"}, fmus)
     for example, scripts in HELPERS.items():
         for s in scripts:
             FmuBuilder.build_FMU(HERE / example / "fmus" / s, dest=fmus)

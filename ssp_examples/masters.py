@@ -7,12 +7,13 @@ writes every connector's time series to OUT.npz (keys 'time' and 'component.conn
 one line 'RESULT {json}' (wall time, number of samples); then leaves with os._exit(0) (docs/fmu.md: a process
 that ran the numba-based bearing FMU can abort in a C exit handler; the results are written before).
 
-fmpy (0.3.32): fmpy.ssp.simulation.simulate_ssp. It ignores the SSD's ParameterBindings and cannot set String
-variables (its set_value raises 'Unsupported type: String'; bound Booleans would all become true), so this
-runner reads the bindings with fmpy's own SSD reader (fmpy.ssp.ssd.read_ssd), passes the Real and Integer ones
-as simulate_ssp's parameter_set (names prefixed with the component, as it expects) and checks that every String
-binding equals the FMU's start value (our examples build the bearing FMU with the String values it needs as start
-values: build_fmu.build_variant). Its loop is Jacobi (all FMUs step, then values are exchanged), its connector
+fmpy (0.3.32): fmpy.ssp.simulation.simulate_ssp, stock. It applies only its parameter_set argument (not the SSD's
+ParameterBindings) and sets Real, Integer and Enumeration values (not String; bound Booleans would all become
+true), so this runner reads the bindings with fmpy's own SSD reader (fmpy.ssp.ssd.read_ssd) and passes the Real and
+Integer ones as simulate_ssp's parameter_set (names prefixed with the component, as it expects). The examples bind
+the bearing's choices as Integer values of its Enumeration parameters (bearing_preset, coupling_choice) and, for
+libcosim, also as their String twins; a String binding is accepted only if it equals the FMU's start value or the
+item a bound Enumeration of the same component selects (so the FMU as built runs unchanged). Its loop is Jacobi (all FMUs step, then values are exchanged), its connector
 values start at 0 (every connected input is 0 during the first step) and its result row k holds the values at
 t_k + h under the label t_k: we relabel to t_k + h.
 
@@ -70,12 +71,16 @@ def run_fmpy(ssp, stop_time=None) -> dict:
         for comp in find_components(ssd.system):
             md = read_model_description(os.path.join(td, comp.source), validate=False)
             start = {v.name: v.start for v in md.modelVariables}
+            mv = {v.name: v for v in md.modelVariables}
+            bound = [p for b in comp.parameterBindings for ps in b.parameterValues for p in ps.parameters]
+            chosen = {it.name for p in bound if p.name in mv and mv[p.name].type == "Enumeration"
+                      for it in mv[p.name].declaredType.items if str(it.value) == str(p.value)}
             for binding in comp.parameterBindings:
                 for pset in binding.parameterValues:
                     for p in pset.parameters:
                         if p.type in ("Real", "Integer"):
                             params.append(Parameter(name=f"{comp.name}.{p.name}", type=p.type, value=p.value))
-                        elif str(start.get(p.name)) != str(p.value):
+                        elif str(start.get(p.name)) != str(p.value) and str(p.value) not in chosen:
                             raise ValueError(f"{comp.name}.{p.name} = {p.value!r} ({p.type}) cannot be set by "
                                              f"fmpy's simulate_ssp and differs from the FMU's start value "
                                              f"{start.get(p.name)!r}")

@@ -41,7 +41,23 @@ class Component:
     name: str
     source: str                     # path inside the archive, e.g. resources/BearingFMU.fmu
     connectors: list = field(default_factory=list)   # (name, kind, unit) ; kind input | output
-    parameters: list = field(default_factory=list)   # (name, value, unit) ; value str -> ssv:String
+    parameters: list = field(default_factory=list)   # (name, value, unit) ; value str -> ssv:String, int -> ssv:Integer
+
+
+def enumeration_value(fmu, variable: str, item: str) -> int:
+    """Value of ``item`` of the Enumeration ``variable`` of an FMU (FMI 2.0 modelDescription.xml): the
+    ssv:Integer that sets the choice; fmpy's simulate_ssp and libcosim set Enumerations through Integer."""
+    from xml.etree import ElementTree as ET
+    with zipfile.ZipFile(fmu) as z:
+        root = ET.fromstring(z.read("modelDescription.xml"))
+    sv = root.find(f"ModelVariables/ScalarVariable[@name='{variable}']")
+    if sv is None or sv.find("Enumeration") is None:
+        raise ValueError(f"{variable} is not an Enumeration variable of {fmu}")
+    st = root.find(f"TypeDefinitions/SimpleType[@name='{sv.find('Enumeration').get('declaredType')}']")
+    items = {it.get("name"): int(it.get("value")) for it in st.find("Enumeration")}
+    if item not in items:
+        raise ValueError(f"{variable} = {item!r} is not an item; allowed: {', '.join(items)}")
+    return items[item]
 
 
 def _unit_attr(unit):
@@ -63,7 +79,7 @@ def _param_xml(name, value, unit, ind):
 def ssd_xml(name: str, description: str, components: list[Component], connections: list, start: float,
             stop: float, step: float, generator: str) -> str:
     """connections: (startElement, startConnector, endElement, endConnector)."""
-    used = {u for c in components for _, _, u in c.connectors if u and u != "1"}
+    used = {u for c in components for _, _, u in c.connectors + c.parameters if u and u != "1"}
     L = ['<?xml version="1.0" encoding="UTF-8"?>',
          f'<ssd:SystemStructureDescription xmlns:ssd="{NS["ssd"]}" xmlns:ssc="{NS["ssc"]}" xmlns:ssv="{NS["ssv"]}"',
          f'    xmlns:osp="{NS["osp"]}" version="1.0" name={quoteattr(name)} generationTool={quoteattr(generator)}>',

@@ -17,6 +17,7 @@ def _open(spec, name, params, inputs0):
     md = read_model_description(spec["fmu"])
     vr = {v.name: v.valueReference for v in md.modelVariables}
     types = {v.name: v.type for v in md.modelVariables}
+    enums = {v.name: v.declaredType for v in md.modelVariables if v.type == "Enumeration"}
     f = FMU2Slave(guid=md.guid, unzipDirectory=spec["_unzip"], modelIdentifier=md.coSimulation.modelIdentifier,
                   instanceName=name)
     f.instantiate(loggingOn=True)
@@ -24,6 +25,11 @@ def _open(spec, name, params, inputs0):
     for k, v in params.items():
         if types[k] == "String":
             f.setString([vr[k]], [str(v)])
+        elif types[k] == "Enumeration":   # by item name or value
+            items = {it.name: int(it.value) for it in enums[k].items}
+            f.setInteger([vr[k]], [items[v] if isinstance(v, str) else int(v)])
+        elif types[k] == "Integer":
+            f.setInteger([vr[k]], [int(v)])
         elif types[k] == "Boolean":
             f.setBoolean([vr[k]], [bool(v)])
         else:

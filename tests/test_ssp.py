@@ -65,8 +65,8 @@ def _both(build, ssp, tmp_path):
 
 def test_ssd_has_units_bindings_and_is_valid(build, tmp_path):
     """The generated SSD validates against the SSP 1.0 schema (fmpy's reader), every connector carries a type and
-    its unit (defined in ssd:Units), every connected input is declared, bindings carry the bearing's String
-    parameters and the start values of the bearing inputs, and the OSP step annotation is there."""
+    its unit (defined in ssd:Units), every connected input is declared, bindings carry the bearing's choices
+    (Enumerations, as Integer values) and the start values of the bearing inputs, and the OSP step annotation is there."""
     from fmpy.ssp.ssd import read_ssd
     ssp = rotor_make.make(tmp_path / "rotor.ssp", rotor_make.RotorDesign(stop_time=0.01), fmu_dir=build["fmus"])
     read_ssd(str(ssp))                                  # raises on a schema violation
@@ -78,8 +78,18 @@ def test_ssd_has_units_bindings_and_is_valid(build, tmp_path):
         assert real.get("unit") is None or real.get("unit") in units
     info = ssd_info(ssp)
     a = info["components"]["bearing_A"]
+    # the bearing's choices are Integer values of its Enumerations (settable by fmpy's stock simulate_ssp)
+    from sspgen import enumeration_value
+    fmu = build["fmus"] / "BearingFMU.fmu"
+    assert a["parameters"]["coupling_choice"] == ("Integer", str(enumeration_value(fmu, "coupling_choice",
+                                                                                 "displacement")))
+    assert a["parameters"]["bearing_preset"] == ("Integer", str(enumeration_value(fmu, "bearing_preset", "7218B")))
+    # ... and their String twins for libcosim (it does not handle FMI Enumerations)
     assert a["parameters"]["coupling"] == ("String", "displacement")
     assert a["parameters"]["bearing"] == ("String", "7218B")
+    # every unit of a connector or a parameter binding is defined in ssd:Units
+    for p in root.findall(".//ssv:Real", NS):
+        assert p.get("unit") is None or p.get("unit") in units
     assert a["parameters"]["dz"][0] == "Real" and float(a["parameters"]["dz"][1]) > 0   # preloaded start pose
     assert info["step"] == 1e-4
     ends = {(c.get("endElement"), c.get("endConnector")) for c in root.findall(".//ssd:Connection", NS)}

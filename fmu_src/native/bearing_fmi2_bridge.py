@@ -239,7 +239,11 @@ class Instance:
         if caus == "parameter" and vari == "fixed" and self.mode == "step":
             raise _FmiError(f"{var.name} is a fixed parameter: it can only be set before fmi2ExitInitializationMode "
                             f"(it stays {var.getter()!r}; to change it, fmi2Reset or instantiate anew)")
-        if caus == "parameter" and isinstance(value, float):
+        items = getattr(self.slave, "_enums", {}).get(var.name, (None, None))[1]   # Enumeration: (String twin, items)
+        if items is not None and not 1 <= value <= len(items):
+            raise _FmiError(f"{var.name} = {value!r} is not an item value of its enumeration; allowed: "
+                            + ", ".join(f"{i + 1} ({it})" for i, it in enumerate(items)))
+        if caus == "parameter" and isinstance(value, (float, int)) and not isinstance(value, bool):
             rng = getattr(self.slave, "_ranges", {}).get(var.name)
             if not math.isfinite(value) or (rng and not rng[0] <= value <= rng[1]):
                 allowed = f"[{rng[0]:g}, {rng[1]:g}]" if rng else "a finite number"

@@ -17,7 +17,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
-from sspgen import Component, ssd_xml, write_ssp  # noqa: E402
+from sspgen import Component, enumeration_value, ssd_xml, write_ssp  # noqa: E402
 
 BEARING_OUT = [("friction_torque", "N.m"), ("heat_flux_total", "W"), ("cage_speed", "rad/s"),
                ("cage_shaft_ratio", "1"), ("cage_shaft_ratio_theory", "1"), ("reaction_Fx", "N"), ("reaction_Fz", "N"),
@@ -45,6 +45,7 @@ class DrivetrainDesign:
 def make(dest, design: DrivetrainDesign | None = None, fmu_dir=None) -> Path:
     d = design or DrivetrainDesign()
     fmu_dir = Path(fmu_dir or HERE.parent / "build" / "fmus")
+    bfmu = fmu_dir / "BearingFMU.fmu"
     comps = [
         Component("motor", "resources/InductionMotor.fmu",
                   [("shaft_speed", "input", "rad/s"), ("torque", "output", "N.m"), ("power", "output", "W"),
@@ -69,7 +70,11 @@ def make(dest, design: DrivetrainDesign | None = None, fmu_dir=None) -> Path:
     for b, (fx, fz) in (("A", d.load_A), ("B", d.load_B)):
         comps.append(Component(f"bearing_{b}", "resources/BearingFMU.fmu",
                                [("shaft_speed", "input", "rad/s")] + [(n, "output", u) for n, u in BEARING_OUT],
-                               [("bearing", d.bearing, None), ("coupling", "load", None),
+                               # choices as Enumeration (fmpy) and String twin (libcosim); they agree
+                               [("bearing_preset", enumeration_value(bfmu, "bearing_preset", d.bearing), None),
+                                ("bearing", d.bearing, None),
+                                ("coupling_choice", enumeration_value(bfmu, "coupling_choice", "load"), None),
+                                ("coupling", "load", None),
                                 ("shaft_speed", d.speed0, "rad/s"), ("Fx", fx, "N"), ("Fz", fz, "N")]))
         conns += [("shaft", "shaft_speed", f"bearing_{b}", "shaft_speed"),
                   (f"bearing_{b}", "friction_torque", "shaft", f"friction_torque_{b}")]

@@ -24,7 +24,7 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(HERE.parent))
 
 import scipy.linalg  # noqa: E402,F401  (before numba: docs/fmu.md)
-from sspgen import Component, ssd_xml, write_ssp  # noqa: E402
+from sspgen import Component, enumeration_value, ssd_xml, write_ssp  # noqa: E402
 
 MIRROR = np.array([1.0, 1.0, -1.0, -1.0, -1.0])
 BEARING_OUT = [("reaction_Fx", "N"), ("reaction_Fy", "N"), ("reaction_Fz", "N"), ("reaction_Mx", "N.m"),
@@ -121,6 +121,7 @@ def statics(d: RotorDesign) -> dict:
 def make(dest, design: RotorDesign | None = None, fmu_dir=None) -> Path:
     d = design or RotorDesign()
     fmu_dir = Path(fmu_dir or HERE.parent / "build" / "fmus")
+    bfmu = fmu_dir / "BearingFMU.fmu"
     st = statics(d)
     L = d.span
     ks = d.shaft_stiffness
@@ -160,10 +161,14 @@ def make(dest, design: RotorDesign | None = None, fmu_dir=None) -> Path:
         bc += [(p, "input", "rad/s" if p[0] == "w" else "m/s") for p in RATE]
         bc += [(n, "output", u) for n, u in BEARING_OUT]
         pose = st["pose_" + b]
-        bp = [("bearing", d.bearing, None), ("coupling", "displacement", None),
+        # each choice twice: the Enumeration (Integer value; fmpy's simulate_ssp sets no Strings) and its String
+        # twin (libcosim 0.x does not handle FMI Enumerations); the FMU requires both to agree
+        bp = [("bearing_preset", enumeration_value(bfmu, "bearing_preset", d.bearing), None), ("bearing", d.bearing, None),
+              ("coupling_choice", enumeration_value(bfmu, "coupling_choice", "displacement"), None),
+              ("coupling", "displacement", None),
               ("shaft_speed", d.speed_start, "rad/s")]
         bp += [(p, float(v), "rad" if p[0] == "t" else "m") for p, v in zip(POSE, pose)]
-        comps.append(Component(f"bearing_{b}", "resources/BearingFMUDisplacement.fmu", bc, bp))
+        comps.append(Component(f"bearing_{b}", "resources/BearingFMU.fmu", bc, bp))
         conns.append(("speed", "shaft_speed", f"bearing_{b}", "shaft_speed"))
         conns += [("rotor", f"{b}_{p}", f"bearing_{b}", p) for p in POSE + RATE]
         conns += [(f"bearing_{b}", f"reaction_{r}", "rotor", f"{b}_{r}") for r in REAC]
@@ -172,7 +177,7 @@ def make(dest, design: RotorDesign | None = None, fmu_dir=None) -> Path:
             f"{d.speed_end * 30 / math.pi:.0f} rpm")
     ssd = ssd_xml("rotor_bearings", desc, comps, conns, 0.0, d.stop_time, d.step,
                   "ssp_examples/rotor_bearings/make_ssp.py")
-    fmus = {n: fmu_dir / n for n in ("SpeedRamp.fmu", "JeffcottRotor.fmu", "BearingFMUDisplacement.fmu")}
+    fmus = {n: fmu_dir / n for n in ("SpeedRamp.fmu", "JeffcottRotor.fmu", "BearingFMU.fmu")}
     path = write_ssp(dest, ssd, fmus)
     meta = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in st.items()}
     meta.update(design=asdict(d), shaft_stiffness=ks, disk_damping=c_disk,
