@@ -21,7 +21,8 @@ the frame turning with each ball's azimuth psi_j = 2 pi j / Z):
   tx, ty held at 0 with fixed_tilt).
 Each ball orbits freely at its own speed (as Jones-Harris, Harris & Kotzalas Vol. 2 Ch. 3: balls free in
 their pocket clearance); the cage is centred, every ball sits at its pocket centre, so the rhs's pocket and
-land contacts carry no load, and ``cage_speed`` is the mean orbital speed. A cage-held variant (common orbit,
+land contacts carry no load (in the oil regime their films are left out as well: the cage losses come from the
+dynamics), and ``cage_speed`` is the mean orbital speed. A cage-held variant (common orbit,
 pocket forces as unknowns) was tried and dropped: under combined load it converged in 13 of 36 cases.
 The traction enters wholly: F_t, the lateral traction F_m (from spin, Kalker's C23) and the spin moment move
 the contact angles, the attitude and yaw of the spin axis and the orbital speed away from Jones-Harris.
@@ -172,6 +173,11 @@ class TriboQuasiStaticModel:
         dmod.initialize(omega, loads)          # Jones-Harris start (outer raceway control)
         jh = dmod.qs
         P, U = dmod.P, dmod.U
+        # Free balls, centred cage (module docstring): the cage takes no part, so its oil films (pocket shear,
+        # flooded-land drag) are left out too; otherwise they would load the balls and drag a cage whose
+        # torque balance is not an equation here, and power in would not equal heat out.
+        P[K.P_LUBE] = 0.0
+        P[K.P_ETA_LAND] = 0.0
         Z = g.Z
         y = dmod.y.copy()
         y[5:10] = 0.0
@@ -397,8 +403,8 @@ class TriboQuasiStaticModel:
         # spin axis in the cage frame: attitude from the bearing axis (Harris's beta sign), yaw out of the plane
         attitude = -np.arctan2(-W[:, 0], np.abs(Wrel_z)) * np.sign(-Wrel_z + 1e-300)
         yaw = np.arctan2(W[:, 1], np.hypot(W[:, 0], Wrel_z))
-        losses = {k: float(diag[I[k]]) for k in ("P_drive", "P_race_inner", "P_race_outer", "P_drag",
-                                                   "P_churn_cage", "P_churn_ring", "P_race_slide",
+        losses = {k: float(diag[I[k]]) for k in ("P_drive", "P_race_inner", "P_race_outer", "P_pocket", "P_land",
+                                                   "P_drag", "P_churn_cage", "P_churn_ring", "P_race_slide",
                                                    "P_race_spin", "P_race_diffslip")}
         y = yy.copy()
         return TriboQuasiStaticResult(
