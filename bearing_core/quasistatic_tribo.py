@@ -127,6 +127,7 @@ class TriboQuasiStaticModel:
             raise BearingInputError("coupling", opt.coupling, "load (the quasi-static model takes loads)")
         if opt.outer_mount != "fixed":
             raise BearingInputError("outer_mount", opt.outer_mount, "fixed (quasi-static model)")
+        geometry.require_two_point("quasi-static tribological model")
         self.g = geometry
         self.opt = replace(opt, reduced="full", thermal=False)
         self._dm = DynamicModel(geometry, self.opt)

@@ -505,6 +505,7 @@ def operating_point_wear(geometry: BearingGeometry, omega: float, loads, params:
     'inner': WearRates, 'outer': WearRates}."""
     from .quasistatic import solve_quasistatic
     params.validate()
+    geometry.require_two_point("wear model")
     res = solve_quasistatic(geometry, omega, loads, control=control, stiffness=False)
     st = contact_states_from_quasistatic(res, surface=params.surface)
     return {"qs": res,
