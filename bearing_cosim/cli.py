@@ -169,17 +169,11 @@ def main(argv=None) -> int:
 
 
 def console_main() -> None:
-    """Console-script entry: run, flush, and leave without the C exit handlers when an FMU was run in this
-    process (a numba FMU can make the host abort in libgfortran's exit handler; docs/fmu.md)."""
-    import os
+    """Console-script entry. The process exits normally after an FMU run: the FMU's own native layer
+    leaves the interpreter and the heap intact at unload (docs/fmu.md)."""
     import signal
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)   # `bearing ... | head` ends quietly
-    rc = main()
-    if "fmpy" in sys.modules:
-        sys.stdout.flush()
-        sys.stderr.flush()
-        os._exit(rc)
-    sys.exit(rc)
+    sys.exit(main())
 
 
 if __name__ == "__main__":

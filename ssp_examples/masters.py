@@ -4,8 +4,7 @@
     python ssp_examples/masters.py libcosim SYSTEM.ssp OUT.npz [--stop-time T]
 
 writes every connector's time series to OUT.npz (keys 'time' and 'component.connector', SI units) and prints
-one line 'RESULT {json}' (wall time, number of samples); then leaves with os._exit(0) (docs/fmu.md: a process
-that ran the numba-based bearing FMU can abort in a C exit handler; the results are written before).
+one line 'RESULT {json}' (wall time, number of samples).
 
 fmpy (0.3.32): fmpy.ssp.simulation.simulate_ssp, stock. It applies only its parameter_set argument (not the SSD's
 ParameterBindings) and sets Real, Integer and Enumeration values (not String; bound Booleans would all become
@@ -161,8 +160,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    import scipy.linalg  # noqa: F401  (load scipy's Fortran runtime before numba: docs/fmu.md)
     main(sys.argv[1:])
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(0)
