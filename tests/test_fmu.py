@@ -88,7 +88,8 @@ def test_steady_reactions_heat_and_finite_outputs(fmu, tmp_path):
 
 def test_outputs_equal_bearing_core(fmu, tmp_path):
     """The FMU only translates: its outputs equal bearing_core.cosim.CoSimSession's for the same inputs
-    and steps (same numbers, relative 1e-9)."""
+    and steps (same numbers: relative 1e-9, and 1e-9 of the 2 kN load scale for values near zero such as
+    reaction_Fy, where round-off of a different compilation of the same kernels shows)."""
     from bearing_core.cosim import CoSimParameters, CoSimSession
     spec = steady_spec(n=40, rpm=2000.0, fx=500.0, fz=2000.0)
     res = drive(fmu, spec, tmp_path)
@@ -98,7 +99,7 @@ def test_outputs_equal_bearing_core(fmu, tmp_path):
     for (h, inp), row in zip(spec["steps"], res["rows"]):
         o = s.step(t, h, inp)
         t += h
-        assert np.allclose(row["values"], [o[k] for k in OUT], rtol=1e-9, atol=1e-9)
+        assert np.allclose(row["values"], [o[k] for k in OUT], rtol=1e-9, atol=2e-6)
 
 
 def test_communication_step_independence(fmu, tmp_path):
