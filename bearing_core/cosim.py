@@ -23,6 +23,7 @@ from .geometry import load_preset
 
 from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # noqa: F401 (re-export)
 from .cosim_spec import INT_OUTPUT_NAMES, INT_OUTPUT_SPEC  # noqa: F401 (re-export)
+CSR_MIN_SPEED = 1.0   # rad/s (9.5 rpm): below it |shaft speed| the cage/shaft ratios are reported as 0
 P_LIMIT = 4.2e9   # Pa: ISO 76 static-capacity contact stress of ball bearings; beyond it the model refuses
 
 
@@ -133,7 +134,8 @@ class CoSimSession:
             if not math.isfinite(v):
                 raise BearingInputError(k, v, "a finite number")
             u[k] = v
-        check_range("shaft_speed", u["shaft_speed"], 0.0, 2.0e4, unit="rad/s")
+        check_range("shaft_speed", u["shaft_speed"], -2.0e4, 2.0e4, unit="rad/s")
+        check_range("outer_ring_speed", u["outer_ring_speed"], -2.0e4, 2.0e4, unit="rad/s")
         for k in ("Fx", "Fy", "Fz"):
             check_range(k, u[k], -1e7, 1e7, unit="N")
         return u
@@ -180,7 +182,8 @@ class CoSimSession:
         if self.p.coupling == "displacement":
             disp = [u[k] for k in ("dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")]
         try:
-            self.model.initialize(u["shaft_speed"], loads, displacement=disp, t0=float(t0))
+            self.model.initialize(u["shaft_speed"], loads, displacement=disp, t0=float(t0),
+                                  omega_outer=u["outer_ring_speed"])
         except ConvergenceError as e:
             raise BearingInputError("inputs", dict(u), "a load case with a quasi-static equilibrium", str(e))
         self.t = float(t0)
@@ -208,7 +211,7 @@ class CoSimSession:
                          displacement=None if self.p.coupling != "displacement" else
                          [u[k] for k in ("dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")])
             # input held over the step: the speed takes its new value at the start of the step
-            m.set_speed(u["shaft_speed"])
+            m.set_speed(u["shaft_speed"], u["outer_ring_speed"])
             m.advance(t + h, record_dt=max(h, 1e-6))
             if m.thermal_runaway:
                 # a temperature past the oil's limit: flagged and the step discarded (never reported as OK)
@@ -231,8 +234,10 @@ class CoSimSession:
     def _update_outputs(self):
         o = self.model.outputs()
         w = o["shaft_speed"]
-        csr = o["cage_speed"] / w if w > 0 else 0.0
-        csr_t = o["pure_rolling_cage_speed"] / w if w > 0 else 0.0
+        # ratios to the (signed) shaft speed: 0 below CSR_MIN_SPEED, where they are 0/0 (at rest, passing
+        # through zero, or inner ring held with the outer ring turning)
+        csr = o["cage_speed"] / w if abs(w) >= CSR_MIN_SPEED else 0.0
+        csr_t = o["pure_rolling_cage_speed"] / w if abs(w) >= CSR_MIN_SPEED else 0.0
         heat = {k: o[f"P_{k}"] for k in ("race_inner", "race_outer", "pocket", "land", "drag", "damping",
                                          "churn_cage", "churn_ring")}
         T = self.model.temperatures()
@@ -242,7 +247,7 @@ class CoSimSession:
             "reaction_Mx": o["Mx"], "reaction_My": o["My"],
             "cage_speed": o["cage_speed"], "cage_shaft_ratio": csr, "cage_shaft_ratio_theory": csr_t,
             "skid_ratio": 1.0 - csr / csr_t if csr_t > 0 else 0.0,
-            "friction_torque": o["friction_torque"],
+            "friction_torque": o["friction_torque"], "friction_torque_outer": o["friction_torque_outer"],
             "heat_flux_total": sum(heat.values()),
             **{f"heat_flux_{k}": v for k, v in heat.items()},
             "heat_flux_race_slide": o["P_race_slide"], "heat_flux_race_spin": o["P_race_spin"],
@@ -263,7 +268,8 @@ class CoSimSession:
             "film_parameter_min": fl["Lambda_min"],
         }
         from .skid import classify_skid
-        state, slip = classify_skid(o["cage_speed"], o["cage_speed_pure_rolling_outer"])
+        state, slip = classify_skid(o["cage_speed"], o["cage_speed_pure_rolling_outer"],
+                                    omega_outer=o["outer_ring_speed"])
         out["cage_speed_pure_rolling_outer"] = o["cage_speed_pure_rolling_outer"]
         out["cage_speed_pure_rolling_inner"] = o["cage_speed_pure_rolling_inner"]
         out["cage_slip_ratio"] = slip

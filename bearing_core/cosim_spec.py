@@ -2,9 +2,9 @@
 Pure data (no numba import), shared by bearing_core.cosim and the FMU slave in fmu_src/."""
 
 INPUT_NAMES = ("shaft_speed", "Fx", "Fy", "Fz", "Mx", "My",
-               "dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")
+               "dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy", "outer_ring_speed")
 INPUT_UNITS = ("rad/s", "N", "N", "N", "N.m", "N.m", "m", "m", "m", "rad", "rad", "m/s", "m/s", "m/s",
-               "rad/s", "rad/s")
+               "rad/s", "rad/s", "rad/s")
 OUTPUT_SPEC = (
     # name, unit, description
     ("reaction_Fx", "N", "force of the bearing on the shaft, x"),
@@ -19,6 +19,7 @@ OUTPUT_SPEC = (
     ("skid_ratio", "1", "1 - CSR / seed 000 Eq. 26 CSR (seed 000's measure; the skid classification uses "
                         "cage_slip_ratio)"),
     ("friction_torque", "N.m", "torque needed to drive the inner ring"),
+    ("friction_torque_outer", "N.m", "torque needed to drive (or hold) the outer ring"),
     ("heat_flux_total", "W", "total dissipated power"),
     ("heat_flux_race_inner", "W", "ball-inner race traction (rolling, sliding, spin)"),
     ("heat_flux_race_outer", "W", "ball-outer race traction (rolling, sliding, spin)"),

@@ -38,10 +38,14 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
     cols = [n * RPM]
     for k, name in zip(LOAD_COLS, names[1:]):
         cols.append(prof_loads[k] if prof_loads and k in prof_loads else np.full_like(t, loads[names.index(name) - 1]))
-    # the displacement-coupling inputs are unused in load-driven mode: held at zero
+    # the profile's optional outer_speed_rpm column drives the outer ring (signed, rpm -> rad/s); the
+    # displacement-coupling inputs are unused in load-driven mode: held at zero
     for name in [v.name for v in md.modelVariables if v.causality == "input" and v.name not in names]:
         names.append(name)
-        cols.append(np.zeros_like(t))
+        if name == "outer_ring_speed" and prof_loads and "outer_speed_rpm" in prof_loads:
+            cols.append(prof_loads["outer_speed_rpm"] * RPM)
+        else:
+            cols.append(np.zeros_like(t))
     sig = np.array(list(zip(t, *cols)), dtype=[("time", float)] + [(k, float) for k in names])
     t0 = time.perf_counter()
     last = [0.0]
