@@ -5,7 +5,10 @@
     out = s.step(t=0.0, h=1e-3, inputs={...})       # advances exactly to t + h, inputs held
 
 Inputs are held constant over a step (shaft speed included: a speed step is applied at the start of
-the step). Outputs are the instantaneous values at the end of the step. Every problem is reported as a
+the step). Outputs are the instantaneous values at the end of the step, except the energy-carrying ones
+(STEP_AVERAGED: heat fluxes, friction torques, drive power), which are averages over the communication step
+(the time integral accumulated inside the integrator divided by the step), so that sum(heat_flux * h) is
+the energy dissipated; their instantaneous values are the outputs '<name>_instantaneous'. Every problem is reported as a
 StepRejected (recoverable: the state is left as before the step) or BearingInputError (configuration);
 numbers that are not finite never leave this module. SI units: rad/s, N, N m, m, rad, W, Pa.
 """
@@ -20,9 +23,23 @@ import numpy as np
 from .dynamics import DynamicModel, DynamicsOptions
 from .errors import BearingInputError, ConvergenceError, check_range
 from .geometry import load_preset
+from . import dynamics_kernels as K
 
 from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # noqa: F401 (re-export)
 from .cosim_spec import INT_OUTPUT_NAMES, INT_OUTPUT_SPEC  # noqa: F401 (re-export)
+from .cosim_spec import STEP_AVERAGED_NAMES
+HEAT_CHANNELS = {"race_inner": "P_race_inner", "race_outer": "P_race_outer", "pocket": "P_pocket",
+                 "land": "P_land", "drag": "P_drag", "damping": "P_damping", "churn_cage": "P_churn_cage",
+                 "churn_ring": "P_churn_ring"}
+STEP_AVERAGED = (
+    ("friction_torque", "friction_torque"), ("friction_torque_outer", "friction_torque_outer"),
+    ("drive_power", "P_drive"), ("heat_flux_total", tuple(HEAT_CHANNELS.values())),
+    *((f"heat_flux_{k}", v) for k, v in HEAT_CHANNELS.items()),
+    ("heat_flux_race_slide", "P_race_slide"), ("heat_flux_race_spin", "P_race_spin"),
+    ("heat_flux_race_diffslip", "P_race_diffslip"),
+)
+"""(output name, dynamics channel or channels summed): outputs averaged over each communication step."""
+assert tuple(n for n, _ in STEP_AVERAGED) == STEP_AVERAGED_NAMES
 CSR_MIN_SPEED = 1.0   # rad/s (9.5 rpm): below it |shaft speed| the cage/shaft ratios are reported as 0
 P_LIMIT = 4.2e9   # Pa: ISO 76 static-capacity contact stress of ball bearings; beyond it the model refuses
 
@@ -205,14 +222,16 @@ class CoSimSession:
         except BearingInputError as e:
             raise StepRejected(str(e))
         m = self.model
-        saved = (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), m.thermal_state())
+        saved = (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), m.thermal_state(), m.quad.copy())
         try:
             m.set_inputs(loads=(u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"]),
                          displacement=None if self.p.coupling != "displacement" else
                          [u[k] for k in ("dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")])
             # input held over the step: the speed takes its new value at the start of the step
             m.set_speed(u["shaft_speed"], u["outer_ring_speed"])
+            q0 = m.quad[:K.NOUT].copy()
             m.advance(t + h, record_dt=max(h, 1e-6))
+            avg = (m.quad[:K.NOUT] - q0) / (m.t - t)
             if m.thermal_runaway:
                 # a temperature past the oil's limit: flagged and the step discarded (never reported as OK)
                 from .thermal import ThermalRunaway
@@ -221,17 +240,20 @@ class CoSimSession:
                 raise StepRejected(str(ThermalRunaway(th.temperatures(), th.T_max, th.oil.name,
                                                       f"at t = {t + h:.6g} s")))
             self.t = m.t
-            self._update_outputs()
+            self._update_outputs(avg)
             self._check_limits()
         except (BearingInputError, FloatingPointError, StepRejected) as e:
             m.y, m.t, m.U, m.stats = saved[:4]
             m.set_thermal_state(saved[4])
+            m.quad[:] = saved[5]
             self.t = m.t
             self._update_outputs()
             raise StepRejected(str(e))
         return dict(self.outputs)
 
-    def _update_outputs(self):
+    def _update_outputs(self, avg=None):
+        """Outputs at the current instant; avg (len NOUT, dynamics_kernels channels) the step averages of
+        the last step (None at initialisation: the instantaneous values stand for them)."""
         o = self.model.outputs()
         w = o["shaft_speed"]
         # ratios to the (signed) shaft speed: 0 below CSR_MIN_SPEED, where they are 0/0 (at rest, passing
@@ -275,6 +297,15 @@ class CoSimSession:
         out["cage_slip_ratio"] = slip
         out["skid_state"] = int(state)
         out["thermal_runaway"] = int(self.thermal_runaway)
+        out["drive_power"] = o["P_drive"]
+        # energy-carrying outputs: step averages under the existing names, the sampled values beside them
+        a = o if avg is None else dict(zip(K.OUT_NAMES, np.asarray(avg).tolist()))
+        for name, src in STEP_AVERAGED:
+            out[name + "_instantaneous"] = out[name]
+            if isinstance(src, tuple):
+                out[name] = sum(a[k] for k in src)
+            else:
+                out[name] = a[src]
         bad = [k for k, v in out.items() if not math.isfinite(v)]
         if bad:
             raise StepRejected(f"non-finite outputs {bad} (solver failure)")
@@ -290,13 +321,14 @@ class CoSimSession:
     def get_state(self):
         m = self.model
         return None if m is None else (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), dict(self.outputs),
-                                       m.thermal_state())
+                                       m.thermal_state(), m.quad.copy())
 
     def set_state(self, state):
         if state is None:
             return
-        y, t, U, stats, outs, th = state
+        y, t, U, stats, outs, th, quad = state
         self.model.set_thermal_state(th)
+        self.model.quad[:] = quad
         self.model.y[:] = y
         self.model.t = t
         self.model.U[:] = U

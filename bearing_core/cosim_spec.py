@@ -67,6 +67,23 @@ OUTPUT_SPEC = (
      "pure-rolling cage speed at the loaded balls' contact angles, inner-raceway control (bearing_core.skid)"),
     ("cage_slip_ratio", "1", "1 - cage speed / cage_speed_pure_rolling_outer (> 0 skidding, < 0 over-skidding)"),
 )
+OUTPUT_SPEC += (
+    ("drive_power", "W", "power supplied by the drives of both rings (friction torques x ring speeds)"),
+)
+# Energy-carrying outputs: their values are averages over the communication step (integral of the
+# instantaneous value over the step / step, so that sum(value * h) is the energy); the value sampled at the
+# communication point is the output '<name>_instantaneous' (bearing_core.cosim).
+STEP_AVERAGED_NAMES = (
+    "friction_torque", "friction_torque_outer", "drive_power", "heat_flux_total", "heat_flux_race_inner",
+    "heat_flux_race_outer", "heat_flux_pocket", "heat_flux_land", "heat_flux_drag", "heat_flux_damping",
+    "heat_flux_churn_cage", "heat_flux_churn_ring", "heat_flux_race_slide", "heat_flux_race_spin",
+    "heat_flux_race_diffslip")
+_spec = {n: (u, d) for n, u, d in OUTPUT_SPEC}
+OUTPUT_SPEC = tuple((n, u, d + (", averaged over the communication step" if n in STEP_AVERAGED_NAMES else ""))
+                    for n, u, d in OUTPUT_SPEC) + tuple(
+    (n + "_instantaneous", _spec[n][0], _spec[n][1] + ", instantaneous value at the communication point")
+    for n in STEP_AVERAGED_NAMES)
+del _spec
 OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUT_SPEC)
 
 # Integer outputs (FMI Integer variables)

@@ -237,6 +237,7 @@ class DynamicModel:
         self.y = None
         self.U = np.zeros(K.NU)
         self.stats = np.zeros(NSTATS)
+        self.quad = np.zeros(K.NQUAD)     # time integrals of the output channels (integrals())
         self.qs = None
 
     # ---- set-up -----------------------------------------------------------------------------
@@ -513,6 +514,7 @@ class DynamicModel:
         self.U[K.U_T0] = self.U[K.U_T1] = self.t
         self.U[K.U_FX:K.U_MY + 1] = loads_in
         self.stats[:] = 0.0
+        self.quad[:] = 0.0
         self._atol = self._atol_scale(nb)
         self.thermal = None
         self.apply_temperatures(self.opt.oil_temperature, self.opt.oil_temperature)
@@ -744,11 +746,11 @@ class DynamicModel:
         if method == 2:
             n = K.integrate_rosw(self.y, t_start, t_end, dt0, self.opt.rtol, self._atol, self.P, self.U,
                                  self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
-                                 rdt, rec, nmax, self.stats)
+                                 rdt, rec, nmax, self.stats, self.quad)
         else:
             n = K.integrate(self.y, t_start, t_end, dt0, method, self.opt.rtol, self._atol, self.P, self.U,
                             self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
-                            rdt, rec, nmax, self.stats)
+                            rdt, rec, nmax, self.stats, self.quad)
         if method > 0:
             self.stats[ST_H1 if method == 1 else ST_H2] = self.stats[3]
             d = self.stats[:3] - before
@@ -778,6 +780,17 @@ class DynamicModel:
             cur = other
         st[ST_CUR] = cur
         return cur
+
+    def integrals(self) -> dict:
+        """Time integrals [channel unit x s] of every output channel (dynamics_kernels.OUT_NAMES) since the
+        last reset_integrals(), accumulated inside the integrator over its accepted steps (trapezoidal
+        rule, dynamics_kernels.NQUAD): e.g. 'P_race_inner' is the energy [J] dissipated at the inner races,
+        'friction_torque' the angular impulse [N m s]."""
+        return dict(zip(K.OUT_NAMES, self.quad[:K.NOUT].tolist()))
+
+    def reset_integrals(self):
+        """Zero the time integrals (the next integration starts a new trapezoid at its first point)."""
+        self.quad[:] = 0.0
 
     def _shaft_speed(self, t):
         w, _ = K._shaft(self.U, t)
