@@ -593,6 +593,7 @@ class DynamicModel:
         # + 1 per auto chunk: float rounding can add one record at a chunk end
         nmax = int((t_end - self.t) / rdt) + 2 + int((t_end - self.t) / AUTO_CHUNK) + 1
         rec = np.zeros((nmax, K.NOUT))
+        q0 = self.quad[:K.NOUT].copy()
         if self.opt.integrator == "auto" and t_end - self.t > 1.5 * AUTO_CHUNK:
             # split into chunks (whole multiples of the record interval) and choose per chunk
             L = rdt * max(1, round(AUTO_CHUNK / rdt))
@@ -614,7 +615,10 @@ class DynamicModel:
                 f"({'non-finite state' if self.stats[4] == 1 else 'step size underflow'}); "
                 "reduce dt / rtol or check the inputs")
         if self.thermal is not None and n > 0:
-            self._thermal_step(rec[:n], (t_end - self.t) * self.opt.thermal_time_scale)
+            # the network takes the mean powers over the interval: the time integrals accumulated in the
+            # integrator (energy-consistent), not the mean of the sampled records
+            mean = ((self.quad[:K.NOUT] - q0) / (t_end - self.t))[None, :]
+            self._thermal_step(mean, (t_end - self.t) * self.opt.thermal_time_scale)
         self.t = t_end
         return rec[:n]
 
