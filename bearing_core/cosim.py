@@ -8,7 +8,7 @@ Inputs are held constant over a step (shaft speed included: a speed step is appl
 the step). Outputs are the instantaneous values at the end of the step, except the energy-carrying ones
 (STEP_AVERAGED: heat fluxes, friction torques, drive power), which are averages over the communication step
 (the time integral accumulated inside the integrator divided by the step), so that sum(heat_flux * h) is
-the energy dissipated; their instantaneous values are the outputs '<name>_instantaneous'. Every problem is reported as a
+the energy dissipated; their instantaneous values are the outputs 'instantaneous_<name>'. Every problem is reported as a
 StepRejected (recoverable: the state is left as before the step) or BearingInputError (configuration);
 numbers that are not finite never leave this module. SI units: rad/s, N, N m, m, rad, W, Pa.
 """
@@ -301,7 +301,7 @@ class CoSimSession:
         # energy-carrying outputs: step averages under the existing names, the sampled values beside them
         a = o if avg is None else dict(zip(K.OUT_NAMES, np.asarray(avg).tolist()))
         for name, src in STEP_AVERAGED:
-            out[name + "_instantaneous"] = out[name]
+            out["instantaneous_" + name] = out[name]
             if isinstance(src, tuple):
                 out[name] = sum(a[k] for k in src)
             else:

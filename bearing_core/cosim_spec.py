@@ -72,7 +72,8 @@ OUTPUT_SPEC += (
 )
 # Energy-carrying outputs: their values are averages over the communication step (integral of the
 # instantaneous value over the step / step, so that sum(value * h) is the energy); the value sampled at the
-# communication point is the output '<name>_instantaneous' (bearing_core.cosim).
+# communication point is the output 'instantaneous_<name>' (bearing_core.cosim; a prefix, so that sums over
+# the 'heat_flux_' outputs keep counting each source once).
 STEP_AVERAGED_NAMES = (
     "friction_torque", "friction_torque_outer", "drive_power", "heat_flux_total", "heat_flux_race_inner",
     "heat_flux_race_outer", "heat_flux_pocket", "heat_flux_land", "heat_flux_drag", "heat_flux_damping",
@@ -81,7 +82,7 @@ STEP_AVERAGED_NAMES = (
 _spec = {n: (u, d) for n, u, d in OUTPUT_SPEC}
 OUTPUT_SPEC = tuple((n, u, d + (", averaged over the communication step" if n in STEP_AVERAGED_NAMES else ""))
                     for n, u, d in OUTPUT_SPEC) + tuple(
-    (n + "_instantaneous", _spec[n][0], _spec[n][1] + ", instantaneous value at the communication point")
+    ("instantaneous_" + n, _spec[n][0], _spec[n][1] + ", instantaneous value at the communication point")
     for n in STEP_AVERAGED_NAMES)
 del _spec
 OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUT_SPEC)

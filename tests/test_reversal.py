@@ -148,7 +148,7 @@ def test_step_averaged_heat_closes_the_energy_sum():
     heat passed on, sum(heat_flux_total h), equals the dissipation integrated from the instantaneous values
     sampled every 1e-5 s in an identical run within 0.5 %. (b) With the averaged drive power it closes the
     energy balance drive + external work = heat + change of KE + elastic energy within 0.5 % after the
-    start transient. The coarse sum of the 1 ms samples (the *_instantaneous outputs) aliases the
+    start transient. The coarse sum of the 1 ms samples (the instantaneous_* outputs) aliases the
     ball-pass oscillation: it is printed, not asserted."""
     u = {"shaft_speed": 3000 * RPM, "Fx": 1000.0, "Fz": 3000.0}
     s = CoSimSession(CoSimParameters())
@@ -166,7 +166,7 @@ def test_step_averaged_heat_closes_the_energy_sum():
         t += h
         Q += o["heat_flux_total"] * h
         W += o["drive_power"] * h
-        Qi += o["heat_flux_total_instantaneous"] * h
+        Qi += o["instantaneous_heat_flux_total"] * h
     o1 = m.outputs()
     dE = (o1["KE"] + o1["U_elastic"]) - (o0["KE"] + o0["U_elastic"])
     assert abs((W + m.integrals()["P_ext"] - dE) / Q - 1) < 0.005
