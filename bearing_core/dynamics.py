@@ -426,8 +426,10 @@ class DynamicModel:
         quasi-static problem is solved in the frame turning with the outer ring at the relative speed
         |omega - omega_outer| (for a negative difference with the loads mirrored in the x-z plane and the
         state mirrored back, mirror_state), then omega_outer is added to the cage, orbital and ball z
-        speeds. The centrifugal force of that start is the one of the relative orbital speed; the
-        dynamics relax it to the absolute one. self.qs / self.tribo_qs keep the solved (relative) problem."""
+        speeds. Jones-Harris start: centrifugal force and gyroscopic moment at the absolute orbital speed
+        (QuasiStaticModel.omega_outer); the tribological start solves the relative problem with a fixed
+        outer ring (its centrifugal force at the relative orbital speed; the dynamics relax it).
+        self.qs / self.tribo_qs keep the solved (relative, possibly mirrored) problem."""
         if start not in START_MODELS:
             raise BearingInputError("start", start, " | ".join(START_MODELS))
         if start == "tribological" and (self.opt.coupling != "load" or self.opt.outer_mount != "fixed"):
@@ -451,6 +453,7 @@ class DynamicModel:
         self.axisym = bool(axisym)
         self.P = self._params(self.axisym)
         qsm = QuasiStaticModel(g, "outer", fixed_tilt=o.fixed_tilt)
+        qsm.omega_outer = -omega_outer if mirror else omega_outer     # in the (mirrored) solved problem
         if o.coupling == "displacement":
             if displacement is None:
                 raise BearingInputError("displacement", None, "10 values for displacement-driven coupling")
