@@ -8,9 +8,9 @@ Inputs are held constant over a step (shaft speed included: a speed step is appl
 the step). Outputs are the instantaneous values at the end of the step, except the energy-carrying ones
 (STEP_AVERAGED: heat fluxes, friction torques, drive power), which are averages over the communication step
 (the time integral accumulated inside the integrator divided by the step), so that sum(heat_flux * h) is
-the energy dissipated; their instantaneous values are the outputs 'instantaneous_<name>'. Every problem is reported as a
-StepRejected (recoverable: the state is left as before the step) or BearingInputError (configuration);
-numbers that are not finite never leave this module. SI units: rad/s, N, N m, m, rad, W, Pa.
+the energy dissipated; their instantaneous values are the outputs 'instantaneous_<name>'. Every
+problem is reported as a StepRejected (recoverable: the state is left as before the step) or
+BearingInputError (configuration); numbers that are not finite never leave this module. SI units: rad/s, N, N m, m, rad, W, Pa.
 """
 from __future__ import annotations
 
@@ -222,7 +222,8 @@ class CoSimSession:
         except BearingInputError as e:
             raise StepRejected(str(e))
         m = self.model
-        saved = (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), m.thermal_state(), m.quad.copy())
+        saved = (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), m.thermal_state(), m.quad.copy(),
+                 dict(self.outputs))
         try:
             m.set_inputs(loads=(u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"]),
                          displacement=None if self.p.coupling != "displacement" else
@@ -248,6 +249,8 @@ class CoSimSession:
             m.quad[:] = saved[5]
             self.t = m.t
             self._update_outputs()
+            for name in STEP_AVERAGED_NAMES:      # the averages of the last accepted step stay
+                self.outputs[name] = saved[6][name]
             raise StepRejected(str(e))
         return dict(self.outputs)
 
