@@ -5,9 +5,12 @@
     out = s.step(t=0.0, h=1e-3, inputs={...})       # advances exactly to t + h, inputs held
 
 Inputs are held constant over a step (shaft speed included: a speed step is applied at the start of
-the step). Outputs are the instantaneous values at the end of the step. Every problem is reported as a
-StepRejected (recoverable: the state is left as before the step) or BearingInputError (configuration);
-numbers that are not finite never leave this module. SI units: rad/s, N, N m, m, rad, W, Pa.
+the step). Outputs are the instantaneous values at the end of the step, except the energy-carrying ones
+(STEP_AVERAGED: heat fluxes, friction torques, drive power), which are averages over the communication step
+(the time integral accumulated inside the integrator divided by the step), so that sum(heat_flux * h) is
+the energy dissipated; their instantaneous values are the outputs 'instantaneous_<name>'. Every
+problem is reported as a StepRejected (recoverable: the state is left as before the step) or
+BearingInputError (configuration); numbers that are not finite never leave this module. SI units: rad/s, N, N m, m, rad, W, Pa.
 """
 from __future__ import annotations
 
@@ -20,9 +23,24 @@ import numpy as np
 from .dynamics import DynamicModel, DynamicsOptions
 from .errors import BearingInputError, ConvergenceError, check_range
 from .geometry import load_preset
+from . import dynamics_kernels as K
 
 from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # noqa: F401 (re-export)
 from .cosim_spec import INT_OUTPUT_NAMES, INT_OUTPUT_SPEC  # noqa: F401 (re-export)
+from .cosim_spec import STEP_AVERAGED_NAMES
+HEAT_CHANNELS = {"race_inner": "P_race_inner", "race_outer": "P_race_outer", "pocket": "P_pocket",
+                 "land": "P_land", "drag": "P_drag", "damping": "P_damping", "churn_cage": "P_churn_cage",
+                 "churn_ring": "P_churn_ring"}
+STEP_AVERAGED = (
+    ("friction_torque", "friction_torque"), ("friction_torque_outer", "friction_torque_outer"),
+    ("drive_power", "P_drive"), ("heat_flux_total", tuple(HEAT_CHANNELS.values())),
+    *((f"heat_flux_{k}", v) for k, v in HEAT_CHANNELS.items()),
+    ("heat_flux_race_slide", "P_race_slide"), ("heat_flux_race_spin", "P_race_spin"),
+    ("heat_flux_race_diffslip", "P_race_diffslip"),
+)
+"""(output name, dynamics channel or channels summed): outputs averaged over each communication step."""
+assert tuple(n for n, _ in STEP_AVERAGED) == STEP_AVERAGED_NAMES
+CSR_MIN_SPEED = 1.0   # rad/s (9.5 rpm): below it |shaft speed| the cage/shaft ratios are reported as 0
 P_LIMIT = 4.2e9   # Pa: ISO 76 static-capacity contact stress of ball bearings; beyond it the model refuses
 
 
@@ -171,7 +189,8 @@ class CoSimSession:
             if not math.isfinite(v):
                 raise BearingInputError(k, v, "a finite number")
             u[k] = v
-        check_range("shaft_speed", u["shaft_speed"], 0.0, 2.0e4, unit="rad/s")
+        check_range("shaft_speed", u["shaft_speed"], -2.0e4, 2.0e4, unit="rad/s")
+        check_range("outer_ring_speed", u["outer_ring_speed"], -2.0e4, 2.0e4, unit="rad/s")
         for k in ("Fx", "Fy", "Fz"):
             check_range(k, u[k], -1e7, 1e7, unit="N")
         return u
@@ -218,7 +237,8 @@ class CoSimSession:
         if self.p.coupling == "displacement":
             disp = [u[k] for k in ("dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")]
         try:
-            self.model.initialize(u["shaft_speed"], loads, displacement=disp, t0=float(t0))
+            self.model.initialize(u["shaft_speed"], loads, displacement=disp, t0=float(t0),
+                                  omega_outer=u["outer_ring_speed"])
         except ConvergenceError as e:
             raise BearingInputError("inputs", dict(u), "a load case with a quasi-static equilibrium", str(e))
         self.t = float(t0)
@@ -240,14 +260,17 @@ class CoSimSession:
         except BearingInputError as e:
             raise StepRejected(str(e))
         m = self.model
-        saved = (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), m.thermal_state())
+        saved = (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), m.thermal_state(), m.quad.copy(),
+                 dict(self.outputs))
         try:
             m.set_inputs(loads=(u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"]),
                          displacement=None if self.p.coupling != "displacement" else
                          [u[k] for k in ("dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")])
             # input held over the step: the speed takes its new value at the start of the step
-            m.set_speed(u["shaft_speed"])
+            m.set_speed(u["shaft_speed"], u["outer_ring_speed"])
+            q0 = m.quad[:K.NOUT].copy()
             m.advance(t + h, record_dt=max(h, 1e-6))
+            avg = (m.quad[:K.NOUT] - q0) / (m.t - t)
             if m.thermal_runaway:
                 # a temperature past the oil's limit: flagged and the step discarded (never reported as OK)
                 from .thermal import ThermalRunaway
@@ -256,21 +279,28 @@ class CoSimSession:
                 raise StepRejected(str(ThermalRunaway(th.temperatures(), th.T_max, th.oil.name,
                                                       f"at t = {t + h:.6g} s")))
             self.t = m.t
-            self._update_outputs()
+            self._update_outputs(avg)
             self._check_limits()
         except (BearingInputError, FloatingPointError, StepRejected) as e:
             m.y, m.t, m.U, m.stats = saved[:4]
             m.set_thermal_state(saved[4])
+            m.quad[:] = saved[5]
             self.t = m.t
             self._update_outputs()
+            for name in STEP_AVERAGED_NAMES:      # the averages of the last accepted step stay
+                self.outputs[name] = saved[6][name]
             raise StepRejected(str(e))
         return dict(self.outputs)
 
-    def _update_outputs(self):
+    def _update_outputs(self, avg=None):
+        """Outputs at the current instant; avg (len NOUT, dynamics_kernels channels) the step averages of
+        the last step (None at initialisation: the instantaneous values stand for them)."""
         o = self.model.outputs()
         w = o["shaft_speed"]
-        csr = o["cage_speed"] / w if w > 0 else 0.0
-        csr_t = o["pure_rolling_cage_speed"] / w if w > 0 else 0.0
+        # ratios to the (signed) shaft speed: 0 below CSR_MIN_SPEED, where they are 0/0 (at rest, passing
+        # through zero, or inner ring held with the outer ring turning)
+        csr = o["cage_speed"] / w if abs(w) >= CSR_MIN_SPEED else 0.0
+        csr_t = o["pure_rolling_cage_speed"] / w if abs(w) >= CSR_MIN_SPEED else 0.0
         heat = {k: o[f"P_{k}"] for k in ("race_inner", "race_outer", "pocket", "land", "drag", "damping",
                                          "churn_cage", "churn_ring")}
         T = self.model.temperatures()
@@ -280,7 +310,7 @@ class CoSimSession:
             "reaction_Mx": o["Mx"], "reaction_My": o["My"],
             "cage_speed": o["cage_speed"], "cage_shaft_ratio": csr, "cage_shaft_ratio_theory": csr_t,
             "skid_ratio": 1.0 - csr / csr_t if csr_t > 0 else 0.0,
-            "friction_torque": o["friction_torque"],
+            "friction_torque": o["friction_torque"], "friction_torque_outer": o["friction_torque_outer"],
             "heat_flux_total": sum(heat.values()),
             **{f"heat_flux_{k}": v for k, v in heat.items()},
             "heat_flux_race_slide": o["P_race_slide"], "heat_flux_race_spin": o["P_race_spin"],
@@ -301,12 +331,22 @@ class CoSimSession:
             "film_parameter_min": fl["Lambda_min"],
         }
         from .skid import classify_skid
-        state, slip = classify_skid(o["cage_speed"], o["cage_speed_pure_rolling_outer"])
+        state, slip = classify_skid(o["cage_speed"], o["cage_speed_pure_rolling_outer"],
+                                    omega_outer=o["outer_ring_speed"])
         out["cage_speed_pure_rolling_outer"] = o["cage_speed_pure_rolling_outer"]
         out["cage_speed_pure_rolling_inner"] = o["cage_speed_pure_rolling_inner"]
         out["cage_slip_ratio"] = slip
         out["skid_state"] = int(state)
         out["thermal_runaway"] = int(self.thermal_runaway)
+        out["drive_power"] = o["P_drive"]
+        # energy-carrying outputs: step averages under the existing names, the sampled values beside them
+        a = o if avg is None else dict(zip(K.OUT_NAMES, np.asarray(avg).tolist()))
+        for name, src in STEP_AVERAGED:
+            out["instantaneous_" + name] = out[name]
+            if isinstance(src, tuple):
+                out[name] = sum(a[k] for k in src)
+            else:
+                out[name] = a[src]
         bad = [k for k, v in out.items() if not math.isfinite(v)]
         if bad:
             raise StepRejected(f"non-finite outputs {bad} (solver failure)")
@@ -322,13 +362,14 @@ class CoSimSession:
     def get_state(self):
         m = self.model
         return None if m is None else (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), dict(self.outputs),
-                                       m.thermal_state())
+                                       m.thermal_state(), m.quad.copy())
 
     def set_state(self, state):
         if state is None:
             return
-        y, t, U, stats, outs, th = state
+        y, t, U, stats, outs, th, quad = state
         self.model.set_thermal_state(th)
+        self.model.quad[:] = quad
         self.model.y[:] = y
         self.model.t = t
         self.model.U[:] = U

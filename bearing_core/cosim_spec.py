@@ -2,9 +2,9 @@
 Pure data (no numba import), shared by bearing_core.cosim and the FMU slave in fmu_src/."""
 
 INPUT_NAMES = ("shaft_speed", "Fx", "Fy", "Fz", "Mx", "My",
-               "dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")
+               "dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy", "outer_ring_speed")
 INPUT_UNITS = ("rad/s", "N", "N", "N", "N.m", "N.m", "m", "m", "m", "rad", "rad", "m/s", "m/s", "m/s",
-               "rad/s", "rad/s")
+               "rad/s", "rad/s", "rad/s")
 OUTPUT_SPEC = (
     # name, unit, description
     ("reaction_Fx", "N", "force of the bearing on the shaft, x"),
@@ -19,6 +19,7 @@ OUTPUT_SPEC = (
     ("skid_ratio", "1", "1 - CSR / seed 000 Eq. 26 CSR (seed 000's measure; the skid classification uses "
                         "cage_slip_ratio)"),
     ("friction_torque", "N.m", "torque needed to drive the inner ring"),
+    ("friction_torque_outer", "N.m", "torque needed to drive (or hold) the outer ring"),
     ("heat_flux_total", "W", "total dissipated power"),
     ("heat_flux_race_inner", "W", "ball-inner race traction (rolling, sliding, spin)"),
     ("heat_flux_race_outer", "W", "ball-outer race traction (rolling, sliding, spin)"),
@@ -66,6 +67,24 @@ OUTPUT_SPEC = (
      "pure-rolling cage speed at the loaded balls' contact angles, inner-raceway control (bearing_core.skid)"),
     ("cage_slip_ratio", "1", "1 - cage speed / cage_speed_pure_rolling_outer (> 0 skidding, < 0 over-skidding)"),
 )
+OUTPUT_SPEC += (
+    ("drive_power", "W", "power supplied by the drives of both rings (friction torques x ring speeds)"),
+)
+# Energy-carrying outputs: their values are averages over the communication step (integral of the
+# instantaneous value over the step / step, so that sum(value * h) is the energy); the value sampled at the
+# communication point is the output 'instantaneous_<name>' (bearing_core.cosim; a prefix, so that sums over
+# the 'heat_flux_' outputs keep counting each source once).
+STEP_AVERAGED_NAMES = (
+    "friction_torque", "friction_torque_outer", "drive_power", "heat_flux_total", "heat_flux_race_inner",
+    "heat_flux_race_outer", "heat_flux_pocket", "heat_flux_land", "heat_flux_drag", "heat_flux_damping",
+    "heat_flux_churn_cage", "heat_flux_churn_ring", "heat_flux_race_slide", "heat_flux_race_spin",
+    "heat_flux_race_diffslip")
+_spec = {n: (u, d) for n, u, d in OUTPUT_SPEC}
+OUTPUT_SPEC = tuple((n, u, d + (", averaged over the communication step" if n in STEP_AVERAGED_NAMES else ""))
+                    for n, u, d in OUTPUT_SPEC) + tuple(
+    ("instantaneous_" + n, _spec[n][0], _spec[n][1] + ", instantaneous value at the communication point")
+    for n in STEP_AVERAGED_NAMES)
+del _spec
 OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUT_SPEC)
 
 # Integer outputs (FMI Integer variables)

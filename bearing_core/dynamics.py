@@ -237,6 +237,7 @@ class DynamicModel:
         self.y = None
         self.U = np.zeros(K.NU)
         self.stats = np.zeros(NSTATS)
+        self.quad = np.zeros(K.NQUAD)     # time integrals of the output channels (integrals())
         self.qs = None
 
     # ---- set-up -----------------------------------------------------------------------------
@@ -412,22 +413,38 @@ class DynamicModel:
         return out
 
     def initialize(self, omega: float, loads=(0.0, 0.0, 0.0, 0.0, 0.0), displacement=None, t0: float = 0.0,
-                   start: str = "jones-harris"):
+                   start: str = "jones-harris", omega_outer: float = 0.0):
         """Start at (near) equilibrium from the quasi-static solution (outer raceway control) at shaft
         speed omega [rad/s] and loads (Fx, Fy, Fz, Mx, My) [N, N m]. Displacement-driven coupling takes
         ``displacement`` = (dx, dy, dz, tx, ty, vx, vy, vz, wx, wy) [m, rad, m/s, rad/s] instead; the
         quasi-static start then uses the load that this displacement needs (found by the QS solve of the
         loads returned by a static pass). start: 'jones-harris' (raceway control) or 'tribological' (the
         quasi-static tribological model with this model's traction, bearing_core.quasistatic_tribo; seed 000
-        Sec. 3.1 stage 1; load-driven ring on a fixed outer ring only; its result is kept in self.tribo_qs)."""
+        Sec. 3.1 stage 1; load-driven ring on a fixed outer ring only; its result is kept in self.tribo_qs).
+        Both speeds are signed (about +z), in [-2e4, 2e4] rad/s; omega_outer [rad/s] turns the outer ring.
+        Start with a rotating outer ring or a negative speed difference (docs/reversal_and_outputs.md): the
+        quasi-static problem is solved in the frame turning with the outer ring at the relative speed
+        |omega - omega_outer| (for a negative difference with the loads mirrored in the x-z plane and the
+        state mirrored back, mirror_state), then omega_outer is added to the cage, orbital and ball z
+        speeds. Jones-Harris start: centrifugal force and gyroscopic moment at the absolute orbital speed
+        (QuasiStaticModel.omega_outer); the tribological start solves the relative problem with a fixed
+        outer ring (its centrifugal force at the relative orbital speed; the dynamics relax it).
+        self.qs / self.tribo_qs keep the solved (relative, possibly mirrored) problem."""
         if start not in START_MODELS:
             raise BearingInputError("start", start, " | ".join(START_MODELS))
         if start == "tribological" and (self.opt.coupling != "load" or self.opt.outer_mount != "fixed"):
             raise BearingInputError("start", start, "jones-harris with displacement coupling or an elastic outer ring")
-        omega = check_range("omega", omega, 0.0, 2.0e4, unit="rad/s")
+        omega = check_range("omega", omega, -2.0e4, 2.0e4, unit="rad/s")
+        omega_outer = check_range("omega_outer", omega_outer, -2.0e4, 2.0e4, unit="rad/s")
         loads = np.asarray(loads, dtype=float).reshape(-1)
         if loads.size != 5 or not np.all(np.isfinite(loads)):
             raise BearingInputError("loads", loads.tolist(), "5 finite values (Fx, Fy, Fz, Mx, My)")
+        loads_in = loads.copy()
+        w_rel = omega - omega_outer
+        mirror = w_rel < 0.0
+        if mirror:      # solve the mirrored start (x-z plane): Fy, Mx change sign
+            loads = loads * MIRROR_LOADS
+        omega = abs(w_rel)
         g, o = self.g, self.opt
         axisym = (o.reduced == "axisymmetric") or (
             o.reduced == "auto" and o.coupling == "load" and np.all(loads[[0, 1, 3, 4]] == 0.0))
@@ -436,15 +453,19 @@ class DynamicModel:
         self.axisym = bool(axisym)
         self.P = self._params(self.axisym)
         qsm = QuasiStaticModel(g, "outer", fixed_tilt=o.fixed_tilt)
+        qsm.omega_outer = -omega_outer if mirror else omega_outer     # in the (mirrored) solved problem
         if o.coupling == "displacement":
             if displacement is None:
                 raise BearingInputError("displacement", None, "10 values for displacement-driven coupling")
             d = np.asarray(displacement, dtype=float).reshape(-1)
             if d.size != 10 or not np.all(np.isfinite(d)):
                 raise BearingInputError("displacement", d.tolist(), "10 finite values")
+            self.U[K.U_DX:K.U_WY + 1] = d
+            if mirror:
+                d = d * MIRROR_DISP
             Fb, X, st, ok = qsm.residual(d[:5], omega)
             loads = -Fb
-            self.U[K.U_DX:K.U_WY + 1] = d
+            loads_in = loads * MIRROR_LOADS if mirror else loads
         qs = qsm.solve(omega, loads, stiffness=(o.coupling == "load"))
         self.qs = qs
         if o.coupling == "load":
@@ -481,12 +502,22 @@ class DynamicModel:
             for j in range(nb):       # reduced model: ball 0 stands for all (pure axial load: all equal)
                 b, bt = K.NSTATE_FIXED + K.NSB * j, K.NSTATE_FIXED + K.NSB * j
                 y[b + 1:b + 9] = tq.y[bt + 1:bt + 9]
+        if mirror:
+            y = mirror_state(y, nb)
+        if omega_outer != 0.0:      # from the frame turning with the outer ring to the absolute frame
+            y[11] += omega_outer
+            for j in range(nb):
+                b = K.NSTATE_FIXED + K.NSB * j
+                y[b + 3] += omega_outer
+                y[b + 8] += omega_outer
         self.y = y
         self.t = float(t0)
-        self.U[K.U_W0] = self.U[K.U_W1] = omega
+        self.U[K.U_W0] = self.U[K.U_W1] = omega_outer + (-omega if mirror else omega)
+        self.U[K.U_WO] = omega_outer
         self.U[K.U_T0] = self.U[K.U_T1] = self.t
-        self.U[K.U_FX:K.U_MY + 1] = loads
+        self.U[K.U_FX:K.U_MY + 1] = loads_in
         self.stats[:] = 0.0
+        self.quad[:] = 0.0
         self._atol = self._atol_scale(nb)
         self.thermal = None
         self.apply_temperatures(self.opt.oil_temperature, self.opt.oil_temperature)
@@ -539,9 +570,12 @@ class DynamicModel:
                 raise BearingInputError("displacement", d.tolist(), "10 finite values")
             self.U[K.U_DX:K.U_WY + 1] = d
 
-    def set_speed(self, omega: float):
-        """Hold the shaft speed at omega [rad/s] from now on (a step change, no ramp)."""
-        omega = check_range("shaft_speed", omega, 0.0, 2.0e4, unit="rad/s")
+    def set_speed(self, omega: float, omega_outer: float | None = None):
+        """Hold the shaft speed at omega [rad/s] from now on (a step change, no ramp), signed about +z; also
+        the outer-ring speed omega_outer [rad/s] if given (else kept)."""
+        omega = check_range("shaft_speed", omega, -2.0e4, 2.0e4, unit="rad/s")
+        if omega_outer is not None:
+            self.U[K.U_WO] = check_range("outer_ring_speed", omega_outer, -2.0e4, 2.0e4, unit="rad/s")
         self.U[K.U_W0] = self.U[K.U_W1] = omega
         self.U[K.U_T0] = self.U[K.U_T1] = self.t
 
@@ -555,13 +589,14 @@ class DynamicModel:
         if not math.isfinite(t_end) or t_end <= self.t:
             raise BearingInputError("t_end", t_end, f"finite and > current time {self.t}")
         w0 = self.U[K.U_W1] if self.t >= self.U[K.U_T1] else self._shaft_speed(self.t)
-        w1 = w0 if omega_end is None else check_range("omega_end", omega_end, 0.0, 2.0e4, unit="rad/s")
+        w1 = w0 if omega_end is None else check_range("omega_end", omega_end, -2.0e4, 2.0e4, unit="rad/s")
         self.U[K.U_W0], self.U[K.U_W1] = w0, w1
         self.U[K.U_T0], self.U[K.U_T1] = self.t, t_end
         rdt = self.opt.record_dt if record_dt is None else float(record_dt)
         # + 1 per auto chunk: float rounding can add one record at a chunk end
         nmax = int((t_end - self.t) / rdt) + 2 + int((t_end - self.t) / AUTO_CHUNK) + 1
         rec = np.zeros((nmax, K.NOUT))
+        q0 = self.quad[:K.NOUT].copy()
         if self.opt.integrator == "auto" and t_end - self.t > 1.5 * AUTO_CHUNK:
             # split into chunks (whole multiples of the record interval) and choose per chunk
             L = rdt * max(1, round(AUTO_CHUNK / rdt))
@@ -583,7 +618,10 @@ class DynamicModel:
                 f"({'non-finite state' if self.stats[4] == 1 else 'step size underflow'}); "
                 "reduce dt / rtol or check the inputs")
         if self.thermal is not None and n > 0:
-            self._thermal_step(rec[:n], (t_end - self.t) * self.opt.thermal_time_scale)
+            # the network takes the mean powers over the interval: the time integrals accumulated in the
+            # integrator (energy-consistent), not the mean of the sampled records
+            mean = ((self.quad[:K.NOUT] - q0) / (t_end - self.t))[None, :]
+            self._thermal_step(mean, (t_end - self.t) * self.opt.thermal_time_scale)
         self.t = t_end
         return rec[:n]
 
@@ -622,7 +660,7 @@ class DynamicModel:
         skid_state (+1 skidding, 0 pure rolling, -1 over-skidding) with its label."""
         from .skid import SKID_LABELS, classify_skid
         o = self.outputs()
-        state, s = classify_skid(o["cage_speed"], o["cage_speed_pure_rolling_outer"])
+        state, s = classify_skid(o["cage_speed"], o["cage_speed_pure_rolling_outer"], omega_outer=o["outer_ring_speed"])
         return {"cage_speed": o["cage_speed"], "cage_speed_pure_rolling_outer": o["cage_speed_pure_rolling_outer"],
                 "cage_speed_pure_rolling_inner": o["cage_speed_pure_rolling_inner"],
                 "cage_speed_seed000_eq26": o["pure_rolling_cage_speed"], "cage_slip_ratio": s,
@@ -715,11 +753,11 @@ class DynamicModel:
         if method == 2:
             n = K.integrate_rosw(self.y, t_start, t_end, dt0, self.opt.rtol, self._atol, self.P, self.U,
                                  self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
-                                 rdt, rec, nmax, self.stats)
+                                 rdt, rec, nmax, self.stats, self.quad)
         else:
             n = K.integrate(self.y, t_start, t_end, dt0, method, self.opt.rtol, self._atol, self.P, self.U,
                             self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
-                            rdt, rec, nmax, self.stats)
+                            rdt, rec, nmax, self.stats, self.quad)
         if method > 0:
             self.stats[ST_H1 if method == 1 else ST_H2] = self.stats[3]
             d = self.stats[:3] - before
@@ -749,6 +787,17 @@ class DynamicModel:
             cur = other
         st[ST_CUR] = cur
         return cur
+
+    def integrals(self) -> dict:
+        """Time integrals [channel unit x s] of every output channel (dynamics_kernels.OUT_NAMES) since the
+        last reset_integrals(), accumulated inside the integrator over its accepted steps (trapezoidal
+        rule, dynamics_kernels.NQUAD): e.g. 'P_race_inner' is the energy [J] dissipated at the inner races,
+        'friction_torque' the angular impulse [N m s]."""
+        return dict(zip(K.OUT_NAMES, self.quad[:K.NOUT].tolist()))
+
+    def reset_integrals(self):
+        """Zero the time integrals (the next integration starts a new trapezoid at its first point)."""
+        self.quad[:] = 0.0
 
     def _shaft_speed(self, t):
         w, _ = K._shaft(self.U, t)
@@ -786,6 +835,26 @@ class DynamicModel:
         return d
 
 
+MIRROR_LOADS = np.array([1.0, -1.0, 1.0, -1.0, 1.0])
+"""Reflection in the x-z plane of (Fx, Fy, Fz, Mx, My): moments are axial vectors."""
+MIRROR_DISP = np.array([1.0, -1.0, 1.0, -1.0, 1.0, 1.0, -1.0, 1.0, -1.0, 1.0])
+
+
+def mirror_state(y: np.ndarray, nb: int) -> np.ndarray:
+    """The state (dynamics_kernels layout) reflected in the x-z plane (y -> -y, a plane through the bearing
+    axis): positions y, rates vy, tilts and tilt rates about x, angles and speeds about z change sign (axial
+    vectors: a component in the plane flips, the normal one stays); ball j at theta goes to the ball at
+    -theta, index (nb - j) % nb, with (Omega_r, Omega_t, Omega_z) -> (-Omega_r, Omega_t, -Omega_z)."""
+    m = y.copy()
+    for i in (1, 3, 6, 8, 10, 11, 13, 15, 17, 19):
+        m[i] = -y[i]
+    for j in range(nb):
+        b = K.NSTATE_FIXED + K.NSB * j
+        k = K.NSTATE_FIXED + K.NSB * ((nb - j) % nb)
+        m[k:k + K.NSB] = y[b:b + K.NSB] * np.array([-1.0, 1.0, 1.0, -1.0, 1.0, 1.0, -1.0, 1.0, -1.0])
+    return m
+
+
 SEED000_PROFILE = ((0.0, 1000.0), (0.5, 1000.0), (1.4, 10000.0), (2.0, 10000.0))
 """Seed 000 acceleration case: (time [s], inner-ring speed [rpm]) breakpoints: 1000 rpm to 0.5 s, then
 10,000 rpm/s up to 10,000 rpm at 1.4 s, held to 2 s (Lubricants 2025 13(5) 218, section 4)."""
@@ -795,8 +864,10 @@ PROFILE_LOAD_COLUMNS = ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")
 
 
 def read_profile(spec: str):
-    """A speed profile: 'seed000' (SEED000_PROFILE) or a CSV file with columns time_s, speed_rpm and
-    optionally Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm. Returns (times [s], speeds [rpm], loads) with loads a dict
+    """A speed profile: 'seed000' (SEED000_PROFILE) or a CSV file with columns time_s, speed_rpm (signed:
+    negative turns the shaft backwards, |speed| <= 190,986 rpm = 2e4 rad/s) and optionally Fx_N, Fy_N,
+    Fz_N, Mx_Nm, My_Nm and outer_speed_rpm (held per segment at the segment's start value in
+    simulate_profile when given as a third tuple element). Returns (times [s], speeds [rpm], loads) with loads a dict
     of the load columns present (None if none). Bad files raise BearingInputError('profile', ...)."""
     import csv
     from pathlib import Path
@@ -817,8 +888,16 @@ def read_profile(spec: str):
     vals = np.concatenate([t, n] + list(loads.values()))
     if len(t) < 2 or np.any(np.diff(t) <= 0) or not np.all(np.isfinite(vals)):
         raise BearingInputError("profile", spec, ">= 2 rows, strictly increasing finite time_s, finite values")
-    if np.any(n < 0):
-        raise BearingInputError("profile", spec, "speed_rpm >= 0")
+    if np.any(np.abs(n) > 2.0e4 * 30.0 / math.pi):
+        raise BearingInputError("profile", spec, "|speed_rpm| <= 190986 rpm (2e4 rad/s)")
+    if rows and "outer_speed_rpm" in rows[0]:
+        try:
+            no = np.array([float(r["outer_speed_rpm"]) for r in rows])
+        except (ValueError, TypeError):
+            raise BearingInputError("profile", spec, "numeric outer_speed_rpm")
+        if not np.all(np.isfinite(no)) or np.any(np.abs(no) > 2.0e4 * 30.0 / math.pi):
+            raise BearingInputError("profile", spec, "finite |outer_speed_rpm| <= 190986 rpm")
+        loads = dict(loads, outer_speed_rpm=no)
     return t, n, (loads or None)
 
 
@@ -826,18 +905,22 @@ def simulate_profile(model: DynamicModel, profile, record_dt: float | None = Non
     """Drive an initialised model through a piecewise-linear speed profile ((t [s], speed [rpm]), ...)
     starting at the model's current time; returns the concatenated records. Python is entered once per
     profile segment (or per chunk of at most 0.05 s when ``progress`` is given, to report progress)."""
-    prof = [(float(t), float(n)) for t, n in profile]
+    prof = [(float(p[0]), float(p[1])) for p in profile]
+    outer = [float(p[2]) if len(p) > 2 else None for p in profile]
     if any(not (math.isfinite(t) and math.isfinite(n)) for t, n in prof):
         raise BearingInputError("profile", profile, "finite (time s, speed rpm) pairs")
     if any(b[0] <= a[0] for a, b in zip(prof, prof[1:])):
         raise BearingInputError("profile", profile, "strictly increasing times")
-    if any(n < 0 for _, n in prof):
-        raise BearingInputError("profile", profile, "speeds >= 0 rpm")
+    if any(abs(n) > 2.0e4 * 30.0 / math.pi for _, n in prof):
+        raise BearingInputError("profile", profile, "speeds within +-190986 rpm (2e4 rad/s), signed")
     out = []
     t_end = prof[-1][0]
-    for (t0, n0), (t1, n1) in zip(prof, prof[1:]):
+    for i, ((t0, n0), (t1, n1)) in enumerate(zip(prof, prof[1:])):
         if t1 <= model.t + 1e-12:
             continue
+        if outer[i] is not None:       # outer-ring speed [rpm] held over the segment
+            model.U[K.U_WO] = check_range("outer_speed_rpm", outer[i], -2.0e4 * 30.0 / math.pi,
+                                          2.0e4 * 30.0 / math.pi, unit="rpm") * math.pi / 30.0
         chunks = [t1] if progress is None else list(np.arange(model.t + 0.05, t1, 0.05)) + [t1]
         for tc in chunks:
             if tc <= model.t + 1e-12:

@@ -13,8 +13,10 @@ State layout (one float64 vector y; all SI), documented here once:
                 6..8 absolute angular velocity (Omega_r, Omega_t, Omega_z) [rad/s] in the ball's local frame
                 (r = radially out at theta, t = z x r = direction of increasing theta, z = bearing axis).
 
-Frames and signs: bearing axis z, inner ring turning at omega(t) > 0 about +z (prescribed), outer ring
-fixed. Ball-race geometry through the groove curvature centres exactly as in quasistatic.py (seed 003
+Frames and signs: bearing axis z, inner ring turning at omega(t) about +z (prescribed, either sign), outer
+ring turning at the prescribed omega_o about +z (U_WO, default 0; its centre may translate in an elastic housing).
+Every kernel is written for signed speeds (entrainment speeds enter as |u|), so a run mirrored in a plane through
+the axis at -omega gives the mirrored motion. Ball-race geometry through the groove curvature centres exactly as in quasistatic.py (seed 003
 Eqs. 3-8; Harris & Kotzalas Vol. 2 Ch. 3): for a ball at theta, X = B - O_o and C = O_i - O_o in (r, z),
 C = (A cos a0 + x cos th + y sin th, A sin a0 + z + Ri (tx sin th - ty cos th)).
 
@@ -71,7 +73,9 @@ NSB = 9  # states per ball
 
 # ---- input vector indices (float64 array U, held over an advance call) --------------------------
 (U_W0, U_W1, U_T0, U_T1, U_FX, U_FY, U_FZ, U_MX, U_MY,
- U_DX, U_DY, U_DZ, U_TX, U_TY, U_VX, U_VY, U_VZ, U_WX, U_WY, NU) = range(20)
+ U_DX, U_DY, U_DZ, U_TX, U_TY, U_VX, U_VY, U_VZ, U_WX, U_WY,
+ U_WO,                      # outer-ring speed about +z [rad/s] (held)
+ NU) = range(21)
 
 # ---- output channels (per recorded instant) -----------------------------------------------------
 OUT_NAMES = (
@@ -94,6 +98,7 @@ OUT_NAMES = (
     # pure-rolling cage speed at each loaded ball's own contact angles (Harris & Kotzalas Vol. 2 Ch. 3
     # cage speed with raceway control), averaged over the balls loaded at both races: outer / inner control
     "cage_speed_pure_rolling_outer", "cage_speed_pure_rolling_inner",
+    "outer_ring_speed", "friction_torque_outer",         # outer ring: prescribed speed, torque to drive it [N m]
 )
 NOUT = len(OUT_NAMES)
 OUT_INDEX = {n: i for i, n in enumerate(OUT_NAMES)}
@@ -173,6 +178,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     Ryo = fo * D / (2.0 * fo - 1.0)
     zeta = P[P_ZETA]
     w, wdot = _shaft(U, t)
+    wo = U[U_WO]
     disp = P[P_COUPLING] > 0.5
     if disp:
         # displacement-driven: ring pose and rates are inputs (held over the step)
@@ -194,6 +200,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     FOx = 0.0; FOy = 0.0                                             # balls -> outer ring
     # accumulators
     FRx = 0.0; FRy = 0.0; FRz = 0.0; MRx = 0.0; MRy = 0.0; TRz = 0.0   # balls -> inner ring
+    TOz = 0.0                                                        # balls -> outer ring, about z
     FCx = 0.0; FCy = 0.0; TC = 0.0                                   # balls -> cage
     P_ri = 0.0; P_ro = 0.0; P_pk = 0.0; P_dr = 0.0; P_dp = 0.0
     P_sl = 0.0; P_sp = 0.0
@@ -272,8 +279,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # torque of the traction about the bearing axis, exact for the distributed shear: on the ball it is
         # rb F_t + (M about the ball centre) . z = rb F_t + n_z M_n + n_r M_m; the ring gets the opposite
         TRz -= rb * ft + niz * mn + nir * mm
-        # traction, outer race (fixed)
-        vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, 0.0, vor, vot, 0.0,
+        # traction, outer race (turning at wo)
+        vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, wo, vor, vot, 0.0,
                                                            nor, noz, D)
         ft, fm, mn, mm, mt, pl = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo,
                                                 0.5 * D * (1.0 + D * math.cos(ao) / dm), Ryo, vs_t, vs_m, wsp,
@@ -289,6 +296,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         for_t = -ft
         FOx += for_r * c - for_t * s
         FOy += for_r * s + for_t * c
+        TOz -= rb * ft + noz * mn + nor * mm
         sl_o = vs_t; u_o = abs(ur); sp_o = wsp; sm_o = vs_m
         # ball-pocket contact (seed 000 Eq. 6, contact_kernels.ball_pocket_contact) in the frame of the
         # (possibly whirling) cage: ball azimuth about the cage centre against the pocket azimuth
@@ -380,7 +388,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             pmax = max(pmax, 1.5 * Qi / (math.pi * ai_s * bi_s))
         Qimin = min(Qimin, Qi)
         if Qi > 0.0 and Qo > 0.0:
-            wco, wci = pure_rolling_cage_speeds(w, ai, ao, gD)
+            wco, wci = pure_rolling_cage_speeds(w, ai, ao, gD, wo)
             sco += wco; sci += wci; npr += 1.0
         if Qo > 0.0:
             sao += ao; nao += 1.0
@@ -418,6 +426,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     # multiplicity (reduced axisymmetric model: one ball stands for Z)
     FRz *= mult
     TRz *= mult
+    TOz *= mult
     TC *= mult
     P_ri *= mult; P_ro *= mult; P_pk *= mult; P_dr *= mult; P_dp *= mult
     P_sl *= mult; P_sp *= mult
@@ -443,7 +452,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         else:
             FOx += Fl * ex
             FOy += Fl * ey
-        vsl = wc * P[P_RLAND]    # land fixed (outer) or turning with the shaft (inner)
+        vsl = (wc - wo) * P[P_RLAND]    # land turning with the outer ring or with the shaft (inner)
         if P[P_GUIDE] > 0.5:
             vsl = (wc - w) * P[P_RLAND]
         muf = (P[P_MUBL] if lube else P[P_MULAND]) * math.tanh(vsl / 0.01)
@@ -451,6 +460,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         P_ld += muf * Fl * vsl
         if P[P_GUIDE] > 0.5:
             TRz += muf * Fl * P[P_RLAND]   # inner-land guided: the ring gets the opposite friction torque
+        else:
+            TOz += muf * Fl * P[P_RLAND]
     eta = P[P_ETA_LAND]
     if eta > 0.0 and P[P_GUIDE] < 1.5:
         # oil-flooded guiding land: short journal bearing (seed 001 Eq. 4; Ocvirk, Hamrock 'Fundamentals of
@@ -458,7 +469,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         cg = cl
         R = P[P_RLAND]
         B = P[P_WLAND]
-        wg = w if P[P_GUIDE] > 0.5 else 0.0
+        wg = w if P[P_GUIDE] > 0.5 else wo
         eps = min(e / cg, P[P_EPSMAX])
         Us = R * (wg + wc)
         if e > 1e-15:
@@ -483,6 +494,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         TC += Th
         if P[P_GUIDE] > 0.5:
             TRz -= Th
+        else:
+            TOz -= Th
         P_ld += Th * (wg - wc) - (fhx * vxc + fhy * vyc)
     # oil churning (seed 001 Eqs. 12-17 as torques, bearing_core.churning): on the cage against its
     # speed relative to the facing wall, and on the inner ring (the drive supplies it)
@@ -490,12 +503,14 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     P_chs = 0.0
     T_chs = 0.0
     if P[P_CH_ON] > 0.5:
-        wrel = wc - P[P_CH_WALL] * w
+        wrel = wc - (w if P[P_CH_WALL] > 0.5 else wo)      # facing wall: inner ring or outer ring
         Tch = cylinder_churning_torque(P[P_CH_RHO], P[P_CH_ETA], wrel, P[P_CH_BC], P[P_CH_DC], P[P_CH_CC])
         TC += Tch
         P_chc = -Tch * wrel
         if P[P_CH_WALL] > 0.5:
             TRz -= Tch            # the shaft-speed wall (inner ring) takes the reaction
+        else:
+            TOz -= Tch            # the outer-ring wall takes it (no power when the outer ring stands)
         T_chs = cylinder_churning_torque(P[P_CH_RHO], P[P_CH_ETA], w, P[P_CH_BIR], P[P_CH_DLI], P[P_CH_CS])
         P_chs = -T_chs * w
     # cage equations
@@ -564,6 +579,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         KE += 0.5 * mi * (vxi * vxi + vyi * vyi + vzi * vzi) + 0.5 * It * (wxi * wxi + wyi * wyi)
     # drive: the shaft must supply the traction torque (TRz is the torque of the balls on the ring)
     fric = -TRz - T_chs
+    fric_o = -TOz
     diag[O_T] = t
     diag[O_SHAFT_SPEED] = w
     diag[O_SHAFT_ACCEL] = wdot
@@ -580,7 +596,9 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     diag[O_IR_VX] = vxi; diag[O_IR_VY] = vyi; diag[O_IR_VZ] = vzi
     diag[O_IR_AX] = axx; diag[O_IR_AY] = ayy; diag[O_IR_AZ] = azz
     diag[O_FRICTION_TORQUE] = fric
-    diag[O_P_DRIVE] = fric * w
+    diag[O_P_DRIVE] = fric * w + fric_o * wo     # both rings' drives
+    diag[O_OUTER_RING_SPEED] = wo
+    diag[O_FRICTION_TORQUE_OUTER] = fric_o
     diag[O_P_EXT] = Pext
     diag[O_P_RACE_INNER] = P_ri
     diag[O_P_RACE_OUTER] = P_ro
@@ -605,25 +623,29 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     ami = sai / nai if nai > 0 else a0
     amo = sao / nao if nao > 0 else a0
     # theoretical cage speed, spin neglected (seed 000 Eq. 26): both rolling radii D/2, so
-    # (w - wc) (1 - D cos ai / dm) = wc (1 + D cos ao / dm); equal angles give the classical w (1 - g) / 2
+    # (w - wc) (1 - D cos ai / dm) = (wc - wo) (1 + D cos ao / dm); equal angles give the classical
+    # [w (1 - g) + wo (1 + g)] / 2 (Harris & Kotzalas Vol. 1 Ch. 8, both rings rotating). Linear in the
+    # speeds: no division by a speed, finite and continuous through zero.
     gi = D * math.cos(ami) / dm
     go = D * math.cos(amo) / dm
-    diag[O_PURE_ROLLING_CAGE_SPEED] = w * (1.0 - gi) / (2.0 - gi + go)
-    # Jones-Harris pure rolling at both contact centres with outer raceway control (kinematics.py)
+    diag[O_PURE_ROLLING_CAGE_SPEED] = (w * (1.0 - gi) + wo * (1.0 + go)) / (2.0 - gi + go)
+    # Jones-Harris pure rolling at both contact centres with outer raceway control (kinematics.py), in the
+    # frame turning with the outer ring (kinematics depend on the ring speed difference only)
     bet = math.atan2(math.sin(amo), math.cos(amo) + D / dm)
     ci_ = math.cos(ami - bet)
     co_ = math.cos(amo - bet)
-    diag[O_PURE_ROLLING_CAGE_SPEED_JH] = w * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci_ / co_)
+    diag[O_PURE_ROLLING_CAGE_SPEED_JH] = wo + (w - wo) * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci_ / co_)
     diag[O_P_MAX] = pmax
     diag[O_CAGE_SPEED_PURE_ROLLING_OUTER] = sco / npr if npr > 0 else diag[O_PURE_ROLLING_CAGE_SPEED_JH]
     diag[O_CAGE_SPEED_PURE_ROLLING_INNER] = sci / npr if npr > 0 else diag[O_PURE_ROLLING_CAGE_SPEED_JH]
 
 
 @njit(cache=True)
-def pure_rolling_cage_speeds(w, ai, ao, gD):
+def pure_rolling_cage_speeds(w, ai, ao, gD, wo=0.0):
     """Pure-rolling cage (ball orbital) speed [rad/s] of one ball with contact angles ai, ao [rad] at shaft
-    speed w [rad/s] (inner ring turning, outer fixed), gD = D / dm: (outer-raceway control, inner-raceway
-    control). Harris & Kotzalas Vol. 2 Ch. 3 (Jones' raceway control): the ball rolls without slip at both
+    speed w [rad/s] and outer-ring speed wo [rad/s] (both signed), gD = D / dm: (outer-raceway control,
+    inner-raceway control). In the frame turning with the outer ring the inner ring turns at w - wo and the
+    kinematics are those of a fixed outer ring, so w_c = wo + f (w - wo) with f the fixed-outer ratio. Harris & Kotzalas Vol. 2 Ch. 3 (Jones' raceway control): the ball rolls without slip at both
     contact centres, its spin axis at tan(beta) = sin(ao) / (cos(ao) + gD) (outer control) or
     sin(ai) / (cos(ai) - gD) (inner control), and
     w_c = w (1 - gD cos ai) / [(1 - gD cos ai) + (1 + gD cos ao) cos(ai - beta) / cos(ao - beta)]."""
@@ -631,21 +653,45 @@ def pure_rolling_cage_speeds(w, ai, ao, gD):
     go = gD * math.cos(ao)
     bo = math.atan2(math.sin(ao), math.cos(ao) + gD)
     bi = math.atan2(math.sin(ai), math.cos(ai) - gD)
-    wo = w * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * math.cos(ai - bo) / math.cos(ao - bo))
-    wi = w * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * math.cos(ai - bi) / math.cos(ao - bi))
-    return wo, wi
+    wr = w - wo
+    c_o = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * math.cos(ai - bo) / math.cos(ao - bo))
+    c_i = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * math.cos(ai - bi) / math.cos(ao - bi))
+    return c_o, c_i
+
+
+NQUAD = 2 * NOUT + 2
+"""Time integrals of the output channels (the energies of the power channels), accumulated inside the
+integrators: quad[0:NOUT] = integral of each channel over time since the last reset [unit s],
+quad[NOUT:2 NOUT] the channels at the last accepted point, quad[2 NOUT] its time, quad[2 NOUT + 1] = 1 once
+a point is stored. Trapezoidal rule over the integrator's accepted steps (error ~ h^2 |p''| / 12 per unit
+time; with h <= 1e-5 s and the 1.3 kHz ball-pass oscillation below 1e-3 relative); an input step at a
+communication point adds a zero-width interval, so it is taken exactly."""
+
+
+@njit(cache=True)
+def _quad_point(quad, t, diag):
+    """Add the trapezoid from the last stored point to (t, diag) and store this point."""
+    if quad[2 * NOUT + 1] > 0.5:
+        w = 0.5 * (t - quad[2 * NOUT])
+        for k in range(NOUT):
+            quad[k] += w * (quad[NOUT + k] + diag[k])
+    for k in range(NOUT):
+        quad[NOUT + k] = diag[k]
+    quad[2 * NOUT] = t
+    quad[2 * NOUT + 1] = 1.0
 
 
 @njit(cache=True)
 def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-              rec_dt, rec, nrec_max, stats):
+              rec_dt, rec, nrec_max, stats, quad):
     """Advance y (in place) from t0 to exactly t1 inside compiled code.
 
     method 0: classical fixed-step RK4 with step dt (the papers' baseline, seed 000: dt = 1e-5 s);
     method 1: adaptive Dormand-Prince 5(4), FSAL, PI step control, RMS error norm (rtol, absolute
               tolerances atol_scale[k] per state; a negative entry means absolute-only), initial step dt.
     Records the output channels every rec_dt into rec (nrec_max x NOUT); returns the number of
-    records written. stats: [0] accepted steps, [1] rejected steps, [2] rhs calls, [3] last dt."""
+    records written. stats: [0] accepted steps, [1] rejected steps, [2] rhs calls, [3] last dt.
+    quad (NQUAD): time integrals of the output channels, accumulated over the accepted steps."""
     n = y.size
     nb = int(P[P_NB])
     k1 = np.empty(n); k2 = np.empty(n); k3 = np.empty(n); k4 = np.empty(n)
@@ -660,6 +706,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         while t < t1 - 1e-15:
             h = min(dt, t1 - t)
             rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            _quad_point(quad, t, diag)
             if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
                 if nrec < nrec_max:
                     for k in range(NOUT):
@@ -685,6 +732,9 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             t += h
             stats[0] += 1
             stats[2] += 4
+        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+        _quad_point(quad, t, diag)        # close the last step's trapezoid
+        stats[2] += 1
         stats[3] = h
     else:
         # Dormand-Prince 5(4) (Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.5), FSAL, RMS error norm
@@ -692,6 +742,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         # their atol_scale entries are negative, flagging an absolute-only tolerance), PI step control.
         k5 = np.empty(n); k6 = np.empty(n); k7 = np.empty(n); y5 = np.empty(n)
         rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+        _quad_point(quad, t, diag)
         stats[2] += 1
         err_prev = 1e-4
         while t < t1 - 1e-15:
@@ -754,6 +805,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 for i in range(n):
                     y[i] = y5[i]
                     k1[i] = k7[i]
+                _quad_point(quad, t, diag)      # diag of the FSAL call rhs(t + h, y5)
                 stats[0] += 1
                 fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 5.0)) * (max(err_prev, 1e-10) ** (0.4 / 5.0))
                 fac = min(5.0, max(0.2, fac))
@@ -1017,7 +1069,7 @@ def _w_matvec(v, out, Wff, Wbf, Wfb, Wbb):
 
 @njit(cache=True)
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                   rec_dt, rec, nrec_max, stats):
+                   rec_dt, rec, nrec_max, stats, quad):
     """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate()."""
     n = y.size
     nb = int(P[P_NB])
@@ -1052,6 +1104,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     nrej = 0
     err_prev = 1e-4
     rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_point(quad, t, diag)
     stats[2] += 1
     while t < t1 - 1e-15:
         if jac_age >= JAC_EVERY:
@@ -1124,6 +1177,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
             jac_age += 1
             nrej = 0
             rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            _quad_point(quad, t, diag)
             stats[2] += 1
             # PI controller for an order-2 error estimate (Gustafsson; Hairer & Wanner II, IV.8)
             fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 3.0)) * (max(err_prev, 1e-10) ** (0.4 / 3.0))

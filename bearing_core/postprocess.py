@@ -92,7 +92,8 @@ def plot_dynamics(d: dict, path, title: str = ""):
         a.plot(t, d["cage_speed_pure_rolling_inner"] * rpm, ":", label="pure rolling, inner-raceway control")
     a.set_ylabel("speed [rpm]")
     a = ax[0, 1]
-    w = np.where(d["shaft_speed"] > 0, d["shaft_speed"], np.nan)
+    # ratios to the signed shaft speed; a gap in the curve below 1 rad/s (at rest or through zero: 0/0)
+    w = np.where(np.abs(d["shaft_speed"]) >= 1.0, d["shaft_speed"], np.nan)
     a.plot(t, d["cage_speed"] / w, label="CSR")
     a.plot(t, d["pure_rolling_cage_speed"] / w, "--", label="seed 000 Eq. 26 CSR")
     if "cage_speed_pure_rolling_outer" in d:

@@ -152,6 +152,11 @@ class QuasiStaticModel:
         Z = geometry.Z
         self.psi = 2.0 * np.pi * np.arange(Z) / Z
         self._omega = 0.0
+        # outer-ring speed [rad/s] about +z: the problem is solved in the frame turning with the outer ring
+        # (omega is then the inner ring's speed relative to it); the centrifugal force and the gyroscopic
+        # moment take the absolute orbital speed omega_m + omega_outer (the spin relative to the cage is
+        # frame-invariant). Harris & Kotzalas Vol. 2 Ch. 3 with both rings rotating.
+        self.omega_outer = 0.0
 
     # ---- per-ball geometry and forces --------------------------------------------------------
     def _centres(self, u):
@@ -188,8 +193,9 @@ class QuasiStaticModel:
             beta, wm, wR = kin.kinematics(omega, ai, ao, g.D, g.dm, self.control, outer_ctrl)
         else:  # Jacobians: ball speeds held (fixed point on the weak kinematic coupling)
             beta, wm, wR = kin_frozen
-        Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
-        Mg = g.ball_inertia * wm * wR * np.sin(beta) * -1.0  # J omega_m Omega_r, Omega_r = -omega_R sin(beta)
+        wma = wm + self.omega_outer          # absolute orbital speed
+        Fc = 0.5 * g.ball_mass * g.dm * wma ** 2
+        Mg = g.ball_inertia * wma * wR * np.sin(beta) * -1.0  # J omega_m Omega_r, Omega_r = -omega_R sin(beta)
         lam_i = _lambda_i(self.control, outer_ctrl)
         lam_o = 2.0 - lam_i
         # Jones-Harris friction forces resisting the gyroscopic moment, bounded by the Coulomb limit
@@ -572,8 +578,9 @@ class FourPointQuasiStaticModel(QuasiStaticModel):
             beta, wm, wR = kin.kinematics(omega, ai_e, ao_e, g.D, g.dm, self.control, outer_ctrl)
         else:
             beta, wm, wR = kin_frozen
-        Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
-        Mg = g.ball_inertia * wm * wR * np.sin(beta) * -1.0
+        wma = wm + self.omega_outer          # absolute orbital speed
+        Fc = 0.5 * g.ball_mass * g.dm * wma ** 2
+        Mg = g.ball_inertia * wma * wR * np.sin(beta) * -1.0
         lam_i = _lambda_i(self.control, outer_ctrl)
         lam_o = 2.0 - lam_i
         Qi_s = np.sum(np.maximum(Qi, 0.0), axis=1)

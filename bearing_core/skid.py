@@ -36,9 +36,12 @@ SKID_SKIDDING, SKID_PURE_ROLLING, SKID_OVERSKIDDING = 1, 0, -1
 SKID_LABELS = {1: "skidding", 0: "pure rolling", -1: "over-skidding"}
 
 
-def pure_rolling_cage_speeds(omega, alpha_i, alpha_o, D, dm, loaded=None) -> tuple[float, float]:
+def pure_rolling_cage_speeds(omega, alpha_i, alpha_o, D, dm, loaded=None,
+                             omega_outer: float = 0.0) -> tuple[float, float]:
     """Mean pure-rolling cage speed [rad/s] over the loaded balls: (outer-raceway control, inner-raceway
-    control) (module docstring). omega [rad/s] shaft speed; alpha_i, alpha_o [rad] per-ball contact angles
+    control) (module docstring). omega [rad/s] shaft speed, omega_outer [rad/s] outer-ring speed (both
+    signed; the kinematics depend on omega - omega_outer, seen from the outer ring: w_c = omega_outer +
+    f (omega - omega_outer)); alpha_i, alpha_o [rad] per-ball contact angles
     (arrays); D, dm [m]; loaded: boolean mask of balls loaded at both races (default: all)."""
     ai = np.atleast_1d(np.asarray(alpha_i, dtype=float))
     ao = np.atleast_1d(np.asarray(alpha_o, dtype=float))
@@ -51,19 +54,28 @@ def pure_rolling_cage_speeds(omega, alpha_i, alpha_o, D, dm, loaded=None) -> tup
     gi, go = g * np.cos(ai), g * np.cos(ao)
     out = []
     for beta in (np.arctan2(np.sin(ao), np.cos(ao) + g), np.arctan2(np.sin(ai), np.cos(ai) - g)):
-        wc = omega * (1 - gi) / ((1 - gi) + (1 + go) * np.cos(ai - beta) / np.cos(ao - beta))
+        wc = omega_outer + (omega - omega_outer) * (1 - gi) / ((1 - gi) + (1 + go) * np.cos(ai - beta) / np.cos(ao - beta))
         out.append(float(np.mean(wc)))
     return out[0], out[1]
 
 
-def classify_skid(cage_speed: float, w_outer: float, tol: float = SKID_TOL) -> tuple[int, float]:
+SKID_MIN_SPEED = 0.1
+"""rad/s: below this |w_outer - omega_outer| (a bearing at rest or passing through zero speed) the slip ratio
+is 0/0: reported as 0, state pure rolling."""
+
+
+def classify_skid(cage_speed: float, w_outer: float, tol: float = SKID_TOL,
+                  omega_outer: float = 0.0) -> tuple[int, float]:
     """(skid_state, cage_slip_ratio) of a cage turning at cage_speed against the outer-raceway-control
-    reference w_outer [rad/s] (module docstring): +1 skidding, 0 pure rolling, -1 over-skidding; the slip
-    ratio is 1 - cage_speed / w_outer (0 when w_outer <= 0, state 0)."""
+    reference w_outer [rad/s] (module docstring): +1 skidding, 0 pure rolling, -1 over-skidding. The slip
+    ratio is measured in the frame of the outer ring (speed omega_outer [rad/s], default fixed), which makes
+    it the same for either sense of rotation: s = (w_outer - cage_speed) / (w_outer - omega_outer) = 1 -
+    cage_speed / w_outer for a fixed outer ring (0, state 0, when |w_outer - omega_outer| < SKID_MIN_SPEED)."""
     check_range("tol", tol, 0.0, 1.0)
-    if not (w_outer > 0.0 and math.isfinite(cage_speed)):
+    d = w_outer - omega_outer
+    if not (abs(d) >= SKID_MIN_SPEED and math.isfinite(cage_speed)):
         return SKID_PURE_ROLLING, 0.0
-    s = 1.0 - cage_speed / w_outer
+    s = (w_outer - cage_speed) / d
     if s > tol:
         return SKID_SKIDDING, s
     if s < -tol:

@@ -56,10 +56,14 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
     cols = [n * RPM]
     for k, name in zip(LOAD_COLS, names[1:]):
         cols.append(prof_loads[k] if prof_loads and k in prof_loads else np.full_like(t, loads[names.index(name) - 1]))
-    # the displacement-coupling inputs are unused in load-driven mode: held at zero
+    # the profile's optional outer_speed_rpm column drives the outer ring (signed, rpm -> rad/s); the
+    # displacement-coupling inputs are unused in load-driven mode: held at zero
     for name in [v.name for v in md.modelVariables if v.causality == "input" and v.name not in names]:
         names.append(name)
-        cols.append(np.zeros_like(t))
+        if name == "outer_ring_speed" and prof_loads and "outer_speed_rpm" in prof_loads:
+            cols.append(prof_loads["outer_speed_rpm"] * RPM)
+        else:
+            cols.append(np.zeros_like(t))
     sig = np.array(list(zip(t, *cols)), dtype=[("time", float)] + [(k, float) for k in names])
     t0 = time.perf_counter()
     last = [0.0]
@@ -103,7 +107,10 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
     speed = np.interp(res["time"], t, n * RPM)
     d = {"t": res["time"], "shaft_speed": speed, "cage_speed": res["cage_speed"],
          "pure_rolling_cage_speed": res["cage_shaft_ratio_theory"] * speed,
-         "friction_torque": res["friction_torque"], "P_drive": res["friction_torque"] * speed,
+         # heat fluxes, friction torque and drive power are the FMU's step averages (energy-consistent,
+         # free of the ball-pass aliasing of 1 ms samples); older FMUs without drive_power: torque x speed
+         "friction_torque": res["friction_torque"],
+         "P_drive": res["drive_power"] if "drive_power" in res.dtype.names else res["friction_torque"] * speed,
          "P_race_inner": res["heat_flux_race_inner"], "P_race_outer": res["heat_flux_race_outer"],
          "P_pocket": res["heat_flux_pocket"], "P_land": res["heat_flux_land"], "P_drag": res["heat_flux_drag"],
          "P_damping": res["heat_flux_damping"], "Fx": res["reaction_Fx"], "Fy": res["reaction_Fy"],
@@ -113,7 +120,8 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
         d["cage_speed_pure_rolling_outer"] = res["cage_speed_pure_rolling_outer"]
         d["cage_speed_pure_rolling_inner"] = res["cage_speed_pure_rolling_inner"]
     png = plot_dynamics(d, outd / "fmu_simulation.png", title=f"bearing FMU via fmpy, profile {profile}, "
-                                                              f"loads {tuple(loads)} N / N m, step {step:g} s")
+                                                              f"loads {tuple(loads)} N / N m, step {step:g} s "
+                                                              "(powers, torque: step averages)")
     tail = res["time"] >= res["time"][-1] - 0.1
     fr_png, refs = plot_friction_references(res, speed, params or {}, outd / "fmu_friction.png", loads, prof_loads, t)
     summary = {"fmu": str(fmu), "profile": profile, "loads": dict(zip(LOAD_COLS, map(float, loads))),

@@ -92,6 +92,7 @@ _INPUT_DESC = {
     "dz": "displacement-driven: inner-ring z", "tx": "displacement-driven: tilt about x", "ty": "displacement-driven: tilt about y",
     "vx": "displacement-driven: dx/dt", "vy": "displacement-driven: dy/dt", "vz": "displacement-driven: dz/dt",
     "wx": "displacement-driven: d(tx)/dt", "wy": "displacement-driven: d(ty)/dt",
+    "outer_ring_speed": "outer-ring speed about the bearing axis, signed, held over a step",
 }
 _PARAMS = (
     # name, type, start, unit, description, (min, max)
@@ -171,7 +172,7 @@ class BearingFMU(Fmi2Slave):
             self.register_variable(Real(name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
                                         description=_INPUT_DESC[name]))
             self._units[name] = unit
-        self._ranges["shaft_speed"] = (0.0, 2.0e4)
+        self._ranges["shaft_speed"] = self._ranges["outer_ring_speed"] = (-2.0e4, 2.0e4)
         for name, unit, desc in OUTPUT_SPEC:
             setattr(self, name, 0.0)
             self.register_variable(Real(name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,

@@ -113,12 +113,12 @@ def test_communication_step_independence(fmu, tmp_path):
 
 
 def test_bad_inputs_discard_and_recover(fmu, tmp_path):
-    """NaN speed, negative speed and a load beyond the 4.2 GPa contact-stress limit give fmi2Discard with a
+    """NaN speed, a speed beyond the +-2e4 rad/s range (negative speeds are valid: reverse rotation) and a load beyond the 4.2 GPa contact-stress limit give fmi2Discard with a
     log message naming the cause, and the instance stays usable; an unknown preset fails initialisation
     with a message naming the parameter."""
     good = {"shaft_speed": 1000 * RPM, "Fx": 1000.0, "Fz": 3000.0}
     steps = [[1e-3, good]] * 3 + [[1e-3, dict(good, shaft_speed=float("nan"))],
-                                  [1e-3, dict(good, shaft_speed=-5.0)],
+                                  [1e-3, dict(good, shaft_speed=-3.0e4)],
                                   [1e-3, dict(good, Fz=5e5)]] + [[1e-3, good]] * 3
     res = drive(fmu, {"params": {}, "start_inputs": good, "steps": steps}, tmp_path)
     st = [r["status"] for r in res["rows"]]
