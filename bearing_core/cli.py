@@ -524,10 +524,14 @@ def cmd_dynamics(a) -> int:
 
     from .dynamics import read_profile
     t_prof, n_prof, prof_loads = read_profile(a.profile)
+    prof_loads = dict(prof_loads or {})
+    n_outer = prof_loads.pop("outer_speed_rpm", None)
     if prof_loads:
         raise _BadArg(f"--profile {a.profile}: load columns are read by 'bearing simulate'; here the loads "
                       "are --fx ... --my")
     prof = list(zip(t_prof.tolist(), n_prof.tolist()))
+    if n_outer is not None:           # outer-ring speed [rpm], held over each segment
+        prof = [(t, n, no) for (t, n), no in zip(prof, n_outer.tolist())]
     if not (1e-5 <= a.record_dt <= 1.0):
         raise _BadArg(f"--record-dt = {a.record_dt} is invalid; allowed: 1e-5 <= value <= 1 s")
     g = load_preset(a.bearing)
@@ -536,7 +540,8 @@ def cmd_dynamics(a) -> int:
                           lubrication=a.lubrication)
     m = DynamicModel(g, opt)
     loads = (a.fx, a.fy, a.fz, a.mx, a.my)
-    m.initialize(prof[0][1] * RPM, loads, t0=prof[0][0], start=a.start)
+    m.initialize(prof[0][1] * RPM, loads, t0=prof[0][0], start=a.start,
+                 **({"omega_outer": prof[0][2] * RPM} if n_outer is not None else {}))
     t0 = time.perf_counter()
 
     def progress(t, t_end):

@@ -220,6 +220,7 @@ class DynamicModel:
 
     def __init__(self, geometry: BearingGeometry, options: DynamicsOptions = DynamicsOptions()):
         options.validate()
+        geometry.require_two_point("dynamics model")
         if geometry.cage.guidance == "ball":
             # measured (docs/seed000_hypotheses.md): without a land the cage centre drifts onto a ball within
             # 0.1 s, because the pocket contact acts only along the orbital direction about the cage centre
