@@ -346,14 +346,12 @@ def dynamics_options(point: dict, options: dict):
 
 # ---- pure-rolling cage speed and the skid criterion ----------------------------------------------
 def pure_rolling_cage_speed(omega, alpha_i, alpha_o, D, dm, loaded=None) -> float:
-    """Pure-rolling cage speed [rad/s] of Harris & Kotzalas (5th ed. Vol. 2 Ch. 3; outer raceway control,
-    pure rolling at both contact centres, kinematics.kinematics) at the given contact angles [rad] for
-    inner-ring speed omega [rad/s], outer ring fixed; the mean over the loaded balls (all if none)."""
-    from . import kinematics as kin
-    ai, ao = np.atleast_1d(np.asarray(alpha_i, float)), np.atleast_1d(np.asarray(alpha_o, float))
-    _, wm, _ = kin.kinematics(omega, ai, ao, D, dm, "outer")
-    m = np.ones(ai.size, bool) if loaded is None else np.asarray(loaded, bool)
-    return float(np.mean(wm[m])) if m.any() else float(np.mean(wm))
+    """Pure-rolling cage speed [rad/s] with outer raceway control at each loaded ball's contact angles [rad]
+    for inner-ring speed omega [rad/s], outer ring fixed: the reference of the dynamics' skid outputs
+    (skid.pure_rolling_cage_speeds, Harris & Kotzalas 5th ed. Vol. 2 Ch. 3); all balls if none is loaded."""
+    from .skid import pure_rolling_cage_speeds
+    m = None if loaded is None or not np.any(loaded) else loaded
+    return pure_rolling_cage_speeds(omega, alpha_i, alpha_o, D, dm, loaded=m)[0]
 
 
 SKID_STATES = ("skidding", "pure rolling", "over-skidding")
@@ -458,7 +456,7 @@ def _window_summary(rec) -> dict:
     from . import dynamics_kernels as K
     I = K.OUT_INDEX
     m = rec.mean(axis=0)
-    return {"cage": m[I["cage_speed"]], "pure": m[I["pure_rolling_cage_speed_jh"]],
+    return {"cage": m[I["cage_speed"]], "pure": m[I["cage_speed_pure_rolling_outer"]],
             "torque": m[I["friction_torque"]], "heat": m[I["P_drive"]], "alpha_i": m[I["alpha_i_mean"]],
             "alpha_o": m[I["alpha_o_mean"]], "Q_i_max": m[I["Q_i_max"]], "p_max": m[I["p_max"]],
             "P_pocket": m[I["P_pocket"]], "P_land": m[I["P_land"]],
@@ -541,9 +539,9 @@ class ProfileEvaluator(Evaluator):
         d = records_to_dict(simulate_profile(m, list(zip(t.tolist(), n.tolist())),
                                              record_dt=options.get("record_dt", 1e-3)))
         tail = d["t"] >= d["t"][-1] - 0.1
-        ok = (d["t"] >= d["t"][0] + 0.05) & (d["pure_rolling_cage_speed_jh"] > 0)
-        r = d["cage_speed"][ok] / d["pure_rolling_cage_speed_jh"][ok]
-        cage, pure = d["cage_speed"][tail].mean(), d["pure_rolling_cage_speed_jh"][tail].mean()
+        ok = (d["t"] >= d["t"][0] + 0.05) & (d["cage_speed_pure_rolling_outer"] > 0)
+        r = d["cage_speed"][ok] / d["cage_speed_pure_rolling_outer"][ok]
+        cage, pure = d["cage_speed"][tail].mean(), d["cage_speed_pure_rolling_outer"][tail].mean()
         return {"final_speed_rpm": float(d["shaft_speed"][-1] / RPM), "cage_speed_rpm": cage / RPM,
                 "pure_rolling_cage_speed_rpm": pure / RPM, "cage_speed_ratio": _ratio(cage, pure),
                 "cage_speed_ratio_min": float(r.min()) if r.size else float("nan"),

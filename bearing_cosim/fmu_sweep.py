@@ -6,8 +6,8 @@ initialised at the point's speed and loads. The run then steps (communication st
 1e-3 s) in windows of options['window_s'] until steady by the criterion of bearing_core.sweep.DynamicWindow:
 between two consecutive windows the window mean of the cage speed changes by less than options['steady_tol'] and
 that of the friction torque by less than options['torque_tol'] (relative; torque plus 1e-6 N m), at most options['max_time_s']
-simulated. The pure-rolling cage speed is Harris & Kotzalas' (outer raceway control) at the FMU's mean contact
-angles (outputs alpha_i_mean, alpha_o_mean), as for the other models (bearing_core.sweep.pure_rolling_cage_speed).
+simulated. The pure-rolling cage speed is the FMU's output cage_speed_pure_rolling_outer (outer raceway control at
+each loaded ball's contact angles), as for the other models (bearing_core.skid).
 
 Registered in bearing_core.sweep.PLUGINS as 'fmu' -> 'bearing_cosim.fmu_sweep:FMUEvaluator'.
 """
@@ -21,8 +21,7 @@ import threading
 from pathlib import Path
 
 from bearing_core.errors import BearingInputError
-from bearing_core.sweep import RPM, DynamicWindow, _CAGE, _COMMON, _TRIBO, _ratio, pure_rolling_cage_speed, \
-    resolve_geometry
+from bearing_core.sweep import RPM, DynamicWindow, _CAGE, _COMMON, _TRIBO, _ratio
 
 # per-process FMU instances, keyed by the FMU file's content hash (one worker process = one instance)
 _INSTANCES: dict = {}
@@ -94,7 +93,7 @@ class _Instance:
         tol = float(options.get("steady_tol", 2e-3))
         ttol = float(options.get("torque_tol", 0.05))
         outs = ("cage_speed", "friction_torque", "heat_flux_total", "alpha_i_mean", "alpha_o_mean", "Q_i_max",
-                "max_contact_pressure")
+                "max_contact_pressure", "cage_speed_pure_rolling_outer")
         ovr = [self.vr[n] for n in outs]
         n_win = max(1, round(win / h))
         t, prev, steady = 0.0, None, False
@@ -113,8 +112,7 @@ class _Instance:
                     steady = True
                     break
             prev = s
-        g = resolve_geometry(point)
-        pure = pure_rolling_cage_speed(w, s["alpha_i_mean"], s["alpha_o_mean"], g.D, g.dm)
+        pure = s["cage_speed_pure_rolling_outer"]
         return {"cage_speed_rpm": s["cage_speed"] / RPM, "pure_rolling_cage_speed_rpm": pure / RPM,
                 "cage_speed_ratio": _ratio(s["cage_speed"], pure), "friction_torque_Nm": s["friction_torque"],
                 "heat_W": s["heat_flux_total"], "alpha_i_deg": math.degrees(s["alpha_i_mean"]),
