@@ -126,6 +126,7 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
     fr_png, refs = plot_friction_references(res, speed, params or {}, outd / "fmu_friction.png", loads, prof_loads, t)
     summary = {"fmu": str(fmu), "profile": profile, "loads": dict(zip(LOAD_COLS, map(float, loads))),
                "step_s": step, "parameters": params or {}, "simulated_s": float(t[-1] - t[0]), "wall_s": wall,
+               "final_window_s": 0.1,   # every final_* value is the mean over the run's last final_window_s
                "final_cage_speed_rpm": float(res["cage_speed"][tail].mean() / RPM),
                "final_cage_shaft_ratio": float(res["cage_shaft_ratio"][tail].mean()),
                "final_cage_shaft_ratio_theory": float(res["cage_shaft_ratio_theory"][tail].mean()),
