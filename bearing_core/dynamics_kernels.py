@@ -314,6 +314,13 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             (Fpk, fpt, fpr, fpz, mpr, mpz, tw_, pl_, pd_, ue_) = ball_pocket_lubricated(
                 thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, P[P_MUBL], P[P_MUEHL], 0.01, P[P_ETA_PK],
                 P[P_ALPHA_PK], P[P_EPK], P[P_SIGPK], D, rd, zd, Wr, Wz, vcr_, 0.0)
+        else:
+            Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact(thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, mupk,
+                                                               0.01, D, rd, zd, Wr, Wz, vcr_, 0.0)
+            tw_ = pl_ = pd_ = ue_ = 0.0
+        if lube or Fpk > 0.0:
+            # pocket force along the cage-frame tangential direction at the ball; the cage gets (-fx, -fy) at
+            # the ball centre (a torque about its centre) and the films' shear torque tw_
             tpx = -math.sin(thb)
             tpy = math.cos(thb)
             fx = fpt * tpx + fpr * c
@@ -326,26 +333,11 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             FCx -= fx
             FCy -= fy
             TC += by_ * fx - bx_ * fy + tw_
+        if lube:
             Uel += ue_
             P_dp += pd_
             P_pk += pl_
-        else:
-            Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact(thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, mupk,
-                                                               0.01, D, rd, zd, Wr, Wz, vcr_, 0.0)
-        if Fpk > 0.0 and not lube:
-            # pocket force along the cage-frame tangential direction at the ball
-            tpx = -math.sin(thb)
-            tpy = math.cos(thb)
-            fx = fpt * tpx + fpr * c
-            fy = fpt * tpy + fpr * s
-            Fr += fx * c + fy * s
-            Ft += -fx * s + fy * c
-            Fz += fpz
-            Mr += mpr
-            Mz += mpz
-            FCx -= fx
-            FCy -= fy
-            TC += by_ * fx - bx_ * fy      # the cage gets (-fx, -fy) at the ball centre (about its centre)
+        elif Fpk > 0.0:
             sg = 1.0 if fpt < 0.0 else -1.0                         # side of the pocket wall (+t or -t)
             TC += sg * 0.5 * D * fpr       # the wall friction acts at the offset sg D/2 t: torque on the cage
             pen = rbc * abs(((thb - phi + math.pi) % (2.0 * math.pi)) - math.pi) - cpk
