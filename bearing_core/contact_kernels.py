@@ -148,6 +148,31 @@ def ball_race_contact(Xr, Xz, Cr, Cz, ro_c, ri_c, table_i, table_o, alpha0, dalp
 
 
 @njit(cache=True)
+def gothic_arch_contact(dr, dz, rc, fD, e, arc, table, alpha0, dalpha, inner):
+    """Hertz normal contact of a ball with one arc of a gothic-arch (two-arc) groove.
+
+    The groove is two circular arcs of radius f D whose curvature centres sit at +-e from the groove
+    mid-plane, each arc on the side of the mid-plane opposite to its centre (Harris & Kotzalas Vol. 1,
+    gothic-arch bearings; Amasorrain et al., Mech. Mach. Theory 38 (2003) 479; the same arcs as
+    quasistatic.FourPointQuasiStaticModel). (dr, dz) [m]: ball centre minus this arc's curvature centre;
+    rc = (f - 1/2) D, fD = f D [m]; e [m] the offset of the ring; arc = 1: the arc whose contact angle is
+    positive (its contact point exists where f D sin(alpha) >= e), arc = 2: its mirror image (f D sin(alpha)
+    < -e). At e = 0 both arcs are the single-arc groove and exactly one of them is valid.
+    Returns (valid, delta [m], n_r, n_z, alpha [rad], Q [N], a [m], b [m], p [Pa]) as _one_contact; an arc
+    whose contact point would lie beyond the mid-plane is not valid and carries nothing (no Hertz lookup)."""
+    L = math.sqrt(dr * dr + dz * dz)
+    nr = dr / L
+    nz = dz / L
+    sa = -nz if inner else nz                 # sin(alpha) (contact_kernels convention above)
+    valid = fD * sa >= e if arc == 1 else fD * sa < -e
+    if not valid:
+        alpha = math.atan2(-nz, -nr) if inner else math.atan2(nz, nr)
+        return False, L - rc, nr, nz, alpha, 0.0, 0.0, 0.0, 0.0
+    delta, nr, nz, alpha, Q, a, b, p = _one_contact(dr, dz, rc, table, alpha0, dalpha, inner)
+    return True, delta, nr, nz, alpha, Q, a, b, p
+
+
+@njit(cache=True)
 def normal_contact_force(Q_el, delta, delta_dot, model, c):
     """Normal force [N] with damping, from the elastic Hertz force Q_el [N], deflection delta [m] and
     its rate delta_dot [m/s] (> 0 approaching).

@@ -21,7 +21,7 @@ from .errors import BearingInputError, ConvergenceError, check_range
 from .geometry import BearingGeometry
 from .hertz_tables import HertzInterp
 from .lubricants import get_lubricant
-from .quasistatic import QuasiStaticModel
+from .quasistatic import quasistatic_model
 
 TRACTION_MODELS = ("lubricated", "coulomb", "kalker", "lubricated-curve")
 LUBRICATION_REGIMES = ("auto", "oil", "solid", "dry")
@@ -220,7 +220,6 @@ class DynamicModel:
 
     def __init__(self, geometry: BearingGeometry, options: DynamicsOptions = DynamicsOptions()):
         options.validate()
-        geometry.require_two_point("dynamics model")
         if geometry.cage.guidance == "ball":
             # measured (docs/seed000_hypotheses.md): without a land the cage centre drifts onto a ball within
             # 0.1 s, because the pocket contact acts only along the orbital direction about the cage centre
@@ -254,6 +253,8 @@ class DynamicModel:
         P[K.P_FI] = g.fi
         P[K.P_FO] = g.fo
         P[K.P_A0] = g.alpha0
+        P[K.P_EI] = g.inner_groove_offset      # gothic-arch grooves (0: two-point bearing)
+        P[K.P_EO] = g.outer_groove_offset
         P[K.P_MB] = g.ball_mass
         P[K.P_JB] = g.ball_inertia
         P[K.P_MI] = g.inner_ring_mass
@@ -453,7 +454,7 @@ class DynamicModel:
             raise BearingInputError("reduced", "axisymmetric", "full or auto when Fx, Fy, Mx or My is non-zero")
         self.axisym = bool(axisym)
         self.P = self._params(self.axisym)
-        qsm = QuasiStaticModel(g, "outer", fixed_tilt=o.fixed_tilt)
+        qsm = quasistatic_model(g, "outer", fixed_tilt=o.fixed_tilt)   # four-point model for gothic arches
         qsm.omega_outer = -omega_outer if mirror else omega_outer     # in the (mirrored) solved problem
         if o.coupling == "displacement":
             if displacement is None:
@@ -824,6 +825,9 @@ class DynamicModel:
                  "p_i", "p_o", "Ft_i", "Fm_i", "Ft_o", "Fm_o", "slip_i", "slip_o", "u_i", "u_o",
                  "spin_i", "spin_o", "slip_m_i", "slip_m_o", "F_pocket")
         d = {n: bd[:, k].copy() for k, n in enumerate(names)}
+        # four-point contact: the second (less loaded) arc of each ring; Q_i, alpha_i, ... hold the first
+        for n, k in (("Q_i2", K.BD_QI2), ("alpha_i2", K.BD_AI2), ("Q_o2", K.BD_QO2), ("alpha_o2", K.BD_AO2)):
+            d[n] = bd[:, k].copy()
         b = K.NSTATE_FIXED + K.NSB * np.arange(nb)
         d["theta"] = self.y[b].copy()
         d["orbit_speed"] = self.y[b + 3].copy()

@@ -43,7 +43,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .contact_kernels import (ball_race_contact, contact_kinematics, ellipse_traction, ball_pocket_contact,
+from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics, ellipse_traction, ball_pocket_contact,
                               ball_pocket_lubricated, normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB,
                               TRACTION_EHL, P_LUBMODEL)
 from .ehl_traction import ehl_ellipse_traction
@@ -69,7 +69,10 @@ NSB = 9  # states per ball
  # roughness ball-pocket
  # and the largest eccentricity ratio of the flooded land's film force (legacy 0.95)
  P_LUBE, P_MUBL, P_MUEHL, P_ETA_PK, P_ALPHA_PK, P_EPK, P_SIGPK, P_EPSMAX,
- NPAR) = range(66)
+ # gothic-arch (four-point-contact) grooves: offset e of the two curvature centres of the inner and the
+ # outer groove from their groove mid-planes [m] (0: single-arc grooves, two-point contact)
+ P_EI, P_EO,
+ NPAR) = range(68)
 
 # ---- input vector indices (float64 array U, held over an advance call) --------------------------
 (U_W0, U_W1, U_T0, U_T1, U_FX, U_FY, U_FZ, U_MX, U_MY,
@@ -110,7 +113,10 @@ for _i, _n in enumerate(OUT_NAMES):   # O_<NAME> integer constants, compile-time
  BD_FTI, BD_FMI, BD_FTO, BD_FMO, BD_VSI, BD_VSO, BD_UI, BD_UO, BD_SPI, BD_SPO, BD_WSI, BD_WSO,
  BD_FPOCKET,
  # contributions of the ball to the ring / cage / outer-ring loads (for the implicit integrator's Jacobian)
- BD_CFRX, BD_CFRY, BD_CFRZ, BD_CMRX, BD_CMRY, BD_CFCX, BD_CFCY, BD_CTC, BD_CFOX, BD_CFOY, NBD) = range(36)
+ BD_CFRX, BD_CFRY, BD_CFRZ, BD_CMRX, BD_CMRY, BD_CFCX, BD_CFCY, BD_CTC, BD_CFOX, BD_CFOY,
+ # four-point contact: load [N] and contact angle [rad] of the second (less loaded) arc of each ring
+ # (BD_QI / BD_AI ... hold the more loaded one; 0 load for two-point bearings)
+ BD_QI2, BD_AI2, BD_QO2, BD_AO2, NBD) = range(40)
 NCB = 10
 
 
@@ -142,6 +148,51 @@ def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wr
     if tmodel == TRACTION_EHL:
         return ehl_ellipse_traction(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, qx, qwx, qy, qwy)
     return ellipse_traction(a, b, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, qx, qwx, qy, qwy)
+
+
+@njit(cache=True)
+def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, a, b, p, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct,
+                     vcz, D, dm, Rdef, Ry, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy):
+    """One ball-raceway contact of the ball (rb, rd, thd, zd, Wr, Wt, Wz: state in its local frame) with a
+    race turning at w_race [rad/s] whose curvature centre moves at (vcr, vct, vcz) [m/s]; contact geometry
+    (delta [m], normal n, alpha [rad], Hertz Q [N], semi-axes a, b [m], p [Pa]) from contact_kernels.
+    Normal damping linear in the deflection rate, zeta of critical for the ball mass on the local Hertz
+    stiffness 1.5 Q / delta, only in contact and never pulling (contact_kernels.normal_contact_force);
+    contact kinematics (contact_kernels.contact_kinematics) and traction (_race_traction; effective radius
+    across the rolling direction Ry, along it Rx = D/2 (1 -+ D cos(alpha) / dm), inner / outer).
+    Returns (F_n [N] normal force with damping, P_damp [W], U_el [J] elastic energy 0.4 Q delta, then the
+    traction on the ball F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W] and the kinematics vs_t, vs_m [m/s],
+    w_spin [rad/s], u_roll [m/s])."""
+    Fn = Q
+    pdamp = 0.0
+    uel = 0.0
+    if Q > 0.0:
+        dd = (rd - vcr) * n_r + (zd - vcz) * n_z
+        Fn = normal_contact_force(Q, delta, dd, DAMP_LINEAR, 2.0 * zeta * math.sqrt(1.5 * Q / delta * mb))
+        pdamp = (Fn - Q) * dd
+        uel = 0.4 * Q * delta
+    vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz,
+                                                       n_r, n_z, D)
+    if inner:
+        Rx = 0.5 * D * (1.0 - D * math.cos(alpha) / dm)
+    else:
+        Rx = 0.5 * D * (1.0 + D * math.cos(alpha) / dm)
+    ft, fm, mn, mm, mt, pl = _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur,
+                                            tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
+    return Fn, pdamp, uel, ft, fm, mn, mm, mt, pl, vs_t, vs_m, wsp, ur
+
+
+@njit(cache=True)
+def _first_arc(c1, c2):
+    """True if arc 1 is the first (more loaded) contact of a gothic-arch ring: the valid arc, of two valid
+    ones the more loaded, of two unloaded ones the less separated (c1, c2: gothic_arch_contact results)."""
+    if not c2[0]:
+        return True
+    if not c1[0]:
+        return False
+    if c1[5] != c2[5]:
+        return c1[5] > c2[5]
+    return c1[1] >= c2[1]
 
 
 @njit(cache=True)
@@ -177,6 +228,9 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     Ryi = fi * D / (2.0 * fi - 1.0)       # effective radii across the rolling direction (Hamrock-Dowson)
     Ryo = fo * D / (2.0 * fo - 1.0)
     zeta = P[P_ZETA]
+    ei = P[P_EI]
+    eo = P[P_EO]
+    fourpt = ei > 0.0 or eo > 0.0         # gothic-arch grooves: up to four raceway contacts per ball
     w, wdot = _shaft(U, t)
     wo = U[U_WO]
     disp = P[P_COUPLING] > 0.5
@@ -236,23 +290,56 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         Xz = zb - Zoo
         vor = vxo * c + vyo * s                # outer ring translation velocity, local frame
         vot = -vxo * s + vyo * c
-        (dlo, nor, noz, ao, Qo, ao_s, bo_s, po,
-         dli, nir, niz, ai, Qi, ai_s, bi_s, pi_) = ball_race_contact(Xr, Xz, Cr, Cz, offo, offi,
-                                                                     tab_i, tab_o, ta0, tda)
-        # normal damping: linear in the deflection rate, zeta of critical for the ball mass on the local
-        # Hertz stiffness 1.5 Q / delta; acts only in contact and never pulls (contact_kernels)
-        Fni = Qi
-        Fno = Qo
-        if Qi > 0.0:
-            ddi = (rd - vrr) * nir + (zd - vrz) * niz
-            Fni = normal_contact_force(Qi, dli, ddi, DAMP_LINEAR, 2.0 * zeta * math.sqrt(1.5 * Qi / dli * mb))
-            P_dp += (Fni - Qi) * ddi
-            Uel += 0.4 * Qi * dli
-        if Qo > 0.0:
-            ddo = (rd - vor) * nor + zd * noz
-            Fno = normal_contact_force(Qo, dlo, ddo, DAMP_LINEAR, 2.0 * zeta * math.sqrt(1.5 * Qo / dlo * mb))
-            P_dp += (Fno - Qo) * ddo
-            Uel += 0.4 * Qo * dlo
+        # normal contact with the raceways (contact_kernels): single-arc grooves, or the four arcs of
+        # gothic-arch grooves. Inner arc 1 is centred at C, arc 2 at C - 2 e_i axially; outer arc 1 at the
+        # outer groove centre, arc 2 at + 2 e_o; an inner arc centre at height z_k = +-e_i above the
+        # inner-ring mid-plane (the tilt reference) moves radially by -z_k tilt, as in
+        # quasistatic.FourPointQuasiStaticModel. Per ring the more loaded arc is the first contact (the
+        # two-point diagnostics alpha_i, Q_i, ...); the other arc is a second contact where it is loaded.
+        if fourpt:
+            tilt = txi * s - tyi * c
+            ci1 = gothic_arch_contact(Xr - (Cr - ei * tilt), Xz - Cz, offi, fi * D, ei, 1, tab_i, ta0, tda, True)
+            ci2 = gothic_arch_contact(Xr - (Cr + ei * tilt), Xz - (Cz - 2.0 * ei), offi, fi * D, ei, 2, tab_i,
+                                      ta0, tda, True)
+            co1 = gothic_arch_contact(Xr, Xz, offo, fo * D, eo, 1, tab_o, ta0, tda, False)
+            co2 = gothic_arch_contact(Xr, Xz - 2.0 * eo, offo, fo * D, eo, 2, tab_o, ta0, tda, False)
+            if _first_arc(ci1, ci2):
+                ca = ci1; cb = ci2; zia = ei
+            else:
+                ca = ci2; cb = ci1; zia = -ei
+            if _first_arc(co1, co2):
+                oa = co1; ob = co2
+            else:
+                oa = co2; ob = co1
+            zib = -zia
+            tdot = wxi * s - wyi * c
+            vri = vrr - zia * tdot              # radial velocity of the first inner arc's centre
+        else:
+            (dlo, nor, noz, ao, Qo, ao_s, bo_s, po,
+             dli, nir, niz, ai, Qi, ai_s, bi_s, pi_) = ball_race_contact(Xr, Xz, Cr, Cz, offo, offi,
+                                                                         tab_i, tab_o, ta0, tda)
+            ca = (True, dli, nir, niz, ai, Qi, ai_s, bi_s, pi_)
+            oa = (True, dlo, nor, noz, ao, Qo, ao_s, bo_s, po)
+            cb = ob = (False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+            zia = 0.0; zib = 0.0; tdot = 0.0
+            vri = vrr
+        _, dli, nir, niz, ai, Qi, ai_s, bi_s, pi_ = ca
+        _, dlo, nor, noz, ao, Qo, ao_s, bo_s, po = oa
+        _, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2 = cb
+        _, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2 = ob
+        # each contact: normal force with damping, contact kinematics, traction (_raceway_contact)
+        (Fni, pd_i, ue_i, fti, fmi, mni, mmi, mti, pli, vsti, vsmi, wspi,
+         uri) = _raceway_contact(True, dli, nir, niz, ai, Qi, ai_s, bi_s, pi_, rb, rd, thd, zd, Wr, Wt, Wz, w,
+                                 vri, vrt, vrz, D, dm, Rdi, Ryi, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny,
+                                 qx, qwx, qy, qwy)
+        (Fno, pd_o, ue_o, fto, fmo, mno, mmo, mto, plo, vsto, vsmo, wspo,
+         uro) = _raceway_contact(False, dlo, nor, noz, ao, Qo, ao_s, bo_s, po, rb, rd, thd, zd, Wr, Wt, Wz, wo,
+                                 vor, vot, 0.0, D, dm, Rdo, Ryo, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny,
+                                 qx, qwx, qy, qwy)
+        P_dp += pd_i
+        Uel += ue_i
+        P_dp += pd_o
+        Uel += ue_o
         # forces on the ball (local r, t, z) and moments about its centre
         Fr = -Fni * nir - Fno * nor
         Ft = 0.0
@@ -260,44 +347,67 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         Mr = 0.0; Mt = 0.0; Mz = 0.0
         # traction, inner race (contact_kernels: force on the ball along t and m = (-n_z, n_r), moments
         # along n, m, t about the ball centre)
-        vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, w, vrr, vrt, vrz,
-                                                           nir, niz, D)
-        ft, fm, mn, mm, mt, pl = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi,
-                                                0.5 * D * (1.0 - D * math.cos(ai) / dm), Ryi, vs_t, vs_m, wsp,
-                                                wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
-        Fr += -fm * niz; Ft += ft; Fz += fm * nir
-        Mr += mn * nir - mm * niz; Mt += mt; Mz += mn * niz + mm * nir
-        P_ri += pl
-        P_sl -= ft * vs_t + fm * vs_m     # sliding of the contact centre (rolling direction and across)
-        P_sp -= mn * wsp                  # spin about the contact normal
-        tri_t = ft; tri_m = fm
-        sl_i = vs_t; u_i = abs(ur); sp_i = wsp; sm_i = vs_m
+        Fr += -fmi * niz; Ft += fti; Fz += fmi * nir
+        Mr += mni * nir - mmi * niz; Mt += mti; Mz += mni * niz + mmi * nir
+        P_ri += pli
+        P_sl -= fti * vsti + fmi * vsmi   # sliding of the contact centre (rolling direction and across)
+        P_sp -= mni * wspi                # spin about the contact normal
+        tri_t = fti; tri_m = fmi
+        sl_i = vsti; u_i = abs(uri); sp_i = wspi; sm_i = vsmi
         # the ring receives the normal force and the opposite traction; torque about z at the contact
-        fr_ring = Fni * nir + fm * niz
-        ft_ring = -ft
-        fz_ring = Fni * niz - fm * nir
+        fr_ring = Fni * nir + fmi * niz
+        ft_ring = -fti
+        fz_ring = Fni * niz - fmi * nir
         # torque of the traction about the bearing axis, exact for the distributed shear: on the ball it is
         # rb F_t + (M about the ball centre) . z = rb F_t + n_z M_n + n_r M_m; the ring gets the opposite
-        TRz -= rb * ft + niz * mn + nir * mm
+        TRz -= rb * fti + niz * mni + nir * mmi
         # traction, outer race (turning at wo)
-        vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, wo, vor, vot, 0.0,
-                                                           nor, noz, D)
-        ft, fm, mn, mm, mt, pl = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo,
-                                                0.5 * D * (1.0 + D * math.cos(ao) / dm), Ryo, vs_t, vs_m, wsp,
-                                                wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
-        Fr += -fm * noz; Ft += ft; Fz += fm * nor
-        Mr += mn * nor - mm * noz; Mt += mt; Mz += mn * noz + mm * nor
-        P_ro += pl
-        P_sl -= ft * vs_t + fm * vs_m
-        P_sp -= mn * wsp
-        tro_t = ft; tro_m = fm
+        Fr += -fmo * noz; Ft += fto; Fz += fmo * nor
+        Mr += mno * nor - mmo * noz; Mt += mto; Mz += mno * noz + mmo * nor
+        P_ro += plo
+        P_sl -= fto * vsto + fmo * vsmo
+        P_sp -= mno * wspo
+        tro_t = fto; tro_m = fmo
         # the outer ring receives the normal force and the opposite traction (radial / tangential parts)
-        for_r = Fno * nor + fm * noz
-        for_t = -ft
+        for_r = Fno * nor + fmo * noz
+        for_t = -fto
         FOx += for_r * c - for_t * s
         FOy += for_r * s + for_t * c
-        TOz -= rb * ft + noz * mn + nor * mm
-        sl_o = vs_t; u_o = abs(ur); sp_o = wsp; sm_o = vs_m
+        TOz -= rb * fto + noz * mno + nor * mmo
+        sl_o = vsto; u_o = abs(uro); sp_o = wspo; sm_o = vsmo
+        # second arcs (four-point contact): the same contact kernel, with their loads on ball and rings
+        fr2_ring = 0.0; ft2_ring = 0.0; fz2_ring = 0.0
+        if Qi2 > 0.0:
+            (Fn2, pd2, ue2, ft2, fm2, mn2, mm2, mt2, pl2, vst2, vsm2, wsp2,
+             ur2) = _raceway_contact(True, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2, rb, rd, thd, zd, Wr, Wt,
+                                     Wz, w, vrr - zib * tdot, vrt, vrz, D, dm, Rdi, Ryi, zeta, mb, kalker, tmodel,
+                                     tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
+            P_dp += pd2; Uel += ue2
+            Fr += -Fn2 * nir2 - fm2 * niz2; Ft += ft2; Fz += -Fn2 * niz2 + fm2 * nir2
+            Mr += mn2 * nir2 - mm2 * niz2; Mt += mt2; Mz += mn2 * niz2 + mm2 * nir2
+            P_ri += pl2
+            P_sl -= ft2 * vst2 + fm2 * vsm2
+            P_sp -= mn2 * wsp2
+            fr2_ring = Fn2 * nir2 + fm2 * niz2
+            ft2_ring = -ft2
+            fz2_ring = Fn2 * niz2 - fm2 * nir2
+            TRz -= rb * ft2 + niz2 * mn2 + nir2 * mm2
+        if Qo2 > 0.0:
+            (Fn2, pd2, ue2, ft2, fm2, mn2, mm2, mt2, pl2, vst2, vsm2, wsp2,
+             ur2) = _raceway_contact(False, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2, rb, rd, thd, zd, Wr,
+                                     Wt, Wz, wo, vor, vot, 0.0, D, dm, Rdo, Ryo, zeta, mb, kalker, tmodel, tp, Gc,
+                                     nuc, fnx, fny, qx, qwx, qy, qwy)
+            P_dp += pd2; Uel += ue2
+            Fr += -Fn2 * nor2 - fm2 * noz2; Ft += ft2; Fz += -Fn2 * noz2 + fm2 * nor2
+            Mr += mn2 * nor2 - mm2 * noz2; Mt += mt2; Mz += mn2 * noz2 + mm2 * nor2
+            P_ro += pl2
+            P_sl -= ft2 * vst2 + fm2 * vsm2
+            P_sp -= mn2 * wsp2
+            for_r = Fn2 * nor2 + fm2 * noz2
+            for_t = -ft2
+            FOx += for_r * c - for_t * s
+            FOy += for_r * s + for_t * c
+            TOz -= rb * ft2 + noz2 * mn2 + nor2 * mm2
         # ball-pocket contact (seed 000 Eq. 6, contact_kernels.ball_pocket_contact) in the frame of the
         # (possibly whirling) cage: ball azimuth about the cage centre against the pocket azimuth
         phi = thc + 2.0 * math.pi * j / Z
@@ -373,6 +483,17 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             MRx += Ri * s * fz_ring
             MRy += -Ri * c * fz_ring
         FRz += fz_ring
+        if fourpt:
+            # second inner arc, and the arms z = +-e_i of the arc centres above the inner-ring mid-plane:
+            # the force (fr, ft, fz) at Ri e_r + z e_z has the moment Ri fz - z fr about e_t and -z ft about e_r
+            FRz += fz2_ring
+            if not axisym:
+                FRx += fr2_ring * c - ft2_ring * s
+                FRy += fr2_ring * s + ft2_ring * c
+                MRx += (Ri * s * fz2_ring - zia * (fr_ring * s + ft_ring * c)
+                        - zib * (fr2_ring * s + ft2_ring * c))
+                MRy += (-Ri * c * fz2_ring + zia * (fr_ring * c - ft_ring * s)
+                        + zib * (fr2_ring * c - ft2_ring * s))
         KE += 0.5 * mb * (rd * rd + (rb * thd) ** 2 + zd * zd) + 0.5 * Jb * (Wr * Wr + Wt * Wt + Wz * Wz)
         if Qi > 0.0:
             sai += ai; nai += 1.0
@@ -386,7 +507,14 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             sao += ao; nao += 1.0
             Qomax = max(Qomax, Qo)
             pmax = max(pmax, 1.5 * Qo / (math.pi * ao_s * bo_s))
+        if Qi2 > 0.0:
+            Qimax = max(Qimax, Qi2)
+            pmax = max(pmax, 1.5 * Qi2 / (math.pi * ai2_s * bi2_s))
+        if Qo2 > 0.0:
+            Qomax = max(Qomax, Qo2)
+            pmax = max(pmax, 1.5 * Qo2 / (math.pi * ao2_s * bo2_s))
         if want_bd:
+            bd[j, BD_QI2] = Qi2; bd[j, BD_AI2] = ai2; bd[j, BD_QO2] = Qo2; bd[j, BD_AO2] = ao2
             bd[j, BD_AI] = ai; bd[j, BD_AO] = ao; bd[j, BD_QI] = Qi; bd[j, BD_QO] = Qo
             bd[j, BD_DI] = dli; bd[j, BD_DO] = dlo
             bd[j, BD_AI_SEMI] = ai_s; bd[j, BD_BI] = bi_s; bd[j, BD_AO_SEMI] = ao_s; bd[j, BD_BO] = bo_s
