@@ -195,12 +195,19 @@ class CoSimSession:
             check_range(k, u[k], -1e7, 1e7, unit="N")
         return u
 
-    def _check_seated(self, u: dict):
+    def _check_seated(self, u: dict, g=None):
         """Load-driven coupling: the axial load must seat the single angular-contact bearing (Fz > 0). Every
         ball pushes the inner ring along its contact line, whose axial component has the same sign for all
         balls (Q_j sin(alpha_j) >= 0), so sum Q_j sin(alpha_j) = Fz has no solution with Fz <= 0 other than
         all Q_j = 0, which carries no radial load or moment either: no equilibrium exists. Refused at once
-        instead of after a failed quasi-static solve or with the ring driven out of its raceway."""
+        instead of after a failed quasi-static solve or with the ring driven out of its raceway.
+        A four-point-contact (gothic-arch) bearing carries axial load both ways and radial load alone: it
+        needs some load, any direction (Fx, Fy, Fz not all 0)."""
+        if g is not None and g.is_four_point:
+            if self.p.coupling == "load" and u["Fx"] == 0.0 and u["Fy"] == 0.0 and u["Fz"] == 0.0:
+                raise BearingInputError("Fx, Fy, Fz", [0.0, 0.0, 0.0], "a non-zero load on the inner ring",
+                                        "an unloaded four-point-contact bearing has no defined inner-ring position")
+            return
         if self.p.coupling == "load" and not u["Fz"] > 0.0:
             what = "no axial load" if u["Fz"] == 0.0 else "a reversed axial load"
             raise BearingInputError("Fz", u["Fz"], "Fz > 0 N (the axial load that seats the bearing)",
@@ -228,9 +235,9 @@ class CoSimSession:
     def initialize(self, t0: float, inputs: dict):
         """Build the model and start it from the quasi-static state at the given inputs."""
         u = self._inputs(inputs)
-        self._check_seated(u)
-        self._check_capacity(u, self._geometry())
         g = self._geometry()
+        self._check_seated(u, g)
+        self._check_capacity(u, g)
         self.model = DynamicModel(g, self._options())
         loads = (u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"])
         disp = None
@@ -255,7 +262,7 @@ class CoSimSession:
             raise StepRejected(f"step starts at t = {t!r} but the bearing is at t = {self.t!r}")
         try:
             u = self._inputs(inputs)
-            self._check_seated(u)
+            self._check_seated(u, self.model.g)
             self._check_capacity(u, self.model.g)
         except BearingInputError as e:
             raise StepRejected(str(e))

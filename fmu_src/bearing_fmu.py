@@ -52,7 +52,7 @@ _NOMINAL = {"m": 1e-5, "m/s": 1e-3, "m/s2": 10.0, "rad": 1e-3, "rad/s": 100.0, "
 # its start value is used; if both were changed they must name the same item, else the initialisation fails naming
 # both. Applies to every parameter of the tables below listed here.
 ENUMERATIONS = {
-    "bearing": None,   # the two-point presets (bearing_preset_items), resolved when the slave is created
+    "bearing": None,   # the bearing presets (bearing_preset_items), resolved when the slave is created
     "traction_model": ("lubricated", "coulomb", "kalker", "lubricated-curve"),
     "coupling": ("load", "displacement"),
     "outer_mounting": ("fixed", "elastic"),
@@ -63,9 +63,9 @@ ENUM_NAME = {"bearing": "bearing_preset"}
 
 
 def bearing_preset_items() -> tuple:
-    """The presets the dynamics model takes (two-point bearings; it refuses four-point ones)."""
-    from bearing_core.geometry import list_presets, load_bearing
-    return tuple(p for p in list_presets() if not load_bearing(p).is_four_point)
+    """The presets the dynamics model takes: all of them (two-point and four-point-contact bearings)."""
+    from bearing_core.geometry import list_presets
+    return tuple(list_presets())
 
 
 _ENUM_DESC = {
@@ -96,7 +96,7 @@ _INPUT_DESC = {
 }
 _PARAMS = (
     # name, type, start, unit, description, (min, max)
-    ("bearing", str, "7218B", None, "bearing preset name (bearing presets: 7218B, 7008-ma2023, 7008-rivera2021, wan-105)", None),
+    ("bearing", str, "7218B", None, "bearing preset name (bearing presets: 7218B, 7008-ma2023, 7008-rivera2021, wan-105, QJ1044)", None),
     ("traction_model", str, "lubricated", None, "ball-race traction: lubricated | coulomb | kalker (FASTSIM)", None),
     ("friction_coefficient", float, 0.1, "1", "Coulomb friction coefficient of the ball-race contacts", (0.0, 1.0)),
     ("cage_friction_coefficient", float, 0.1, "1", "ball-pocket and cage-land friction coefficient", (0.0, 1.0)),
