@@ -495,16 +495,21 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
                 MRy += (-Ri * c * fz2_ring + zia * (fr_ring * c - ft_ring * s)
                         + zib * (fr2_ring * c - ft2_ring * s))
         KE += 0.5 * mb * (rd * rd + (rb * thd) ** 2 + zd * zd) + 0.5 * Jb * (Wr * Wr + Wt * Wt + Wz * Wz)
+        # four-point contact: the first contacts' angles by magnitude (a diagonal pair i2/o2 is the mirror
+        # image of i1/o1, with the same pure-rolling cage speed; a ball on i1 and o2 gets the estimate of
+        # equal-sign angles)
+        ai_k = abs(ai) if fourpt else ai
+        ao_k = abs(ao) if fourpt else ao
         if Qi > 0.0:
-            sai += ai; nai += 1.0
+            sai += ai_k; nai += 1.0
             Qimax = max(Qimax, Qi)
             pmax = max(pmax, 1.5 * Qi / (math.pi * ai_s * bi_s))
         Qimin = min(Qimin, Qi)
         if Qi > 0.0 and Qo > 0.0:
-            wco, wci = pure_rolling_cage_speeds(w, ai, ao, gD, wo)
+            wco, wci = pure_rolling_cage_speeds(w, ai_k, ao_k, gD, wo)
             sco += wco; sci += wci; npr += 1.0
         if Qo > 0.0:
-            sao += ao; nao += 1.0
+            sao += ao_k; nao += 1.0
             Qomax = max(Qomax, Qo)
             pmax = max(pmax, 1.5 * Qo / (math.pi * ao_s * bo_s))
         if Qi2 > 0.0:
