@@ -76,14 +76,18 @@ def _arcs(bd):
     return Q, A
 
 
-def test_radial_load_four_contacts_consistent_with_four_point_quasistatic():
-    """Consistency check between two models of this library (NOT a published reference): QJ1044 under a
-    pure radial load of 10 kN at 600 rpm, where the balls of the loaded zone touch all four arcs. After
-    0.04 s the dynamics' mean ring displacement is within 0.5 % of FourPointQuasiStaticModel's and, at the
-    final instant, the four contact loads of every ball are within 1.5 % of the largest load and the
-    contact angles within 0.05 deg of the quasi-static solution at the same ball azimuths (the dynamics
-    carries traction, damping and the ball's orbital ripple that the quasi-static model has not)."""
-    loads = (10000.0, 0.0, 0.0, 0.0, 0.0)
+@pytest.mark.parametrize("loads, tol_q, tol_deg", [((10000.0, 0.0, 0.0, 0.0, 0.0), 0.015, 0.05),
+                                                     ((2000.0, 0.0, 10000.0, 0.0, 0.0), 0.03, 1.0)])
+def test_contacts_consistent_with_four_point_quasistatic(loads, tol_q, tol_deg):
+    """Consistency check between two models of this library (NOT a published reference): QJ1044 at 600 rpm
+    under a pure radial 10 kN (the balls of the loaded zone touch all four arcs) and under 2 kN radial +
+    10 kN axial (two to four contacts per ball). After 0.04 s the dynamics' mean ring displacement is
+    within 0.5 % of FourPointQuasiStaticModel's and, at the final instant, the four contact loads of every
+    ball are within tol_q of the largest load and the loaded contacts' angles within tol_deg of the
+    quasi-static solution at the same ball azimuths. Measured: 0.9 % / 0.002 deg (radial), 2.1 % / 0.63 deg
+    (combined). The combined case differs more because the dynamics resolves the traction of a ball on
+    three or four arcs, which the quasi-static model replaces by its kinematic estimate (gyroscopic friction
+    shared by load weights), and carries the ball's orbital ripple."""
     w = 600 * RPM
     m = DynamicModel(QJ, DynamicsOptions(traction="lubricated", integrator="auto", reduced="full"))
     m.initialize(w, loads)
@@ -94,15 +98,15 @@ def test_radial_load_four_contacts_consistent_with_four_point_quasistatic():
     qsm.psi = np.mod(bd["theta"], 2 * math.pi)
     qs = qsm.solve(w, loads, stiffness=False)
     assert rec["ir_x"][late].mean() == pytest.approx(qs.u[0], rel=5e-3)
-    assert abs(rec["ir_z"][late].mean() - qs.u[2]) < 1e-3 * abs(qs.u[0])
-    assert -rec["Fx"][late].mean() == pytest.approx(10000.0, rel=5e-3)
+    assert abs(rec["ir_z"][late].mean() - qs.u[2]) < 5e-3 * abs(qs.u[0])
+    assert -rec["Fx"][late].mean() == pytest.approx(loads[0], rel=5e-3)
     Qd, Ad = _arcs(bd)
     assert np.sum(Qd > 0, axis=1).max() == 4 and np.sum(qs.Q_c > 0, axis=1).max() == 4
     scale = qs.Q_c.max()
-    assert np.abs(Qd - qs.Q_c).max() < 0.015 * scale
+    assert np.abs(Qd - qs.Q_c).max() < tol_q * scale
     both = (Qd > 0.02 * scale) & (qs.Q_c > 0.02 * scale)
     assert both.sum() >= 8
-    assert np.degrees(np.abs(Ad - qs.alpha_c)[both]).max() < 0.05
+    assert np.degrees(np.abs(Ad - qs.alpha_c)[both]).max() < tol_deg
 
 
 def test_qj1044_runs_through_the_cosimulation_session():
