@@ -43,9 +43,9 @@ import math
 import numpy as np
 from numba import njit
 
-from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics, ellipse_traction, ball_pocket_contact,
-                              ball_pocket_lubricated, normal_contact_force, DAMP_LINEAR, TRACTION_COULOMB,
-                              TRACTION_EHL, P_LUBMODEL)
+from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics, ellipse_traction,
+                              ball_pocket_contact, ball_pocket_lubricated, normal_contact_force, DAMP_LINEAR,
+                              TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
 from .ehl_traction import ehl_ellipse_traction
 from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 from .churning import cylinder_churning_torque
