@@ -97,6 +97,20 @@ def run_point(rpm: float, fa: float, fr: float = 1000.0, oil_fraction: float = 0
     return out
 
 
+def csr_three_point(alpha_i: float, gamma_o: float, D: float, dm: float) -> float:
+    """Pure-rolling cage speed ratio of a ball in three-point contact: on both outer arcs at +-gamma_o [rad]
+    and on one inner arc at alpha_i [rad], rolling without slip at all three contact centres. Two outer
+    contacts symmetric about the groove mid-plane roll together only if the ball's spin axis (in the cage
+    frame) is parallel to the bearing axis (attitude angle 0); then rolling at radius (D/2) cos(angle) on
+    each race gives omega_m (dm/2 + D/2 cos gamma_o) / cos gamma_o = (omega - omega_m) (dm/2 - D/2 cos
+    alpha_i) / cos alpha_i, i.e. CSR = b / (a + b) with a = (dm/2 + D/2 cos gamma_o) / cos gamma_o and
+    b = (dm/2 - D/2 cos alpha_i) / cos alpha_i (rigid-body kinematics as in Harris & Kotzalas Vol. 2 Ch. 3,
+    written for this contact set)."""
+    a = (0.5 * dm + 0.5 * D * math.cos(gamma_o)) / math.cos(gamma_o)
+    b = (0.5 * dm - 0.5 * D * math.cos(alpha_i)) / math.cos(alpha_i)
+    return b / (a + b)
+
+
 def losses_total(r: dict) -> float:
     """Sum of the dissipations [W]: races, pockets, land, ball drag, churning (cage and inner ring)."""
     return sum(r[k] for k in ("P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_churn_cage",
@@ -199,6 +213,29 @@ def table(path: str) -> str:
             out.append(f"| {n:.0f} | " + " | ".join(
                 (f"{100 * cell[f]['P_pocket'] / losses_total(cell[f]):.0f} / {losses_total(cell[f]) / 1e3:.2f}"
                  if f in cell else "") for f in loads) + " |")
+    # the highest speed in detail: contact state and the three-point pure-rolling ratio
+    g = qj1044()
+    gamma_o = math.asin(g.outer_groove_offset / ((g.fo - 0.5) * g.D))   # ball seated in the outer arch
+    n = max(r["rpm"] for r in rows)
+    for X in sorted({r["oil_fraction"] for r in rows}, reverse=True):
+        rs = sorted((r for r in rows if r["rpm"] == n and r["oil_fraction"] == X), key=lambda r: r["Fa"])
+        if not rs:
+            continue
+        out.append(f"\n{n:.0f} r/min, X = {X:g}: balls on 3-4 arcs (of {g.Z}), mean first inner contact angle, "
+                   "CSR, three-point pure-rolling CSR (csr_three_point at that angle and the outer-arch angle "
+                   f"{math.degrees(gamma_o):.1f} deg), CSR drift over the last half window, losses\n")
+        out.append("| Fa kN | balls on 3-4 arcs | alpha_i deg | CSR | CSR 3-point | drift | pocket % | "
+                   "drag + churning % | total kW |")
+        out.append("|---|---|---|---|---|---|---|---|---|")
+        for r in rs:
+            ai = math.radians(r["alpha_i_mean_deg"])
+            # (at 0 kN the inner contacts of the balls use both arcs: no single three-point set)
+            c3 = (csr_three_point(ai, gamma_o, g.D, g.dm) if r["balls_3_or_4_contacts"] > 0 and r["Fa"] > 0
+                  else float("nan"))
+            tot = losses_total(r)
+            out.append(f"| {r['Fa'] / 1e3:g} | {r['balls_3_or_4_contacts']} | {r['alpha_i_mean_deg']:.1f} | "
+                       f"{r['CSR']:.4f} | {c3:.4f} | {r['CSR_drift']:+.1e} | {100 * r['P_pocket'] / tot:.0f} | "
+                       f"{100 * (r['P_drag'] + r['P_churn_cage'] + r['P_churn_ring']) / tot:.0f} | {tot / 1e3:.2f} |")
     return "\n".join(out)
 
 
