@@ -815,7 +815,9 @@ class DynamicModel:
 
     def ball_details(self) -> dict:
         """Per-ball contact angles [rad], loads [N], semi-axes [m], pressures [Pa], traction forces
-        [N], centre slips [m/s], entrainment speeds [m/s], spins [rad/s] at the current instant."""
+        [N], centre slips [m/s], entrainment speeds [m/s], spins [rad/s] at the current instant. For a
+        four-point-contact bearing the *_i / *_o values are each ring's first (more loaded) arc and
+        Q_i2, alpha_i2, Q_o2, alpha_o2 the second arc (0 load when it does not touch)."""
         diag = np.zeros(K.NOUT)
         nb = int(self.P[K.P_NB])
         bd = np.zeros((nb, K.NBD))
