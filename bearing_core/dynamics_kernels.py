@@ -18,7 +18,9 @@ ring turning at the prescribed omega_o about +z (U_WO, default 0; its centre may
 Every kernel is written for signed speeds (entrainment speeds enter as |u|), so a run mirrored in a plane through
 the axis at -omega gives the mirrored motion. Ball-race geometry through the groove curvature centres exactly as in quasistatic.py (seed 003
 Eqs. 3-8; Harris & Kotzalas Vol. 2 Ch. 3): for a ball at theta, X = B - O_o and C = O_i - O_o in (r, z),
-C = (A cos a0 + x cos th + y sin th, A sin a0 + z + Ri (tx sin th - ty cos th)).
+C = (A cos a0 + x cos th + y sin th, A sin a0 + z + Ri (tx sin th - ty cos th)). Gothic-arch (four-point-
+contact) grooves, P_EI / P_EO > 0: two arcs per ring, up to four contacts per ball, each through the
+per-contact kernel _raceway_contact (arcs as in quasistatic.FourPointQuasiStaticModel; see rhs).
 
 Equations of motion (Gupta, Advanced Dynamics of Rolling Elements, 1984, Ch. 3 and 5, written in the
 frame turning with each ball's azimuth):
