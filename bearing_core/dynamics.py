@@ -253,6 +253,9 @@ class DynamicModel:
         self.U = np.zeros(K.NU)
         self._hz_key = None
         self._set_geometry(geometry)
+        if options.ring_growth:
+            from .ring_fits import RingFits, _dimensions
+            _dimensions(geometry, options.fits or RingFits())   # centrifugal growth needs bore / outside diameter
         if options.fits is not None or options.ring_growth:
             self.update_operating_geometry(0.0)    # bad fits / missing boundary dimensions fail here
         self.t = 0.0
