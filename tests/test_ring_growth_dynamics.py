@@ -158,7 +158,7 @@ def test_fmu_fit_parameters(tmp_path, fmu):
     for name in ("shaft_interference", "housing_interference", "shaft_bore", "bore_diameter", "outside_diameter"):
         assert _var(md, name).find("Real").get("unit") == "m", name
     assert _var(md, "ring_growth").find("Boolean") is not None
-    inp = {"shaft_speed": W10K, "Fz": 3000.0}
+    inp = {"shaft_speed": W10K, "Fx": 0.0, "Fz": 3000.0}      # (the FMU's start value of Fx is 1 kN)
     spec = {"start_inputs": inp, "steps": [[1e-3, inp]] * 2, "outputs": ["alpha_i_mean"]}
     dims = {"bore_diameter": 0.090, "outside_diameter": 0.160, "oil_temperature": 293.15,
             "traction_model": "coulomb"}
