@@ -84,6 +84,13 @@ class CoSimParameters:
     thermal_time_scale: float = 1.0        # thermal seconds per simulated second (> 1 fast-forwards heating)
     # lubrication regime of races and cage: auto (from traction_model) | oil | solid | dry (DynamicsOptions)
     lubrication: str = "auto"
+    # fits and ring growth (bearing_core.ring_fits; DynamicsOptions.fits / ring_growth)
+    ring_growth: bool = False              # centrifugal (inner ring) and thermal growth of rings and balls
+    shaft_interference: float = 0.0        # m, diametral, inner ring on the shaft (> 0 tight)
+    housing_interference: float = 0.0      # m, diametral, outer ring in the housing (> 0 tight)
+    shaft_bore: float = 0.0                # m, bore of a hollow shaft (0: solid)
+    bore_diameter: float = 0.0             # m, bearing bore d (0: from the bearing definition)
+    outside_diameter: float = 0.0          # m, bearing outside diameter (0: from the bearing definition)
 
 
 class CoSimSession:
@@ -167,7 +174,9 @@ class CoSimSession:
         if p.thermal:
             from .thermal import ThermalData
             td = ThermalData(T_amb=p.ambient_temperature, T_in=T_in, flow_rate=p.oil_flow_rate)
+        fits = self._fits()
         return DynamicsOptions(
+            fits=fits, ring_growth=bool(p.ring_growth),
             traction=p.traction_model, lubricant=p.lubricant, mu=p.friction_coefficient,
             mu_pocket=p.cage_friction_coefficient, mu_land=p.cage_friction_coefficient, coupling=p.coupling,
             outer_mount=p.outer_mounting, housing_stiffness=p.housing_stiffness, fixed_tilt=bool(p.fixed_tilt),
@@ -175,6 +184,28 @@ class CoSimSession:
             oil=p.oil, oil_fraction=p.oil_fraction, churning=bool(p.churning),
             oil_temperature=p.oil_temperature if not p.thermal else T_in, thermal=bool(p.thermal),
             thermal_data=td, thermal_time_scale=p.thermal_time_scale, lubrication=p.lubrication)
+
+    def _fits(self):
+        """ring_fits.RingFits of the fit parameters (solid or hollow steel shaft, thick steel housing), or
+        None without interference and ring growth (the nominal geometry)."""
+        p = self.p
+        for name in ("shaft_interference", "housing_interference"):
+            check_range(name, getattr(p, name), -1e-3, 1e-3, unit="m")
+        for name, hi in (("shaft_bore", 2.0), ("bore_diameter", 2.0), ("outside_diameter", 3.0)):
+            check_range(name, getattr(p, name), 0.0, hi, unit="m")
+        if not (p.ring_growth or p.shaft_interference != 0.0 or p.housing_interference != 0.0):
+            return None
+        from .ring_fits import RingFits
+        g = load_preset(self.p.bearing)
+        for name, v, gv, key in (("bore_diameter", p.bore_diameter, g.bore, "bore_diameter_mm"),
+                                 ("outside_diameter", p.outside_diameter, g.outside_diameter, "outside_diameter_mm")):
+            if v <= 0.0 and not gv > 0.0:
+                raise BearingInputError(name, v, "> 0 m", f"fits and ring growth need the bearing's boundary "
+                                        f"dimensions; {self.p.bearing} has no {key}: set {name}")
+        return RingFits(shaft_interference=float(p.shaft_interference),
+                        housing_interference=float(p.housing_interference), shaft_bore=float(p.shaft_bore),
+                        bore=float(p.bore_diameter) if p.bore_diameter > 0.0 else None,
+                        outside_diameter=float(p.outside_diameter) if p.outside_diameter > 0.0 else None)
 
     @staticmethod
     def _inputs(inputs: dict) -> dict:
@@ -381,6 +412,7 @@ class CoSimSession:
         self.model.t = t
         self.model.U[:] = U
         self.model.stats[:] = stats
+        self.model.update_operating_geometry()     # running geometry of the restored speed and temperatures
         self.t = t
         self.outputs = dict(outs)
         self.thermal_runaway = bool(self.outputs.get("thermal_runaway", 0))

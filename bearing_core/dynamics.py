@@ -89,7 +89,18 @@ class DynamicsOptions:
     mu_boundary (also the races' boundary coefficient) and mu_ehl_cage: boundary and full-film friction
     coefficients of the oil-lubricated cage contacts (defaults 0.15 and 0.05: mu_bl and mu_EHL (mineral oil)
     of the SKF friction model, SKF General Catalogue 6000 'Friction'); cage_roughness [m]: rms roughness of the pocket and land surfaces
-    (0.4 um: an estimate for machined phenolic / brass cages, not from a source)."""
+    (0.4 um: an estimate for machined phenolic / brass cages, not from a source).
+
+    Ring growth and fits (bearing_core.ring_fits): fits, a ring_fits.RingFits (None: free rings), the
+    interference fits on shaft and housing; ring_growth: the rings grow with speed (centrifugal growth of
+    the inner ring at the shaft speed) and temperature (thermal growth of rings and balls at the thermal
+    network's temperatures, or at oil_temperature with thermal off). With either set, the geometry entries
+    of the parameters (D, dm, fi, fo, alpha0, land radius) and the Hertz tables are those of
+    ring_fits.operating_geometry(), updated at initialize(), set_speed() and every temperature update
+    (apply_temperatures); without ring_growth the fits are taken at rest at the reference temperature
+    (20 degC). Off by default: the bearing files carry no boundary dimensions (bore_diameter_mm,
+    outside_diameter_mm) except QJ1044, and the reference results of the dynamics were computed on the
+    nominal geometry (docs/fourpoint_and_fits.md)."""
 
     traction: str = "lubricated"
     lubricant: str = "generic-mineral-oil"
@@ -134,6 +145,8 @@ class DynamicsOptions:
     lubrication: str = "auto"
     mu_ehl_cage: float = 0.05
     cage_roughness: float = 0.4e-6
+    fits: object = None
+    ring_growth: bool = False
 
     @property
     def regime(self) -> str:
@@ -207,6 +220,12 @@ class DynamicsOptions:
         if self.roughness != 0.0:
             check_range("roughness", self.roughness, 1e-9, 1e-5, unit="m")
         check_range("mu_boundary", self.mu_boundary, 0.0, 1.0)
+        if self.fits is not None:
+            from .ring_fits import RingFits
+            if not isinstance(self.fits, RingFits):
+                raise BearingInputError("fits", self.fits, "a bearing_core.ring_fits.RingFits or None")
+        if not isinstance(self.ring_growth, (bool, np.bool_)):
+            raise BearingInputError("ring_growth", self.ring_growth, "True | False")
         if self.thermal_data is not None:
             from .thermal import ThermalData
             if not isinstance(self.thermal_data, ThermalData):
@@ -225,20 +244,88 @@ class DynamicModel:
             # 0.1 s, because the pocket contact acts only along the orbital direction about the cage centre
             raise BearingInputError("cage.guidance", "ball", "outer | inner (a ball-guided cage is not supported "
                                     "by the dynamics yet: its pocket contact does not hold the cage radially)")
-        self.g = geometry
+        self.g_nominal = geometry     # the bearing as defined (dimensions at 20 degC, unmounted)
+        self.g = geometry             # the bearing as it runs (operating_geometry with fits / ring growth)
         self.opt = options
-        self.hz = HertzInterp(geometry)
-        tab = self.hz.table
-        self._tab_i = np.ascontiguousarray(tab.inner)
-        self._tab_o = np.ascontiguousarray(tab.outer)
-        self._ta0 = float(tab.alpha0)
-        self._tda = float(tab.dalpha)
+        self.P = None
+        self.thermal = None
+        self.U = np.zeros(K.NU)
+        self._hz_key = None
+        self._set_geometry(geometry)
+        if options.ring_growth:
+            from .ring_fits import RingFits, _dimensions
+            _dimensions(geometry, options.fits or RingFits())   # centrifugal growth needs bore / outside diameter
+        if options.fits is not None or options.ring_growth:
+            self.update_operating_geometry(0.0)    # bad fits / missing boundary dimensions fail here
         self.t = 0.0
         self.y = None
-        self.U = np.zeros(K.NU)
         self.stats = np.zeros(NSTATS)
         self.quad = np.zeros(K.NQUAD)     # time integrals of the output channels (integrals())
         self.qs = None
+
+    # ---- operating geometry: fits and ring growth (bearing_core.ring_fits) ----------------------
+    HERTZ_REBUILD_REL = 1e-6   # relative change of D, dm, fi or fo that rebuilds the Hertz tables
+
+    def _set_geometry(self, g: BearingGeometry):
+        """Make g the running geometry: Hertz tables (rebuilt when D, dm, fi or fo moved by more than
+        HERTZ_REBUILD_REL since the last build) and the geometry entries of the kernel parameters."""
+        self.g = g
+        key = np.array([g.D, g.dm, g.fi, g.fo])
+        if self._hz_key is None or np.max(np.abs(key / self._hz_key - 1.0)) > self.HERTZ_REBUILD_REL:
+            self.hz = HertzInterp(g)
+            tab = self.hz.table
+            self._tab_i = np.ascontiguousarray(tab.inner)
+            self._tab_o = np.ascontiguousarray(tab.outer)
+            self._ta0 = float(tab.alpha0)
+            self._tda = float(tab.dalpha)
+            self._hz_key = key
+        P = self.P
+        if P is not None:
+            P[K.P_D], P[K.P_DM], P[K.P_FI], P[K.P_FO], P[K.P_A0] = g.D, g.dm, g.fi, g.fo, g.alpha0
+            P[K.P_RLAND] = 0.5 * g.dm + (0.35 * g.D if P[K.P_GUIDE] == 0.0 else -0.35 * g.D)
+
+    def ring_temperatures(self):
+        """ring_fits.OperatingTemperatures [degC] the geometry follows with ring_growth: the thermal
+        network's inner ring, outer ring and ball temperatures, else the bearing isothermal at the oil
+        temperature (oil_temperature, or the last apply_temperatures)."""
+        from .ring_fits import OperatingTemperatures
+        if self.thermal is not None:
+            T = self.thermal.temperatures()
+            Ti, To, Tb = T["inner"], T["outer"], T["ball"]
+        else:
+            Ti = To = Tb = getattr(self, "_T_oil", self.opt.oil_temperature)
+            Ti, To, Tb = getattr(self, "_T_parts", (Ti, To, Tb))
+        return OperatingTemperatures(inner_ring=Ti - 273.15, outer_ring=To - 273.15, balls=Tb - 273.15)
+
+    def update_operating_geometry(self, omega: float | None = None) -> BearingGeometry:
+        """Running geometry from the nominal one (ring_fits.operating_geometry) with options.fits and, with
+        options.ring_growth, the centrifugal growth at |omega| [rad/s] (None: the held shaft speed) and the
+        thermal growth at ring_temperatures(); sets the parameters and returns it. No-op (nominal geometry)
+        without fits and ring growth."""
+        o = self.opt
+        if o.fits is None and not o.ring_growth:
+            return self.g
+        from .ring_fits import operating_geometry
+        if o.ring_growth:
+            w = abs(float(self.U[K.U_W1] if omega is None else omega))
+            g = operating_geometry(self.g_nominal, min(w, 2.0e4), o.fits, self.ring_temperatures())
+        else:
+            g = operating_geometry(self.g_nominal, 0.0, o.fits, None)
+        self._set_geometry(g)
+        return g
+
+    def ring_growth_state(self):
+        """ring_fits.RingGrowth (raceway and ball growth by cause, fit pressures) at the held shaft speed
+        and the current temperatures, as update_operating_geometry() uses it; None without fits and ring
+        growth."""
+        from .ring_fits import ring_growth
+        o = self.opt
+        if o.fits is None and not o.ring_growth:
+            return None
+        if o.ring_growth:
+            return ring_growth(self.g_nominal, min(abs(float(self.U[K.U_W1])), 2.0e4), o.fits,
+                               self.ring_temperatures())
+        return ring_growth(self.g_nominal, 0.0, o.fits, None)
 
     # ---- set-up -----------------------------------------------------------------------------
     def _params(self, axisym: bool) -> np.ndarray:
@@ -324,12 +411,21 @@ class DynamicModel:
         from .lubricants import TRACTION_OIL
         return self.opt.oil or TRACTION_OIL[self.opt.lubricant]
 
-    def apply_temperatures(self, T_oil: float, T_ball: float | None = None):
+    def apply_temperatures(self, T_oil: float, T_ball: float | None = None, T_inner: float | None = None,
+                           T_outer: float | None = None):
         """Set the temperature-dependent parameters [K]: oil-air mixture density and viscosity for churning
         and drag at T_oil, the flooded land viscosity (if land_viscosity > 0, with thermal on), and the
-        lubricated traction curve at T_ball (lubricants.traction_curve_at)."""
+        lubricated traction curve at T_ball (lubricants.traction_curve_at). With options.ring_growth the
+        running geometry follows the inner ring, outer ring and ball temperatures T_inner, T_outer, T_ball
+        (the thermal network's when it runs; missing ones: T_oil) at the held shaft speed
+        (update_operating_geometry)."""
         from .lubricants import get_oil, traction_curve_at
         o = self.opt
+        if o.ring_growth and self.thermal is None:
+            Tb = T_oil if T_ball is None else T_ball
+            self._T_parts = (T_oil if T_inner is None else T_inner, T_oil if T_outer is None else T_outer, Tb)
+        if o.ring_growth or o.fits is not None:
+            self.update_operating_geometry()
         oil = get_oil(self.oil_name)
         T_oil = min(max(float(T_oil), 233.15), 473.15)
         rho, eta = oil.density(T_oil), oil.eta(T_oil)
@@ -442,6 +538,10 @@ class DynamicModel:
         if loads.size != 5 or not np.all(np.isfinite(loads)):
             raise BearingInputError("loads", loads.tolist(), "5 finite values (Fx, Fy, Fz, Mx, My)")
         loads_in = loads.copy()
+        self.thermal = None
+        self._T_oil = self.opt.oil_temperature
+        self.__dict__.pop("_T_parts", None)
+        self.update_operating_geometry(omega)     # fits / ring growth at the shaft speed (isothermal start)
         w_rel = omega - omega_outer
         mirror = w_rel < 0.0
         if mirror:      # solve the mirrored start (x-z plane): Fy, Mx change sign
@@ -580,6 +680,7 @@ class DynamicModel:
             self.U[K.U_WO] = check_range("outer_ring_speed", omega_outer, -2.0e4, 2.0e4, unit="rad/s")
         self.U[K.U_W0] = self.U[K.U_W1] = omega
         self.U[K.U_T0] = self.U[K.U_T1] = self.t
+        self.update_operating_geometry()          # centrifugal ring growth at the new speed
 
     def advance(self, t_end: float, omega_end: float | None = None, record_dt: float | None = None):
         """Integrate from the current time to t_end [s]; the shaft speed ramps linearly from its current
@@ -670,7 +771,7 @@ class DynamicModel:
 
     def _apply_thermal(self):
         T = self.thermal.temperatures()
-        self.apply_temperatures(T["oil"], T["ball"])
+        self.apply_temperatures(T["oil"], T["ball"], T["inner"], T["outer"])
 
     def thermal_equilibrium(self, window: float = 0.05, tol: float = 0.1, max_iter: int = 30) -> dict:
         """Two-time-scale thermal steady state at the current speed and loads: repeat (advance the dynamics
@@ -721,6 +822,7 @@ class DynamicModel:
 
     def set_thermal_state(self, st):
         if st is None or self.thermal is None:
+            self.update_operating_geometry()     # the geometry of the (restored) held speed
             return
         th = self.thermal
         th.T[:] = st[0]
@@ -934,6 +1036,7 @@ def simulate_profile(model: DynamicModel, profile, record_dt: float | None = Non
                 continue
             w = (n0 + (n1 - n0) * (tc - t0) / (t1 - t0)) * math.pi / 30.0
             out.append(model.advance(tc, omega_end=w, record_dt=record_dt))
+            model.update_operating_geometry()     # ring growth at the speed reached (piecewise per chunk)
             if progress is not None:
                 progress(model.t, t_end)
     return np.concatenate(out) if out else np.zeros((0, K.NOUT))

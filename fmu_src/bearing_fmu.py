@@ -122,6 +122,18 @@ _PARAMS = (
     ("lubrication", str, "auto", None, "lubrication regime of races and cage: oil (lubricated traction, oil-lubricated "
      "pocket and land) | solid (Kalker/Coulomb traction with friction_coefficient, dry cage) | dry (Coulomb "
      "everywhere) | auto (oil for traction_model lubricated, else solid)", None),
+    # fits and ring growth (bearing_core.ring_fits): the running contact geometry
+    ("ring_growth", bool, False, None, "rings and balls grow with speed (centrifugal growth of the inner ring) and "
+     "temperature (thermal network, or oil_temperature with thermal off); the contact geometry follows every step", None),
+    ("shaft_interference", float, 0.0, "m", "diametral interference of the inner ring on the steel shaft, > 0 tight "
+     "(0: none; needs the bore and outside diameter)", (-1e-3, 1e-3)),
+    ("housing_interference", float, 0.0, "m", "diametral interference of the outer ring in the thick steel housing, "
+     "> 0 tight (0: none)", (-1e-3, 1e-3)),
+    ("shaft_bore", float, 0.0, "m", "bore of a hollow shaft for the shaft fit (0: solid shaft)", (0.0, 2.0)),
+    ("bore_diameter", float, 0.0, "m", "bearing bore d for fits and ring growth (0: from the bearing definition)",
+     (0.0, 2.0)),
+    ("outside_diameter", float, 0.0, "m", "bearing outside diameter for fits and ring growth (0: from the bearing "
+     "definition)", (0.0, 3.0)),
 )
 
 
