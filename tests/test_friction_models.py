@@ -92,7 +92,7 @@ def test_dynamics_friction_torque_against_skf_and_palmgren():
     each other by up to a factor 1.5 (Palmgren / SKF = 0.70-1.54, computed here), so a model with a
     different physical split cannot be held closer than about that spread; a factor 2 on either side
     still catches a missing or doubled loss source (a dry Coulomb cage, mu 0.1, gives 3-4x the lubricated
-    cage loss at 10,000 rpm). Measured: M / M_SKF = 0.56-1.31 (docs/tribology.md). Also: the torque rises
+    cage loss at 10,000 rpm). Measured: M / M_SKF = 0.55-1.22 (docs/tribology.md). Also: the torque rises
     with speed, load and viscosity like both references. Window: 0.05-0.1 s from the Jones-Harris start (the mean differs from a tribological start
     by < 5 %)."""
     import math
