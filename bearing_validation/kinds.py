@@ -531,3 +531,41 @@ def seed002_sliding_in_oil(inputs):
         slip.append(float(abs(m.ball_details()["slip_i"][0]) * 1e3))
     return {"Fa_N": list(inputs["Fa_N"]), "slip_inner_mm_s": slip,
             "slip_ratio_lightest_over_heaviest": slip[0] / slip[-1]}
+
+
+# ------------------------------------------------------------------------------------------------
+# Whole-bearing friction torque of the oil-lubricated dynamics against SKF's and Palmgren's models
+@kind
+def friction_torque_vs_skf(inputs):
+    """Steady friction torque [N m] of the oil-lubricated dynamics (mean of the second half of t_end_s from
+    the Jones-Harris start) at every oil x (Fr, Fa) x speed, and its ratio to the SKF (2004) and Palmgren
+    models at the same oil viscosity (bearing_core.friction_models)."""
+    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+    from bearing_core.friction_models import iso76_static_rating, palmgren_friction, skf_friction
+    from bearing_core.geometry import load_preset
+    from bearing_core.lubricants import get_oil
+    g = load_preset(inputs["bearing"])
+    C0 = iso76_static_rating(g)
+    T = inputs["oil_temperature_C"] + 273.15
+    out = {"M_Nm": [], "M_skf_Nm": [], "M_palmgren_Nm": [], "ratio_skf": [], "ratio_palmgren": [],
+           "ratio_skf_above_1000rpm": [], "case": []}
+    for oil in inputs["oils"]:
+        nu = get_oil(oil).nu(T) * 1e6
+        for Fr, Fa in inputs["loads_N"]:
+            for rpm in inputs["speeds_rpm"]:
+                m = DynamicModel(g, DynamicsOptions(oil=oil, oil_temperature=T, integrator="auto",
+                                                    fixed_tilt=bool(inputs.get("fixed_tilt", False))))
+                m.initialize(rpm * RPM, (Fr, 0.0, Fa, 0.0, 0.0))
+                d = records_to_dict(m.advance(inputs["t_end_s"], record_dt=1e-3))
+                M = float(d["friction_torque"][len(d["t"]) // 2:].mean())
+                skf = skf_friction(inputs["bore_mm"], inputs["outer_diameter_mm"], rpm, nu, Fr, Fa)["M"]
+                pal = palmgren_friction(g.dm * 1e3, rpm, nu, Fr, Fa, C0)["M"]
+                out["M_Nm"].append(M)
+                out["M_skf_Nm"].append(skf)
+                out["M_palmgren_Nm"].append(pal)
+                out["ratio_skf"].append(M / skf)
+                out["ratio_palmgren"].append(M / pal)
+                if rpm > 1000.0:
+                    out["ratio_skf_above_1000rpm"].append(M / skf)
+                out["case"].append(f"{oil} Fr {Fr:g} N Fa {Fa:g} N {rpm:g} rpm")
+    return out
