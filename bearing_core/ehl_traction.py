@@ -76,12 +76,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
-
 from .film import hd_central_film_nb, hd_groups_nb
+from .jit import hot
 
 ROELANDS_P0 = 1.96e8       # Pa [R66]
 ROELANDS_LN_ETA_INF = 9.67  # -ln(6.31e-5 Pa s) [R66]
+LN2 = math.log(2.0)
 _ZH_LAM_PEAK = (0.64 / (0.37 * 1.26 - 0.37 * 0.64)) ** (1.0 / 1.26)   # argmax of the Zhou-Hoeprich fit, 2.258
 _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 
@@ -92,16 +92,16 @@ _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 N_PARAMS = 27
 
 
-@njit(cache=True)
+@hot(inline="always")
 def roelands_ln_factor(p, lne, z):
     """ln(eta(p) / eta_0) [-] of the Roelands equation [R66] at gauge pressure p >= 0 [Pa]; lne =
     ln(eta_0 [Pa s]) + 9.67, z the pressure-viscosity index."""
     if p <= 0.0:
         return 0.0
-    return lne * ((1.0 + p / ROELANDS_P0) ** z - 1.0)
+    return lne * math.expm1(z * math.log1p(p / ROELANDS_P0))
 
 
-@njit(cache=True)
+@hot
 def fluid_fraction(lam):
     """Fraction of the load carried by the fluid film [-] at film parameter lam [-]: the Zhou-Hoeprich
     fit [ZH91] 1.21 lam^0.64 / (1 + 0.37 lam^1.26) normalised by its maximum, 1 for lam >= 2.258."""
@@ -112,7 +112,7 @@ def fluid_fraction(lam):
     return 1.21 * lam ** 0.64 / (1.0 + 0.37 * lam ** 1.26) / _ZH_PEAK
 
 
-@njit(cache=True)
+@hot
 def hydrodynamic_rolling_force(u, eta0, alpha_pv, Rx, k, E_prime, Q):
     """EHL rolling force F_R [N] [HK07]: 2.86 E' Rx^2 k^0.348 G^0.022 U^0.66 W^0.47 (Hamrock-Dowson
     groups of film.hd_groups_nb). u [m/s] entrainment speed, eta0 [Pa s], alpha_pv [1/Pa], Rx [m], k = a/b
@@ -123,7 +123,63 @@ def hydrodynamic_rolling_force(u, eta0, alpha_pv, Rx, k, E_prime, Q):
     return 2.86 * E_prime * Rx * Rx * k ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
 
 
-@njit(cache=True)
+@hot(inline="always")
+def thermal_eyring_root(lX, K):
+    """Root s >= 0 of the thermal Eyring equation s = asinh(X exp(-K s)) (item 5 in units of tau_0:
+    s = tau / tau_0, K = beta c tau_0 >= 0), given lX = ln X.
+
+    Written as g(s) = ln sinh s + (1 + K) s - s - ln X = s (1 + K) + ln(1 - e^{-2s}) - ln 2 - ln X = 0
+    (increasing and concave in s). For s0 = (ln X + ln 2) / (1 + K) > 5 the root lies above s0 and one
+    fixed-point step in closed form, s = s0 - ln(1 - e^{-2 s0}) / (1 + K) (log expanded to 2nd order), is
+    exact to 1e-9 relative; below, at most three Newton steps on g from s_iso / (1 + K min(s_iso, 1)),
+    s_iso = asinh(X), stopping once a step is below 1e-6 s. Measured relative error against the converged root (tests/test_jit_flags.py,
+    ln X in [-28, 50]): <= 2e-8 for K <= 3, <= 3e-7 for K <= 10, <= 1.2e-6 for K <= 31.6."""
+    s0 = (lX + LN2) / (1.0 + K)
+    if s0 > 5.0:
+        e = math.exp(-2.0 * s0)
+        return s0 + e * (1.0 + 0.5 * e) / (1.0 + K)
+    si = math.asinh(math.exp(lX))
+    s = si / (1.0 + K * min(si, 1.0))
+    for _ in range(3):
+        om = -math.expm1(-2.0 * s)                       # 1 - e^{-2s}
+        g = s * (1.0 + K) + math.log(om) - LN2 - lX
+        ds = g / ((2.0 - om) / om + K)
+        if ds >= 0.9 * s:
+            s *= 0.1
+        else:
+            s -= ds
+            if abs(ds) <= 1e-6 * s:                      # quadratic convergence: next step < 1e-12 s
+                break
+    return s
+
+
+@hot(inline="always")
+def _shear_point(lx0, v, h, s_in, u, tau0, tl, G_e, cfilm, cflash, beta, thermal, kgam):
+    """Fluid shear stress [Pa] at one point (items 4-7) from lx0 = ln(eta(p) / (tau_0 h)) (so that the
+    Eyring argument is X = exp(lx0) v), the limiting stress tl = tau_L0 + gamma_L p [Pa] at the point,
+    cfilm = h / (8 k_oil) [K/(Pa m/s)] and cflash = 1 / sqrt(pi u rho c k) (0: no flash heating); the
+    other arguments as fluid_shear_stress."""
+    if not (v > 0.0 and h > 0.0):
+        return 0.0
+    lX = lx0 + math.log(v)
+    if thermal:
+        c = v * cfilm
+        if cflash > 0.0 and s_in > 0.0:
+            c += v * math.sqrt(s_in) * cflash
+        tl = tl / (1.0 + kgam * c * tl)
+        K = beta * c * tau0
+        tau = tau0 * thermal_eyring_root(lX, K)
+    else:
+        tau = tau0 * math.asinh(math.exp(lX))               # Ree-Eyring
+    if G_e > 0.0 and tau > 0.0:
+        te = G_e * v * s_in / (h * u)                     # Maxwell: elastic stress after the transit
+        tau = -tau * math.expm1(-te / tau)
+    if tau > tl:
+        tau = tl
+    return tau
+
+
+@hot
 def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, G_e, k_oil, rck, thermal,
                        kgam=0.0):
     """Shear stress [Pa] of the EHL film at one point (module docstring items 3-7).
@@ -137,39 +193,23 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
     kgam [1/K]: relative fall of tau_L with the film's temperature rise (item 7)."""
     if not (v > 0.0 and h > 0.0):
         return 0.0
-    gd = v / h
-    X = eta0 * math.exp(roelands_ln_factor(p, lne, z)) * gd / tau0
-    tau = tau0 * math.asinh(X)                            # Ree-Eyring
-    tl = tauL0 + gamL * p
-    if thermal:
-        c = v * h / (8.0 * k_oil)                         # dT_film / tau  [K/Pa]
-        if rck > 0.0 and s_in > 0.0:
-            c += v * math.sqrt(s_in / (math.pi * u * rck))  # dT_flash / tau
-        tl = tl / (1.0 + kgam * c * tl)
-        kap = beta * c
-        if kap * tau > 1e-6:
-            if X > 1.0:
-                t = tau / (1.0 + kap * tau0)
-            else:
-                t = tau / (1.0 + kap * tau)
-            for _ in range(2):
-                Xe = X * math.exp(-kap * t)
-                g = t - tau0 * math.asinh(Xe)
-                t -= g / (1.0 + tau0 * kap * Xe / math.hypot(Xe, 1.0))
-                if t < 0.0:
-                    t = 0.0
-                elif t > tau:
-                    t = tau
-            tau = t
-    if G_e > 0.0 and tau > 0.0:
-        te = G_e * gd * s_in / u                          # Maxwell: elastic stress after the transit
-        tau = tau * (1.0 - math.exp(-te / tau))
-    if tau > tl:
-        tau = tl
-    return tau
+    lx0 = math.log(eta0 / (tau0 * h)) + roelands_ln_factor(p, lne, z)
+    cflash = 1.0 / math.sqrt(math.pi * u * rck) if rck > 0.0 else 0.0
+    return _shear_point(lx0, v, h, s_in, u, tau0, tauL0 + gamL * p, G_e, h / (8.0 * k_oil), cflash, beta,
+                        thermal, kgam)
 
 
-@njit(cache=True)
+@hot(inline="always")
+def _symmetric(x, w):
+    """True if the nodes x are antisymmetric and the weights w symmetric about the middle (bitwise)."""
+    n = x.shape[0]
+    for i in range(n // 2):
+        if x[n - 1 - i] != -x[i] or w[n - 1 - i] != w[i]:
+            return False
+    return True
+
+
+@hot
 def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
                          params, xi, wxi, zeta, wzeta):
     """Rheology-based EHL traction on the ball, integrated over the Hertz ellipse (module docstring).
@@ -179,16 +219,14 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     dissipated power), plus Rx, Ry [m] the effective radii of the contact in and across the rolling
     direction (for the film thickness and the rolling force). params: contact_kernels.traction_params
     with the oil's rheology (lubricants.rheology_traction_params). The EHL rolling-resistance moment is
-    included in M_m and in the power."""
-    Ft = 0.0
-    Fm = 0.0
-    Mn = 0.0
-    Mm = 0.0
-    Mt = 0.0
-    P = 0.0
+    included in M_m and in the power.
+
+    The pressure-dependent part of the shear law (Roelands viscosity, limiting stress, quadrature weight)
+    is evaluated once per group of nodes that share the Hertz pressure: (+-x, +-y) when the quadrature
+    is symmetric (as ellipse_quadrature's is), each node on its own otherwise."""
     if not (p_max > 0.0 and a > 0.0 and b > 0.0):
-        return Ft, Fm, Mn, Mm, Mt, P
-    # ---- per contact
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    # ---- per contact (all parameters as scalars from here on)
     u = abs(u_roll)
     umin = params[6]
     if u < umin:
@@ -221,6 +259,9 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     thermal = params[R_THERMAL] > 0.5
     kgam = params[R_KGAM]
     sgn = 1.0 if u_roll >= 0.0 else -1.0
+    lxh = math.log(eta0 / (tau0 * h)) if h > 0.0 else 0.0
+    cfilm = h / (8.0 * koil)
+    cflash = 1.0 / math.sqrt(math.pi * u * rck) if rck > 0.0 else 0.0
     # ---- over the ellipse (same field as contact_kernels.ellipse_traction)
     hh = 0.5 * D
     curv = R_def > a and hh > a
@@ -228,42 +269,67 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     if curv:
         c0 = math.sqrt(hh * hh - a * a) - math.sqrt(R_def * R_def - a * a)
     pab = p_max * a * b
-    for i in range(xi.shape[0]):
-        x = a * xi[i]
+    nx = xi.shape[0]
+    ny = zeta.shape[0]
+    symx = _symmetric(xi, wxi)
+    symy = _symmetric(zeta, wzeta)
+    gx = (nx + 1) // 2 if symx else nx
+    gy = (ny + 1) // 2 if symy else ny
+    Ft = 0.0
+    Fm = 0.0
+    Mn = 0.0
+    Mm = 0.0
+    Mt = 0.0
+    P = 0.0
+    for i in range(gx):
         w2 = 1.0 - xi[i] * xi[i]
         w = math.sqrt(w2)
+        x0 = a * xi[i]
         if curv:
-            rho = math.sqrt(R_def * R_def - x * x) + c0
+            rho = math.sqrt(R_def * R_def - x0 * x0) + c0
         else:
             rho = hh
         d = rho - hh
-        vt_x = vs_t - w_spin * x + w_roll_m * d
         vm_x = vs_m - w_roll_t * d
         wi = pab * w2 * wxi[i]
         bw = b * w
-        for j in range(zeta.shape[0]):
-            y = bw * zeta[j]
-            vm = vm_x + w_spin * y
-            v = math.sqrt(vt_x * vt_x + vm * vm)
-            if v > 0.0:
-                sz = math.sqrt(1.0 - zeta[j] * zeta[j])
-                p = p_max * w * sz                       # local Hertz pressure
-                s_in = bw + sgn * y                      # distance from the inlet edge
-                tau = fluid_shear_stress(f * p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, Ge,
-                                         koil, rck, thermal, kgam)
-                if mubl > 0.0:
-                    tau += mubl * p * math.tanh(v / vbl)
-                # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear
-                # force tau dA = (tau / p) * (p dA)
-                dF = tau / p * wi * wzeta[j] if p > 0.0 else 0.0
-                ft = -dF * vt_x / v
-                fm = -dF * vm / v
-                Ft += ft
-                Fm += fm
-                Mn += y * fm - x * ft
-                Mm += rho * ft
-                Mt -= rho * fm
-                P += dF * v
+        nvx = 2 if (symx and 2 * i + 1 != nx) else 1
+        for j in range(gy):
+            sz = math.sqrt(1.0 - zeta[j] * zeta[j])
+            p = p_max * w * sz                           # local Hertz pressure, shared by the group
+            if not p > 0.0:
+                continue
+            pf = f * p
+            lx0 = lxh + roelands_ln_factor(pf, lne, z)   # ln(eta(p) / (tau_0 h))
+            tlp = tauL0 + gamL * pf
+            # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear force
+            # tau dA = tau * (wi wzeta[j] / p)
+            wa = wi * wzeta[j] / p
+            wb = mubl * wi * wzeta[j]                    # boundary part: mubl p dA
+            nvy = 2 if (symy and 2 * j + 1 != ny) else 1
+            y0 = bw * zeta[j]
+            for kx in range(nvx):
+                x = x0 if kx == 0 else -x0
+                vt_x = vs_t - w_spin * x + w_roll_m * d
+                for ky in range(nvy):
+                    y = y0 if ky == 0 else -y0
+                    vm = vm_x + w_spin * y
+                    v = math.sqrt(vt_x * vt_x + vm * vm)
+                    if v > 0.0:
+                        s_in = bw + sgn * y                  # distance from the inlet edge
+                        tau = _shear_point(lx0, v, h, s_in, u, tau0, tlp, Ge, cfilm, cflash, beta, thermal,
+                                           kgam)
+                        dF = tau * wa
+                        if wb > 0.0:
+                            dF += wb * math.tanh(v / vbl)
+                        ft = -dF * vt_x / v
+                        fm = -dF * vm / v
+                        Ft += ft
+                        Fm += fm
+                        Mn += y * fm - x * ft
+                        Mm += rho * ft
+                        Mt -= rho * fm
+                        P += dF * v
     # ---- EHL rolling resistance: moment F_R Rx opposing the relative rolling rotation about m
     if params[R_RR] > 0.5:
         FR = hydrodynamic_rolling_force(u, eta0, alpha, Rx, k, Ep, Q) * f
