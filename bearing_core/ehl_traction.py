@@ -77,11 +77,12 @@ import math
 
 import numpy as np
 from .film import hd_central_film_nb, hd_groups_nb
+from . import mathx as mx
 from .jit import hot
 
 ROELANDS_P0 = 1.96e8       # Pa [R66]
 ROELANDS_LN_ETA_INF = 9.67  # -ln(6.31e-5 Pa s) [R66]
-LN2 = math.log(2.0)
+LN2 = mx.LN2
 _ZH_LAM_PEAK = (0.64 / (0.37 * 1.26 - 0.37 * 0.64)) ** (1.0 / 1.26)   # argmax of the Zhou-Hoeprich fit, 2.258
 _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 
@@ -98,7 +99,7 @@ def roelands_ln_factor(p, lne, z):
     ln(eta_0 [Pa s]) + 9.67, z the pressure-viscosity index."""
     if p <= 0.0:
         return 0.0
-    return lne * math.expm1(z * math.log1p(p / ROELANDS_P0))
+    return lne * mx.expm1(z * mx.log1p(p / ROELANDS_P0))
 
 
 @hot
@@ -124,59 +125,59 @@ def hydrodynamic_rolling_force(u, eta0, alpha_pv, Rx, k, E_prime, Q):
 
 
 @hot(inline="always")
-def thermal_eyring_root(lX, K):
-    """Root s >= 0 of the thermal Eyring equation s = asinh(X exp(-K s)) (item 5 in units of tau_0:
-    s = tau / tau_0, K = beta c tau_0 >= 0), given lX = ln X.
-
-    Written as g(s) = ln sinh s + (1 + K) s - s - ln X = s (1 + K) + ln(1 - e^{-2s}) - ln 2 - ln X = 0
-    (increasing and concave in s). For s0 = (ln X + ln 2) / (1 + K) > 5 the root lies above s0 and one
-    fixed-point step in closed form, s = s0 - ln(1 - e^{-2 s0}) / (1 + K) (log expanded to 2nd order), is
-    exact to 1e-9 relative; below, at most three Newton steps on g from s_iso / (1 + K min(s_iso, 1)),
-    s_iso = asinh(X), stopping once a step is below 1e-6 s. Measured relative error against the converged root (tests/test_jit_flags.py,
-    ln X in [-28, 50]): <= 2e-8 for K <= 3, <= 3e-7 for K <= 10, <= 1.2e-6 for K <= 31.6."""
-    s0 = (lX + LN2) / (1.0 + K)
-    if s0 > 5.0:
-        e = math.exp(-2.0 * s0)
-        return s0 + e * (1.0 + 0.5 * e) / (1.0 + K)
-    si = math.asinh(math.exp(lX))
-    s = si / (1.0 + K * min(si, 1.0))
-    for _ in range(3):
-        om = -math.expm1(-2.0 * s)                       # 1 - e^{-2s}
-        g = s * (1.0 + K) + math.log(om) - LN2 - lX
-        ds = g / ((2.0 - om) / om + K)
-        if ds >= 0.9 * s:
-            s *= 0.1
-        else:
-            s -= ds
-            if abs(ds) <= 1e-6 * s:                      # quadratic convergence: next step < 1e-12 s
-                break
-    return s
+def _asinh_exp(lX):
+    """asinh(exp(lX)) for any lX: ln 2 + lX above lX = 20 (the next term, exp(-2 lX) / 4, is below 1e-18)."""
+    sm = mx.asinh_pos(mx.exp(lX if lX < 20.0 else 20.0))
+    return sm if lX <= 20.0 else lX + LN2
 
 
 @hot(inline="always")
-def _shear_point(lx0, v, h, s_in, u, tau0, tl, G_e, cfilm, cflash, beta, thermal, kgam):
-    """Fluid shear stress [Pa] at one point (items 4-7) from lx0 = ln(eta(p) / (tau_0 h)) (so that the
-    Eyring argument is X = exp(lx0) v), the limiting stress tl = tau_L0 + gamma_L p [Pa] at the point,
-    cfilm = h / (8 k_oil) [K/(Pa m/s)] and cflash = 1 / sqrt(pi u rho c k) (0: no flash heating); the
-    other arguments as fluid_shear_stress."""
-    if not (v > 0.0 and h > 0.0):
-        return 0.0
-    lX = lx0 + math.log(v)
+def thermal_eyring_root(lX, K):
+    """Root s >= 0 of the thermal Eyring equation s = asinh(X exp(-K s)) (item 5 in units of tau_0:
+    s = tau / tau_0, K = beta c tau_0 >= 0), given lX = ln X. Branch-free, so that it vectorises.
+
+    Written as g(s) = ln sinh s + K s - ln X = s (1 + K) + ln(1 - e^{-2s}) - ln 2 - ln X = 0
+    (increasing and concave in s). For s0 = (ln X + ln 2) / (1 + K) > 5 the root lies above s0 and one
+    fixed-point step in closed form, s = s0 - ln(1 - e^{-2 s0}) / (1 + K) (log expanded to 2nd order), is
+    exact to 1e-9 relative; below, three Newton steps on g from s_iso / (1 + K min(s_iso, 1)),
+    s_iso = asinh(X). Measured relative error against the converged root (tests/test_jit_flags.py,
+    ln X in [-28, 50]): <= 2e-8 for K <= 3, <= 3e-7 for K <= 10, <= 1.2e-6 for K <= 31.6."""
+    a1 = 1.0 / (1.0 + K)
+    s0 = (lX + LN2) * a1
+    e0 = mx.exp(-2.0 * s0)
+    big = s0 + e0 * (1.0 + 0.5 * e0) * a1
+    si = _asinh_exp(lX)
+    s = si / (1.0 + K * (si if si < 1.0 else 1.0))
+    s = 1e-300 if s < 1e-300 else s
+    for _ in range(3):
+        om = -mx.expm1(-2.0 * s)                         # 1 - e^{-2s}
+        g = s * (1.0 + K) + mx.log(om) - LN2 - lX
+        ds = g / ((2.0 - om) / om + K)
+        s = 0.1 * s if ds >= 0.9 * s else s - ds
+    return s if not s0 > 5.0 else big
+
+
+@hot(inline="always")
+def _point_stress(v, pf, s_in, lxh, lne, z, h, u, tau0, tauL0, gamL, G_e, cfilm, cflash, beta, thermal, kgam):
+    """Fluid shear stress [Pa] at one point of the contact (items 3-7), branch-free in the point's values.
+
+    v [m/s] sliding speed; pf [Pa] pressure carried by the fluid; s_in [m] distance from the inlet edge;
+    lxh = ln(eta_0 / (tau_0 h)); cfilm = h / (8 k_oil); cflash = 1 / sqrt(pi u rho c k) (0: no flash
+    heating); the rest as fluid_shear_stress. 0 for v = 0."""
+    vv = 1e-300 if v < 1e-300 else v
+    lX = lxh + lne * mx.expm1(z * mx.log1p(pf * (1.0 / ROELANDS_P0))) + mx.log(vv)   # ln(eta(p) v / (tau_0 h))
+    tl = tauL0 + gamL * pf
     if thermal:
-        c = v * cfilm
-        if cflash > 0.0 and s_in > 0.0:
-            c += v * math.sqrt(s_in) * cflash
+        c = vv * (cfilm + math.sqrt(s_in) * cflash)       # temperature rise per unit stress [K/Pa]
         tl = tl / (1.0 + kgam * c * tl)
-        K = beta * c * tau0
-        tau = tau0 * thermal_eyring_root(lX, K)
+        tau = tau0 * thermal_eyring_root(lX, beta * c * tau0)
     else:
-        tau = tau0 * math.asinh(math.exp(lX))               # Ree-Eyring
-    if G_e > 0.0 and tau > 0.0:
-        te = G_e * v * s_in / (h * u)                     # Maxwell: elastic stress after the transit
-        tau = -tau * math.expm1(-te / tau)
-    if tau > tl:
-        tau = tl
-    return tau
+        tau = tau0 * _asinh_exp(lX)                        # Ree-Eyring
+    if G_e > 0.0:
+        ts = 1e-300 if tau < 1e-300 else tau
+        tau = -ts * mx.expm1(-G_e * vv * s_in / (h * u * ts))   # Maxwell: elastic stress after the transit
+    tau = tl if tau > tl else tau
+    return tau if v > 0.0 else 0.0 * tau
 
 
 @hot
@@ -193,20 +194,9 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
     kgam [1/K]: relative fall of tau_L with the film's temperature rise (item 7)."""
     if not (v > 0.0 and h > 0.0):
         return 0.0
-    lx0 = math.log(eta0 / (tau0 * h)) + roelands_ln_factor(p, lne, z)
     cflash = 1.0 / math.sqrt(math.pi * u * rck) if rck > 0.0 else 0.0
-    return _shear_point(lx0, v, h, s_in, u, tau0, tauL0 + gamL * p, G_e, h / (8.0 * k_oil), cflash, beta,
-                        thermal, kgam)
-
-
-@hot(inline="always")
-def _symmetric(x, w):
-    """True if the nodes x are antisymmetric and the weights w symmetric about the middle (bitwise)."""
-    n = x.shape[0]
-    for i in range(n // 2):
-        if x[n - 1 - i] != -x[i] or w[n - 1 - i] != w[i]:
-            return False
-    return True
+    return _point_stress(v, p, s_in, math.log(eta0 / (tau0 * h)), lne, z, h, u, tau0, tauL0, gamL, G_e,
+                         h / (8.0 * k_oil), cflash, beta, thermal, kgam)
 
 
 @hot
@@ -221,9 +211,8 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     with the oil's rheology (lubricants.rheology_traction_params). The EHL rolling-resistance moment is
     included in M_m and in the power.
 
-    The pressure-dependent part of the shear law (Roelands viscosity, limiting stress, quadrature weight)
-    is evaluated once per group of nodes that share the Hertz pressure: (+-x, +-y) when the quadrature
-    is symmetric (as ellipse_quadrature's is), each node on its own otherwise."""
+    Three passes over the quadrature points: their sliding field, pressure and weights; the shear law
+    (_point_stress, branch-free, vectorised by LLVM over the points); the sums of forces and moments."""
     if not (p_max > 0.0 and a > 0.0 and b > 0.0):
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     # ---- per contact (all parameters as scalars from here on)
@@ -259,10 +248,11 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     thermal = params[R_THERMAL] > 0.5
     kgam = params[R_KGAM]
     sgn = 1.0 if u_roll >= 0.0 else -1.0
-    lxh = math.log(eta0 / (tau0 * h)) if h > 0.0 else 0.0
+    fluid = h > 0.0
+    lxh = math.log(eta0 / (tau0 * h)) if fluid else 0.0
     cfilm = h / (8.0 * koil)
     cflash = 1.0 / math.sqrt(math.pi * u * rck) if rck > 0.0 else 0.0
-    # ---- over the ellipse (same field as contact_kernels.ellipse_traction)
+    # ---- pass 1: sliding field over the ellipse (same as contact_kernels.ellipse_traction)
     hh = 0.5 * D
     curv = R_def > a and hh > a
     c0 = 0.0
@@ -271,65 +261,77 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     pab = p_max * a * b
     nx = xi.shape[0]
     ny = zeta.shape[0]
-    symx = _symmetric(xi, wxi)
-    symy = _symmetric(zeta, wzeta)
-    gx = (nx + 1) // 2 if symx else nx
-    gy = (ny + 1) // 2 if symy else ny
+    npt = nx * ny
+    # padded to a multiple of 16 points with zero sliding, pressure and weight (zero stress): LLVM runs its
+    # vectorised loop body only for trip counts of 16 and more
+    npad = (npt + 15) // 16 * 16
+    buf = np.empty((9, npad))
+    buf[:, npt:] = 0.0
+    vt = buf[0]
+    vm = buf[1]
+    xs = buf[2]
+    ys = buf[3]
+    rh = buf[4]
+    pp = buf[5]
+    wq = buf[6]
+    si = buf[7]
+    dF = buf[8]
+    n = 0
+    for i in range(nx):
+        x = a * xi[i]
+        w2 = 1.0 - xi[i] * xi[i]
+        w = math.sqrt(w2)
+        if curv:
+            rho = math.sqrt(R_def * R_def - x * x) + c0
+        else:
+            rho = hh
+        d = rho - hh
+        vt_x = vs_t - w_spin * x + w_roll_m * d
+        vm_x = vs_m - w_roll_t * d
+        wi = pab * w2 * wxi[i]
+        bw = b * w
+        for j in range(ny):
+            y = bw * zeta[j]
+            p = p_max * w * math.sqrt(1.0 - zeta[j] * zeta[j])     # local Hertz pressure
+            vt[n] = vt_x
+            vm[n] = vm_x + w_spin * y
+            xs[n] = x
+            ys[n] = y
+            rh[n] = rho
+            pp[n] = p
+            # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear force
+            # tau dA = tau * (wi wzeta[j] / p)
+            wq[n] = wi * wzeta[j] / p if p > 0.0 else 0.0
+            si[n] = bw + sgn * y                                # distance from the inlet edge
+            n += 1
+    # ---- pass 2: shear stress at every point (vectorised)
+    for n in range(npad):
+        v = math.sqrt(vt[n] * vt[n] + vm[n] * vm[n])
+        tau = 0.0
+        if fluid:
+            tau = _point_stress(v, f * pp[n], si[n], lxh, lne, z, h, u, tau0, tauL0, gamL, Ge, cfilm, cflash,
+                                beta, thermal, kgam)
+        if mubl > 0.0:
+            tau += mubl * pp[n] * mx.tanh_pos(v / vbl)        # asperities' share, boundary friction
+        dF[n] = tau * wq[n]
+    # ---- pass 3: forces, moments and power
     Ft = 0.0
     Fm = 0.0
     Mn = 0.0
     Mm = 0.0
     Mt = 0.0
     P = 0.0
-    for i in range(gx):
-        w2 = 1.0 - xi[i] * xi[i]
-        w = math.sqrt(w2)
-        x0 = a * xi[i]
-        if curv:
-            rho = math.sqrt(R_def * R_def - x0 * x0) + c0
-        else:
-            rho = hh
-        d = rho - hh
-        vm_x = vs_m - w_roll_t * d
-        wi = pab * w2 * wxi[i]
-        bw = b * w
-        nvx = 2 if (symx and 2 * i + 1 != nx) else 1
-        for j in range(gy):
-            sz = math.sqrt(1.0 - zeta[j] * zeta[j])
-            p = p_max * w * sz                           # local Hertz pressure, shared by the group
-            if not p > 0.0:
-                continue
-            pf = f * p
-            lx0 = lxh + roelands_ln_factor(pf, lne, z)   # ln(eta(p) / (tau_0 h))
-            tlp = tauL0 + gamL * pf
-            # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear force
-            # tau dA = tau * (wi wzeta[j] / p)
-            wa = wi * wzeta[j] / p
-            wb = mubl * wi * wzeta[j]                    # boundary part: mubl p dA
-            nvy = 2 if (symy and 2 * j + 1 != ny) else 1
-            y0 = bw * zeta[j]
-            for kx in range(nvx):
-                x = x0 if kx == 0 else -x0
-                vt_x = vs_t - w_spin * x + w_roll_m * d
-                for ky in range(nvy):
-                    y = y0 if ky == 0 else -y0
-                    vm = vm_x + w_spin * y
-                    v = math.sqrt(vt_x * vt_x + vm * vm)
-                    if v > 0.0:
-                        s_in = bw + sgn * y                  # distance from the inlet edge
-                        tau = _shear_point(lx0, v, h, s_in, u, tau0, tlp, Ge, cfilm, cflash, beta, thermal,
-                                           kgam)
-                        dF = tau * wa
-                        if wb > 0.0:
-                            dF += wb * math.tanh(v / vbl)
-                        ft = -dF * vt_x / v
-                        fm = -dF * vm / v
-                        Ft += ft
-                        Fm += fm
-                        Mn += y * fm - x * ft
-                        Mm += rho * ft
-                        Mt -= rho * fm
-                        P += dF * v
+    for n in range(npad):
+        v = math.sqrt(vt[n] * vt[n] + vm[n] * vm[n])
+        r = dF[n] / v if v > 0.0 else 0.0
+        ft = -r * vt[n]
+        fm = -r * vm[n]
+        Ft += ft
+        Fm += fm
+        Mn += ys[n] * fm - xs[n] * ft
+        Mm += rh[n] * ft
+        Mt -= rh[n] * fm
+        P += dF[n] * v
     # ---- EHL rolling resistance: moment F_R Rx opposing the relative rolling rotation about m
     if params[R_RR] > 0.5:
         FR = hydrodynamic_rolling_force(u, eta0, alpha, Rx, k, Ep, Q) * f
