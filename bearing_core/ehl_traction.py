@@ -25,9 +25,9 @@ per contact; names of the parameter slots in contact_kernels.P_*):
                                          exposure time s_in / u since the inlet edge, Jaeger / Carslaw &
                                          Jaeger moving-source result with the local flux),
    and eta(T) = eta(T_inlet) exp(-beta (T - T_inlet)), beta = -d ln eta / dT of the oil at T_inlet. The
-   implicit equation tau = tau_0 asinh(X exp(-beta c tau)), dT = c tau, is solved by two Newton steps
-   from the Eyring-logarithmic closed form tau = tau_iso / (1 + beta c tau_0) (Evans & Johnson's thermal
-   Eyring regime).
+   implicit equation tau = tau_0 asinh(X exp(-beta c tau)), dT = c tau, is solved to 1e-6 relative
+   (thermal_eyring_root): in the Eyring-logarithmic regime (Evans & Johnson's thermal Eyring regime,
+   tau ~ tau_0 ln(2X) / (1 + beta c tau_0)) in closed form, elsewhere by Newton steps on ln sinh.
 6. Elasticity, Maxwell [JT77]: a fluid element entering the Hertz zone at constant strain rate builds its
    stress as tau = tau_v (1 - exp(-tau_e / tau_v)) with tau_e = G_e gamma_dot s_in / u the elastic stress
    after the transit s_in / u (exact for a linear Maxwell liquid of constant properties; the Eyring
@@ -76,7 +76,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from .film import hd_central_film_nb, hd_groups_nb
+from .film import hd_central_film_ln, hd_central_film_nb, hd_groups_nb
 from . import mathx as mx
 from .jit import hot
 
@@ -121,7 +121,13 @@ def hydrodynamic_rolling_force(u, eta0, alpha_pv, Rx, k, E_prime, Q):
     if not (Q > 0.0 and u != 0.0 and eta0 > 0.0):
         return 0.0
     U, G, W = hd_groups_nb(u, eta0, alpha_pv, Rx, E_prime, Q)
-    return 2.86 * E_prime * Rx * Rx * k ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
+    return _rolling_force_ln(E_prime, Rx, k, math.log(U), math.log(G), math.log(W))
+
+
+@hot(inline="always")
+def _rolling_force_ln(E_prime, Rx, k, lnU, lnG, lnW):
+    """hydrodynamic_rolling_force from the logarithms of the Hamrock-Dowson groups [N]."""
+    return 2.86 * E_prime * Rx * Rx * math.exp(0.348 * math.log(k) + 0.022 * lnG + 0.66 * lnU + 0.47 * lnW)
 
 
 @hot(inline="always")
@@ -225,7 +231,11 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     Ep = params[R_EPRIME]
     Q = 2.0 / 3.0 * math.pi * a * b * p_max
     k = a / b
-    h = hd_central_film_nb(u, eta0, alpha, Rx, Ry, Ep, Q, k)
+    # Hamrock-Dowson groups (film.hd_groups_nb) as logarithms, shared by the film and the rolling force
+    lnU = math.log(eta0 * u / (Ep * Rx))
+    lnG = math.log(alpha * Ep)
+    lnW = math.log(Q / (Ep * Rx * Rx))
+    h = hd_central_film_ln(Rx, lnU, lnG, lnW, k)
     rq = params[R_RQ]
     f = 1.0
     if rq > 0.0:
@@ -334,7 +344,7 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
         P += dF[n] * v
     # ---- EHL rolling resistance: moment F_R Rx opposing the relative rolling rotation about m
     if params[R_RR] > 0.5:
-        FR = hydrodynamic_rolling_force(u, eta0, alpha, Rx, k, Ep, Q) * f
+        FR = _rolling_force_ln(Ep, Rx, k, lnU, lnG, lnW) * f if eta0 > 0.0 else 0.0
         if FR > 0.0:
             MR = FR * Rx * math.tanh(w_roll_m * Rx / umin)
             Mm -= MR
