@@ -182,10 +182,17 @@ def main(argv=None):
                     help="run the fast and the plain (BEARING_PLAIN_MATH=1) builds back to back")
     ap.add_argument("--quad-check", action="store_true",
                     help="friction torque and race losses of each quadrature rule against 48 x 24 instead")
+    ap.add_argument("--rules", default="6x2,8x2,8x4,12x6,24x12,48x24",
+                    help="quadrature rules of --quad-check, the last one the reference")
+    ap.add_argument("--rpm", default="10000,1000", help="shaft speeds of --quad-check [rpm]")
+    ap.add_argument("--settle-qc", type=float, default=0.04, help="--quad-check: time before the window [s]")
+    ap.add_argument("--window", type=float, default=0.02, help="--quad-check: averaging window [s]")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args(argv)
     if a.quad_check:
-        out = quadrature_check()
+        rules = tuple(tuple(int(v) for v in r.split("x")) for r in a.rules.split(","))
+        out = quadrature_check(settle=a.settle_qc, window=a.window, rules=rules,
+                               rpms=tuple(float(v) for v in a.rpm.split(",")))
         print(json.dumps(out) if a.json else "\n".join(
             f"{sp} {rule}: " + ", ".join(f"{n} {v:+.2e}" for n, v in d.items())
             for sp, rules in out.items() for rule, d in rules.items()))

@@ -84,21 +84,27 @@ def _rhs_outputs():
     return {"dy": dy.tolist(), "diag": diag.tolist(), "bd": bd.tolist(), "nfixed": K.NSTATE_FIXED, "nsb": K.NSB}
 
 
-def _emit():
+def _emit(what):
     from bearing_core.jit import build_info
-    return {"build": build_info(), "ehl": _ehl_grid(), "simple": _simple_grid(), "rhs": _rhs_outputs()}
+    if what == "kernels":
+        return {"build": build_info(), "ehl": _ehl_grid(), "simple": _simple_grid()}
+    return {"build": build_info(), "rhs": _rhs_outputs()}
+
+
+def _fast_and_plain(what):
+    """(fast, plain) results; the plain build is computed in a subprocess with BEARING_PLAIN_MATH=1."""
+    env = dict(os.environ, BEARING_PLAIN_MATH="1")
+    env["PYTHONPATH"] = ROOT + os.pathsep + env.get("PYTHONPATH", "")
+    r = subprocess.run([sys.executable, os.path.abspath(__file__), what], env=env, capture_output=True,
+                       text=True, timeout=900)
+    assert r.returncode == 0, r.stderr[-3000:]
+    plain = json.loads(r.stdout.strip().splitlines()[-1])
+    return _emit(what), plain
 
 
 @pytest.fixture(scope="module")
 def builds():
-    """(fast, plain) results; the plain build is computed in a subprocess with BEARING_PLAIN_MATH=1."""
-    env = dict(os.environ, BEARING_PLAIN_MATH="1")
-    env["PYTHONPATH"] = ROOT + os.pathsep + env.get("PYTHONPATH", "")
-    r = subprocess.run([sys.executable, os.path.abspath(__file__), "emit"], env=env, capture_output=True,
-                       text=True, timeout=900)
-    assert r.returncode == 0, r.stderr[-3000:]
-    plain = json.loads(r.stdout.strip().splitlines()[-1])
-    return _emit(), plain
+    return _fast_and_plain("kernels")
 
 
 def _close_columns(f, p, rel):
@@ -125,11 +131,12 @@ def test_traction_kernels_fast_vs_plain(builds):
     _close_columns(fast["simple"], plain["simple"], 1e-9)
 
 
-def test_rhs_fast_vs_plain(builds):
+@pytest.mark.slow
+def test_rhs_fast_vs_plain():
     """Ball derivatives per state slot (angle, radius, axial, their rates, the three angular velocities),
     the ring / cage block, the output channels and per-ball details: within 1e-9 of each slot's largest
-    value."""
-    fast, plain = builds
+    value. (Slow only by the strict build's first compilation of the right-hand side.)"""
+    fast, plain = _fast_and_plain("rhs")
     f, p = np.array(fast["rhs"]["dy"]), np.array(plain["rhs"]["dy"])
     nf, nsb = fast["rhs"]["nfixed"], fast["rhs"]["nsb"]
     _close_columns(f[nf:].reshape(-1, nsb), p[nf:].reshape(-1, nsb), 1e-9)
@@ -181,5 +188,5 @@ def test_thermal_eyring_root_error_bounds():
     assert np.allclose(s[iso], np.arcsinh(np.exp(lX[iso])), rtol=1e-12)
 
 
-if __name__ == "__main__" and sys.argv[1:] == ["emit"]:
-    print(json.dumps(_emit()))
+if __name__ == "__main__" and sys.argv[1:2] in (["kernels"], ["rhs"]):
+    print(json.dumps(_emit(sys.argv[1])))
