@@ -129,7 +129,7 @@ def _shaft(U, t):
     return U[U_W0] + acc * (t - t0), acc
 
 
-@hot
+@hot(inline="always")
 def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx,
                    fny, qx, qwx, qy, qwy):
     """Traction of one ball-race contact on the ball: (F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W]) by
