@@ -49,11 +49,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
-
-from .hertz import ROW_K_LOAD, hertz_lookup, hertz_lookup_alpha
+from .hertz import ROW_A_COEF, ROW_B_COEF, ROW_K_LOAD
 
 from . import ehl_traction as EHL
+from .jit import hot
 
 # traction model selectors
 TRACTION_COULOMB = 0      # mu = mu0 tanh(|v| / v_reg)
@@ -103,13 +102,17 @@ def ellipse_quadrature(n_major, n_minor):
     th = j * np.pi / (n_minor + 1)
     zeta = np.cos(th)
     wz = np.pi / (n_minor + 1) * np.sin(th) ** 2
+    # exactly symmetric about the middle (cos(pi - t) = -cos(t) only to rounding), so that kernels can
+    # evaluate the pressure-dependent terms once per mirrored pair (ehl_traction.ehl_ellipse_traction)
+    zeta = 0.5 * (zeta - zeta[::-1])
+    wz = 0.5 * (wz + wz[::-1])
     return (np.ascontiguousarray(xi), np.ascontiguousarray(wxi), np.ascontiguousarray(zeta),
             np.ascontiguousarray(wz))
 
 
 # --------------------------------------------------------------------------------------------------
 # 1. ball-race normal contact
-@njit(cache=True)
+@hot(inline="always")
 def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
     L = math.sqrt(dr * dr + dz * dz)
     nr = dr / L
@@ -120,9 +123,28 @@ def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
     else:
         alpha = math.atan2(nz, nr)
     if delta > 0.0:
-        K = hertz_lookup_alpha(table, alpha0, dalpha, alpha, ROW_K_LOAD)
-        Q = K * delta ** 1.5
-        _, a, b, _, p = hertz_lookup(table, alpha0, dalpha, alpha, Q)
+        # hertz.hertz_lookup_alpha / hertz_lookup (same interpolation in |alpha|, clamped to the grid) with
+        # one index computation, and Q = K delta^1.5, Q^(1/3) = K^(1/3) delta^(1/2) without pow of delta
+        n = table.shape[1]
+        xa = (abs(alpha) - alpha0) / dalpha
+        if not xa > 0.0:
+            j = 0
+            wt = 0.0
+        elif xa >= n - 1:
+            j = n - 2
+            wt = 1.0
+        else:
+            j = int(xa)
+            wt = xa - j
+        K = (1.0 - wt) * table[ROW_K_LOAD, j] + wt * table[ROW_K_LOAD, j + 1]
+        ac = (1.0 - wt) * table[ROW_A_COEF, j] + wt * table[ROW_A_COEF, j + 1]
+        bc = (1.0 - wt) * table[ROW_B_COEF, j] + wt * table[ROW_B_COEF, j + 1]
+        sd = math.sqrt(delta)
+        Q = K * delta * sd
+        q3 = K ** (1.0 / 3.0) * sd
+        a = ac * q3
+        b = bc * q3
+        p = 1.5 * Q / (math.pi * a * b)
     else:
         Q = 0.0
         a = 0.0
@@ -131,7 +153,7 @@ def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
     return delta, nr, nz, alpha, Q, a, b, p
 
 
-@njit(cache=True)
+@hot
 def ball_race_contact(Xr, Xz, Cr, Cz, ro_c, ri_c, table_i, table_o, alpha0, dalpha):
     """Hertz normal contact of one ball with both races.
 
@@ -147,7 +169,7 @@ def ball_race_contact(Xr, Xz, Cr, Cz, ro_c, ri_c, table_i, table_o, alpha0, dalp
     return do, nor, noz, ao, Qo, a_o, b_o, p_o, di, nir, niz, ai, Qi, a_i, b_i, p_i
 
 
-@njit(cache=True)
+@hot
 def gothic_arch_contact(dr, dz, rc, fD, e, arc, table, alpha0, dalpha, inner):
     """Hertz normal contact of a ball with one arc of a gothic-arch (two-arc) groove.
 
@@ -172,7 +194,7 @@ def gothic_arch_contact(dr, dz, rc, fD, e, arc, table, alpha0, dalpha, inner):
     return True, delta, nr, nz, alpha, Q, a, b, p
 
 
-@njit(cache=True)
+@hot
 def normal_contact_force(Q_el, delta, delta_dot, model, c):
     """Normal force [N] with damping, from the elastic Hertz force Q_el [N], deflection delta [m] and
     its rate delta_dot [m/s] (> 0 approaching).
@@ -194,7 +216,7 @@ def normal_contact_force(Q_el, delta, delta_dot, model, c):
 
 # --------------------------------------------------------------------------------------------------
 # 2. contact-point kinematics
-@njit(cache=True)
+@hot
 def contact_kinematics(r_b, vr, vt, vz, wr, wt, wz, Omega_race, vrr, vrt, vrz, n_r, n_z, D):
     """Relative (ball minus race) motion at the contact centre O_ball + (D/2) n.
 
@@ -238,7 +260,7 @@ def contact_kinematics(r_b, vr, vt, vz, wr, wt, wz, Omega_race, vrr, vrt, vrz, n
 
 # --------------------------------------------------------------------------------------------------
 # 3. traction over the contact ellipse
-@njit(cache=True)
+@hot
 def traction_coefficient(v, u_roll, model, params):
     """Traction coefficient [-] at sliding speed v >= 0 [m/s] and rolling speed u_roll [m/s].
 
@@ -254,7 +276,7 @@ def traction_coefficient(v, u_roll, model, params):
     return params[P_MU0] * math.tanh(v / params[P_VREG])
 
 
-@njit(cache=True)
+@hot
 def ellipse_traction(a, b, p_max, D, R_def, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll, model,
                      params, xi, wxi, zeta, wzeta):
     """Traction on the ball integrated over the Hertz ellipse (seed 002 Sec. 2.2; seed 004 Eqs. 1-5).
@@ -319,7 +341,7 @@ def ellipse_traction(a, b, p_max, D, R_def, vs_t, vs_m, w_spin, w_roll_m, w_roll
 
 # --------------------------------------------------------------------------------------------------
 # 4. ball-pocket contact
-@njit(cache=True)
+@hot
 def ball_pocket_contact(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu_cb, v_reg,
                         D, vr, vz, wr, wz, vcr, vcz):
     """Penalty contact of a ball with its cage pocket along the orbital direction t (seed 000 Eq. 6
@@ -407,7 +429,7 @@ def ball_pocket_contact(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_
 #   mineral oils, 0.05). Default mu_bl = 0.15 (SKF mu_bl).
 # The film formulas are evaluated at h >= h_floor (the composite roughness): below it the solid contact
 # (penalty) carries the load.
-@njit(cache=True)
+@hot
 def _hd_pocket_film(u, eta, alpha_pv, Rx, k, E_red, F):
     """Minimum EHL film [m] of a conjunction of radius Rx [m] along the entrainment and ellipticity k at
     load F [N], entrainment u [m/s], viscosity eta [Pa s], pressure-viscosity alpha_pv [1/Pa], E_red [Pa]
@@ -422,13 +444,13 @@ def _hd_pocket_film(u, eta, alpha_pv, Rx, k, E_red, F):
     return h_pe if h_pe > h_ie else h_ie
 
 
-@njit(cache=True)
+@hot
 def _hd_ball_flat_film(u, eta, alpha_pv, R, E_red, F):
     """Minimum EHL film [m] of a ball (radius R) on a flat (k = 1), see _hd_pocket_film."""
     return _hd_pocket_film(u, eta, alpha_pv, R, 1.0, E_red, F)
 
 
-@njit(cache=True)
+@hot
 def _brewe_hamrock_taylor(ar):
     """Isoviscous-rigid dimensionless minimum-film load number H_min,IR(a_r) (Brewe, Hamrock & Taylor 1979)."""
     ph = 1.0 / (1.0 + 2.0 / (3.0 * ar))
@@ -436,7 +458,7 @@ def _brewe_hamrock_taylor(ar):
     return 128.0 * ar * ph * ph * c * c
 
 
-@njit(cache=True)
+@hot
 def ball_pocket_lubricated(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu_bl, mu_ehl, v_reg,
                            eta, alpha_pv, E_red, sigma, D, vr, vz, wr, wz, vcr, vcz):
     """Oil-lubricated ball-pocket contact: films on both pocket walls of a cylindrical pocket of radius

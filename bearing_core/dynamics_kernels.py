@@ -43,7 +43,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from .jit import hot
 
 from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics, ellipse_traction,
                               ball_pocket_contact, ball_pocket_lubricated, normal_contact_force, DAMP_LINEAR,
@@ -122,7 +122,7 @@ for _i, _n in enumerate(OUT_NAMES):   # O_<NAME> integer constants, compile-time
 NCB = 10
 
 
-@njit(cache=True)
+@hot
 def _shaft(U, t):
     """Shaft speed and acceleration: linear ramp from U_W0 at U_T0 to U_W1 at U_T1, held outside."""
     t0 = U[U_T0]
@@ -137,7 +137,7 @@ def _shaft(U, t):
     return U[U_W0] + acc * (t - t0), acc
 
 
-@njit(cache=True)
+@hot(inline="always")
 def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx,
                    fny, qx, qwx, qy, qwy):
     """Traction of one ball-race contact on the ball: (F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W]) by
@@ -152,7 +152,7 @@ def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wr
     return ellipse_traction(a, b, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, qx, qwx, qy, qwy)
 
 
-@njit(cache=True)
+@hot
 def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, a, b, p, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct,
                      vcz, D, dm, Rdef, Ry, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy):
     """One ball-raceway contact of the ball (rb, rd, thd, zd, Wr, Wt, Wz: state in its local frame) with a
@@ -184,7 +184,7 @@ def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, a, b, p, rb, rd, thd, zd,
     return Fn, pdamp, uel, ft, fm, mn, mm, mt, pl, vs_t, vs_m, wsp, ur
 
 
-@njit(cache=True)
+@hot
 def _first_arc(c1, c2):
     """True if arc 1 is the first (more loaded) contact of a gothic-arch ring: the valid arc, of two valid
     ones the more loaded, of two unloaded ones the less separated (c1, c2: gothic_arch_contact results)."""
@@ -197,7 +197,7 @@ def _first_arc(c1, c2):
     return c1[1] >= c2[1]
 
 
-@njit(cache=True)
+@hot
 def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, want_bd):
     """dy/dt of the bearing model. diag (len NOUT) receives the output channels at (t, y); bd (nb x NBD)
     receives per-ball details when want_bd is True. tp: contact_kernels traction parameters; (qx, qwx,
@@ -767,7 +767,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     diag[O_CAGE_SPEED_PURE_ROLLING_INNER] = sci / npr if npr > 0 else diag[O_PURE_ROLLING_CAGE_SPEED_JH]
 
 
-@njit(cache=True)
+@hot
 def pure_rolling_cage_speeds(w, ai, ao, gD, wo=0.0):
     """Pure-rolling cage (ball orbital) speed [rad/s] of one ball with contact angles ai, ao [rad] at shaft
     speed w [rad/s] and outer-ring speed wo [rad/s] (both signed), gD = D / dm: (outer-raceway control,
@@ -795,7 +795,7 @@ time; with h <= 1e-5 s and the 1.3 kHz ball-pass oscillation below 1e-3 relative
 communication point adds a zero-width interval, so it is taken exactly."""
 
 
-@njit(cache=True)
+@hot
 def _quad_point(quad, t, diag):
     """Add the trapezoid from the last stored point to (t, diag) and store this point."""
     if quad[2 * NOUT + 1] > 0.5:
@@ -808,7 +808,7 @@ def _quad_point(quad, t, diag):
     quad[2 * NOUT + 1] = 1.0
 
 
-@njit(cache=True)
+@hot
 def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
               rec_dt, rec, nrec_max, stats, quad):
     """Advance y (in place) from t0 to exactly t1 inside compiled code.
@@ -953,7 +953,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
     return nrec
 
 
-@njit(cache=True)
+@hot
 def evaluate(t, y, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd):
     """Output channels and per-ball details at (t, y) without integrating."""
     dy = np.empty(y.size)
@@ -992,7 +992,7 @@ ROSW_C = np.array([0.0, 8.7173304301691801e-01, 7.3157995778885238e-01, 1.0])
 JAC_EVERY = 20
 
 
-@njit(cache=True)
+@hot
 def _lu_factor(M, piv):
     """In-place LU with partial pivoting of a small dense matrix (Golub & Van Loan Alg. 3.4.1)."""
     m = M.shape[0]
@@ -1018,7 +1018,7 @@ def _lu_factor(M, piv):
                     M[i, c] -= f * M[k, c]
 
 
-@njit(cache=True)
+@hot
 def _lu_solve(M, piv, x):
     """Solve (LU) z = x in place (x: 1-D view of length m)."""
     m = M.shape[0]
@@ -1038,7 +1038,7 @@ def _lu_solve(M, piv, x):
         x[i] = s / M[i, i]
 
 
-@njit(cache=True)
+@hot
 def _cb_rows(P):
     """Rows of dy that the ball contribution channels BD_CFRX..BD_CFOY enter, and their factors
     (mirrors the end of rhs: masses, multiplicity and the zeroed rows of each configuration)."""
@@ -1060,7 +1060,7 @@ def _cb_rows(P):
     return rows, fac
 
 
-@njit(cache=True)
+@hot
 def _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, atol_scale,
               yt, ft, diag, bd, bd0):
     """Finite-difference W in arrow form: Wff (20 x 20), Wbf (nb x 9 x 20: ball rows, fixed columns),
@@ -1105,7 +1105,7 @@ def _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx
     return NSTATE_FIXED + NSB + 2
 
 
-@njit(cache=True)
+@hot
 def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs):
     """Factor I - hg W: ball blocks LUb, X_j = (I - hg Wbb_j)^-1 (-hg Wbf_j), Schur complement
     S = I - hg Wff + hg sum_j Wfb_j X_j on the fixed states."""
@@ -1142,7 +1142,7 @@ def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs):
     _lu_factor(S, pivs)
 
 
-@njit(cache=True)
+@hot
 def _w_solve(hg, x, Wfb, LUb, pivb, X, S, pivs, tmp):
     """x <- (I - hg W)^-1 x with the factors of _w_factor (tmp: nb x 9 work array)."""
     nb = LUb.shape[0]
@@ -1168,7 +1168,7 @@ def _w_solve(hg, x, Wfb, LUb, pivb, X, S, pivs, tmp):
             x[o + a] = acc
 
 
-@njit(cache=True)
+@hot
 def _w_matvec(v, out, Wff, Wbf, Wfb, Wbb):
     """out <- W v (arrow structure)."""
     nb = Wbb.shape[0]
@@ -1194,7 +1194,7 @@ def _w_matvec(v, out, Wff, Wbf, Wfb, Wbb):
             out[o + a] = acc
 
 
-@njit(cache=True)
+@hot
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                    rec_dt, rec, nrec_max, stats, quad):
     """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate()."""

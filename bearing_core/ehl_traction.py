@@ -25,9 +25,9 @@ per contact; names of the parameter slots in contact_kernels.P_*):
                                          exposure time s_in / u since the inlet edge, Jaeger / Carslaw &
                                          Jaeger moving-source result with the local flux),
    and eta(T) = eta(T_inlet) exp(-beta (T - T_inlet)), beta = -d ln eta / dT of the oil at T_inlet. The
-   implicit equation tau = tau_0 asinh(X exp(-beta c tau)), dT = c tau, is solved by two Newton steps
-   from the Eyring-logarithmic closed form tau = tau_iso / (1 + beta c tau_0) (Evans & Johnson's thermal
-   Eyring regime).
+   implicit equation tau = tau_0 asinh(X exp(-beta c tau)), dT = c tau, is solved to 1e-6 relative
+   (thermal_eyring_root): in the Eyring-logarithmic regime (Evans & Johnson's thermal Eyring regime,
+   tau ~ tau_0 ln(2X) / (1 + beta c tau_0)) in closed form, elsewhere by Newton steps on ln sinh.
 6. Elasticity, Maxwell [JT77]: a fluid element entering the Hertz zone at constant strain rate builds its
    stress as tau = tau_v (1 - exp(-tau_e / tau_v)) with tau_e = G_e gamma_dot s_in / u the elastic stress
    after the transit s_in / u (exact for a linear Maxwell liquid of constant properties; the Eyring
@@ -76,12 +76,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
-
-from .film import hd_central_film_nb, hd_groups_nb
+from .film import hd_central_film_ln, hd_central_film_nb, hd_groups_nb
+from . import mathx as mx
+from .jit import hot
 
 ROELANDS_P0 = 1.96e8       # Pa [R66]
 ROELANDS_LN_ETA_INF = 9.67  # -ln(6.31e-5 Pa s) [R66]
+LN2 = mx.LN2
 _ZH_LAM_PEAK = (0.64 / (0.37 * 1.26 - 0.37 * 0.64)) ** (1.0 / 1.26)   # argmax of the Zhou-Hoeprich fit, 2.258
 _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 
@@ -92,16 +93,16 @@ _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 N_PARAMS = 27
 
 
-@njit(cache=True)
+@hot(inline="always")
 def roelands_ln_factor(p, lne, z):
     """ln(eta(p) / eta_0) [-] of the Roelands equation [R66] at gauge pressure p >= 0 [Pa]; lne =
     ln(eta_0 [Pa s]) + 9.67, z the pressure-viscosity index."""
     if p <= 0.0:
         return 0.0
-    return lne * ((1.0 + p / ROELANDS_P0) ** z - 1.0)
+    return lne * mx.expm1(z * mx.log1p(p / ROELANDS_P0))
 
 
-@njit(cache=True)
+@hot
 def fluid_fraction(lam):
     """Fraction of the load carried by the fluid film [-] at film parameter lam [-]: the Zhou-Hoeprich
     fit [ZH91] 1.21 lam^0.64 / (1 + 0.37 lam^1.26) normalised by its maximum, 1 for lam >= 2.258."""
@@ -112,7 +113,7 @@ def fluid_fraction(lam):
     return 1.21 * lam ** 0.64 / (1.0 + 0.37 * lam ** 1.26) / _ZH_PEAK
 
 
-@njit(cache=True)
+@hot
 def hydrodynamic_rolling_force(u, eta0, alpha_pv, Rx, k, E_prime, Q):
     """EHL rolling force F_R [N] [HK07]: 2.86 E' Rx^2 k^0.348 G^0.022 U^0.66 W^0.47 (Hamrock-Dowson
     groups of film.hd_groups_nb). u [m/s] entrainment speed, eta0 [Pa s], alpha_pv [1/Pa], Rx [m], k = a/b
@@ -120,10 +121,72 @@ def hydrodynamic_rolling_force(u, eta0, alpha_pv, Rx, k, E_prime, Q):
     if not (Q > 0.0 and u != 0.0 and eta0 > 0.0):
         return 0.0
     U, G, W = hd_groups_nb(u, eta0, alpha_pv, Rx, E_prime, Q)
-    return 2.86 * E_prime * Rx * Rx * k ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
+    return _rolling_force_ln(E_prime, Rx, k, math.log(U), math.log(G), math.log(W))
 
 
-@njit(cache=True)
+@hot(inline="always")
+def _rolling_force_ln(E_prime, Rx, k, lnU, lnG, lnW):
+    """hydrodynamic_rolling_force from the logarithms of the Hamrock-Dowson groups [N]."""
+    return 2.86 * E_prime * Rx * Rx * math.exp(0.348 * math.log(k) + 0.022 * lnG + 0.66 * lnU + 0.47 * lnW)
+
+
+@hot(inline="always")
+def _asinh_exp(lX):
+    """asinh(exp(lX)) for any lX: ln 2 + lX above lX = 20 (the next term, exp(-2 lX) / 4, is below 1e-18)."""
+    sm = mx.asinh_pos(mx.exp(lX if lX < 20.0 else 20.0))
+    return sm if lX <= 20.0 else lX + LN2
+
+
+@hot(inline="always")
+def thermal_eyring_root(lX, K):
+    """Root s >= 0 of the thermal Eyring equation s = asinh(X exp(-K s)) (item 5 in units of tau_0:
+    s = tau / tau_0, K = beta c tau_0 >= 0), given lX = ln X. Branch-free, so that it vectorises.
+
+    Written as g(s) = ln sinh s + K s - ln X = s (1 + K) + ln(1 - e^{-2s}) - ln 2 - ln X = 0
+    (increasing and concave in s). For s0 = (ln X + ln 2) / (1 + K) > 5 the root lies above s0 and one
+    fixed-point step in closed form, s = s0 - ln(1 - e^{-2 s0}) / (1 + K) (log expanded to 2nd order), is
+    exact to 1e-9 relative; below, three Newton steps on g from s_iso / (1 + K min(s_iso, 1)),
+    s_iso = asinh(X). Measured relative error against the converged root (tests/test_jit_flags.py,
+    ln X in [-28, 50]): <= 2e-8 for K <= 3, <= 3e-7 for K <= 10, <= 1.2e-6 for K <= 31.6."""
+    a1 = 1.0 / (1.0 + K)
+    s0 = (lX + LN2) * a1
+    e0 = mx.exp(-2.0 * s0)
+    big = s0 + e0 * (1.0 + 0.5 * e0) * a1
+    si = _asinh_exp(lX)
+    s = si / (1.0 + K * (si if si < 1.0 else 1.0))
+    s = 1e-300 if s < 1e-300 else s
+    for _ in range(3):
+        om = -mx.expm1(-2.0 * s)                         # 1 - e^{-2s}
+        g = s * (1.0 + K) + mx.log(om) - LN2 - lX
+        ds = g / ((2.0 - om) / om + K)
+        s = 0.1 * s if ds >= 0.9 * s else s - ds
+    return s if not s0 > 5.0 else big
+
+
+@hot(inline="always")
+def _point_stress(v, pf, s_in, lxh, lne, z, h, u, tau0, tauL0, gamL, G_e, cfilm, cflash, beta, thermal, kgam):
+    """Fluid shear stress [Pa] at one point of the contact (items 3-7), branch-free in the point's values.
+
+    v [m/s] sliding speed; pf [Pa] pressure carried by the fluid; s_in [m] distance from the inlet edge;
+    lxh = ln(eta_0 / (tau_0 h)); cfilm = h / (8 k_oil); cflash = 1 / sqrt(pi u rho c k) (0: no flash
+    heating); the rest as fluid_shear_stress. 0 for v = 0."""
+    vv = 1e-300 if v < 1e-300 else v
+    lX = lxh + lne * mx.expm1(z * mx.log1p(pf * (1.0 / ROELANDS_P0))) + mx.log(vv)   # ln(eta(p) v / (tau_0 h))
+    tl = tauL0 + gamL * pf
+    if thermal:
+        c = vv * (cfilm + math.sqrt(s_in) * cflash)       # temperature rise per unit stress [K/Pa]
+        tl = tl / (1.0 + kgam * c * tl)
+        tau = tau0 * thermal_eyring_root(lX, beta * c * tau0)
+    else:
+        tau = tau0 * _asinh_exp(lX)                        # Ree-Eyring
+    if G_e > 0.0:
+        ts = 1e-300 if tau < 1e-300 else tau
+        tau = -ts * mx.expm1(-G_e * vv * s_in / (h * u * ts))   # Maxwell: elastic stress after the transit
+    tau = tl if tau > tl else tau
+    return tau if v > 0.0 else 0.0 * tau
+
+
+@hot
 def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, G_e, k_oil, rck, thermal,
                        kgam=0.0):
     """Shear stress [Pa] of the EHL film at one point (module docstring items 3-7).
@@ -137,39 +200,12 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
     kgam [1/K]: relative fall of tau_L with the film's temperature rise (item 7)."""
     if not (v > 0.0 and h > 0.0):
         return 0.0
-    gd = v / h
-    X = eta0 * math.exp(roelands_ln_factor(p, lne, z)) * gd / tau0
-    tau = tau0 * math.asinh(X)                            # Ree-Eyring
-    tl = tauL0 + gamL * p
-    if thermal:
-        c = v * h / (8.0 * k_oil)                         # dT_film / tau  [K/Pa]
-        if rck > 0.0 and s_in > 0.0:
-            c += v * math.sqrt(s_in / (math.pi * u * rck))  # dT_flash / tau
-        tl = tl / (1.0 + kgam * c * tl)
-        kap = beta * c
-        if kap * tau > 1e-6:
-            if X > 1.0:
-                t = tau / (1.0 + kap * tau0)
-            else:
-                t = tau / (1.0 + kap * tau)
-            for _ in range(2):
-                Xe = X * math.exp(-kap * t)
-                g = t - tau0 * math.asinh(Xe)
-                t -= g / (1.0 + tau0 * kap * Xe / math.hypot(Xe, 1.0))
-                if t < 0.0:
-                    t = 0.0
-                elif t > tau:
-                    t = tau
-            tau = t
-    if G_e > 0.0 and tau > 0.0:
-        te = G_e * gd * s_in / u                          # Maxwell: elastic stress after the transit
-        tau = tau * (1.0 - math.exp(-te / tau))
-    if tau > tl:
-        tau = tl
-    return tau
+    cflash = 1.0 / math.sqrt(math.pi * u * rck) if rck > 0.0 else 0.0
+    return _point_stress(v, p, s_in, math.log(eta0 / (tau0 * h)), lne, z, h, u, tau0, tauL0, gamL, G_e,
+                         h / (8.0 * k_oil), cflash, beta, thermal, kgam)
 
 
-@njit(cache=True)
+@hot
 def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
                          params, xi, wxi, zeta, wzeta):
     """Rheology-based EHL traction on the ball, integrated over the Hertz ellipse (module docstring).
@@ -179,16 +215,13 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     dissipated power), plus Rx, Ry [m] the effective radii of the contact in and across the rolling
     direction (for the film thickness and the rolling force). params: contact_kernels.traction_params
     with the oil's rheology (lubricants.rheology_traction_params). The EHL rolling-resistance moment is
-    included in M_m and in the power."""
-    Ft = 0.0
-    Fm = 0.0
-    Mn = 0.0
-    Mm = 0.0
-    Mt = 0.0
-    P = 0.0
+    included in M_m and in the power.
+
+    Three passes over the quadrature points: their sliding field, pressure and weights; the shear law
+    (_point_stress, branch-free, vectorised by LLVM over the points); the sums of forces and moments."""
     if not (p_max > 0.0 and a > 0.0 and b > 0.0):
-        return Ft, Fm, Mn, Mm, Mt, P
-    # ---- per contact
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    # ---- per contact (all parameters as scalars from here on)
     u = abs(u_roll)
     umin = params[6]
     if u < umin:
@@ -198,7 +231,11 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     Ep = params[R_EPRIME]
     Q = 2.0 / 3.0 * math.pi * a * b * p_max
     k = a / b
-    h = hd_central_film_nb(u, eta0, alpha, Rx, Ry, Ep, Q, k)
+    # Hamrock-Dowson groups (film.hd_groups_nb) as logarithms, shared by the film and the rolling force
+    lnU = math.log(eta0 * u / (Ep * Rx))
+    lnG = math.log(alpha * Ep)
+    lnW = math.log(Q / (Ep * Rx * Rx))
+    h = hd_central_film_ln(Rx, lnU, lnG, lnW, k)
     rq = params[R_RQ]
     f = 1.0
     if rq > 0.0:
@@ -221,14 +258,36 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     thermal = params[R_THERMAL] > 0.5
     kgam = params[R_KGAM]
     sgn = 1.0 if u_roll >= 0.0 else -1.0
-    # ---- over the ellipse (same field as contact_kernels.ellipse_traction)
+    fluid = h > 0.0
+    lxh = math.log(eta0 / (tau0 * h)) if fluid else 0.0
+    cfilm = h / (8.0 * koil)
+    cflash = 1.0 / math.sqrt(math.pi * u * rck) if rck > 0.0 else 0.0
+    # ---- pass 1: sliding field over the ellipse (same as contact_kernels.ellipse_traction)
     hh = 0.5 * D
     curv = R_def > a and hh > a
     c0 = 0.0
     if curv:
         c0 = math.sqrt(hh * hh - a * a) - math.sqrt(R_def * R_def - a * a)
     pab = p_max * a * b
-    for i in range(xi.shape[0]):
+    nx = xi.shape[0]
+    ny = zeta.shape[0]
+    npt = nx * ny
+    # padded to a multiple of 16 points with zero sliding, pressure and weight (zero stress): LLVM runs its
+    # vectorised loop body only for trip counts of 16 and more
+    npad = (npt + 15) // 16 * 16
+    buf = np.empty((9, npad))
+    buf[:, npt:] = 0.0
+    vt = buf[0]
+    vm = buf[1]
+    xs = buf[2]
+    ys = buf[3]
+    rh = buf[4]
+    pp = buf[5]
+    wq = buf[6]
+    si = buf[7]
+    dF = buf[8]
+    n = 0
+    for i in range(nx):
         x = a * xi[i]
         w2 = 1.0 - xi[i] * xi[i]
         w = math.sqrt(w2)
@@ -241,32 +300,51 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
         vm_x = vs_m - w_roll_t * d
         wi = pab * w2 * wxi[i]
         bw = b * w
-        for j in range(zeta.shape[0]):
+        for j in range(ny):
             y = bw * zeta[j]
-            vm = vm_x + w_spin * y
-            v = math.sqrt(vt_x * vt_x + vm * vm)
-            if v > 0.0:
-                sz = math.sqrt(1.0 - zeta[j] * zeta[j])
-                p = p_max * w * sz                       # local Hertz pressure
-                s_in = bw + sgn * y                      # distance from the inlet edge
-                tau = fluid_shear_stress(f * p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, Ge,
-                                         koil, rck, thermal, kgam)
-                if mubl > 0.0:
-                    tau += mubl * p * math.tanh(v / vbl)
-                # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear
-                # force tau dA = (tau / p) * (p dA)
-                dF = tau / p * wi * wzeta[j] if p > 0.0 else 0.0
-                ft = -dF * vt_x / v
-                fm = -dF * vm / v
-                Ft += ft
-                Fm += fm
-                Mn += y * fm - x * ft
-                Mm += rho * ft
-                Mt -= rho * fm
-                P += dF * v
+            p = p_max * w * math.sqrt(1.0 - zeta[j] * zeta[j])     # local Hertz pressure
+            vt[n] = vt_x
+            vm[n] = vm_x + w_spin * y
+            xs[n] = x
+            ys[n] = y
+            rh[n] = rho
+            pp[n] = p
+            # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear force
+            # tau dA = tau * (wi wzeta[j] / p)
+            wq[n] = wi * wzeta[j] / p if p > 0.0 else 0.0
+            si[n] = bw + sgn * y                                # distance from the inlet edge
+            n += 1
+    # ---- pass 2: shear stress at every point (vectorised)
+    for n in range(npad):
+        v = math.sqrt(vt[n] * vt[n] + vm[n] * vm[n])
+        tau = 0.0
+        if fluid:
+            tau = _point_stress(v, f * pp[n], si[n], lxh, lne, z, h, u, tau0, tauL0, gamL, Ge, cfilm, cflash,
+                                beta, thermal, kgam)
+        if mubl > 0.0:
+            tau += mubl * pp[n] * mx.tanh_pos(v / vbl)        # asperities' share, boundary friction
+        dF[n] = tau * wq[n]
+    # ---- pass 3: forces, moments and power
+    Ft = 0.0
+    Fm = 0.0
+    Mn = 0.0
+    Mm = 0.0
+    Mt = 0.0
+    P = 0.0
+    for n in range(npad):
+        v = math.sqrt(vt[n] * vt[n] + vm[n] * vm[n])
+        r = dF[n] / v if v > 0.0 else 0.0
+        ft = -r * vt[n]
+        fm = -r * vm[n]
+        Ft += ft
+        Fm += fm
+        Mn += ys[n] * fm - xs[n] * ft
+        Mm += rh[n] * ft
+        Mt -= rh[n] * fm
+        P += dF[n] * v
     # ---- EHL rolling resistance: moment F_R Rx opposing the relative rolling rotation about m
     if params[R_RR] > 0.5:
-        FR = hydrodynamic_rolling_force(u, eta0, alpha, Rx, k, Ep, Q) * f
+        FR = _rolling_force_ln(Ep, Rx, k, lnU, lnG, lnW) * f if eta0 > 0.0 else 0.0
         if FR > 0.0:
             MR = FR * Rx * math.tanh(w_roll_m * Rx / umin)
             Mm -= MR

@@ -96,7 +96,15 @@ def hd_central_film_nb(u, eta0, alpha_pv, Rx, Ry, E_prime, Q, k):
     U, G, W = hd_groups_nb(u, eta0, alpha_pv, Rx, E_prime, Q)
     if U == 0.0:
         return 0.0
-    return Rx * 2.69 * U ** 0.67 * G ** 0.53 * W ** -0.067 * (1.0 - 0.61 * math.exp(-0.73 * k))
+    return hd_central_film_ln(Rx, math.log(U), math.log(G), math.log(W), k)
+
+
+@njit(cache=True)
+def hd_central_film_ln(Rx, lnU, lnG, lnW, k):
+    """hd_central_film_nb from the natural logarithms of the Hamrock-Dowson groups U, G, W [HD77] (for
+    kernels that need the groups' powers more than once): Rx 2.69 exp(0.67 lnU + 0.53 lnG - 0.067 lnW)
+    (1 - 0.61 exp(-0.73 k)) [m]; Rx [m], k [-]."""
+    return Rx * 2.69 * math.exp(0.67 * lnU + 0.53 * lnG - 0.067 * lnW) * (1.0 - 0.61 * math.exp(-0.73 * k))
 
 
 @njit(cache=True)

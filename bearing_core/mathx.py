@@ -1,0 +1,138 @@
+"""Branch-free exp, expm1, log, log1p, asinh and tanh for the hot numba kernels: polynomial forms that LLVM
+inlines and vectorises (SIMD over the quadrature points of the EHL traction), where a call into the C
+library (~3 ns, one value at a time) cannot be vectorised. NaN propagates through all of them.
+
+Ranges and error bounds (relative to the exact value; measured by tests/test_mathx.py):
+
+    exp(x)      x clamped to [-708, 708] (exp(-708) = 3.3e-308 is returned below, not 0)   <= 5e-15
+    expm1(x)    same clamp                                                               <= 5e-15
+    log(x)      x in [2.3e-308, 1.8e308] (smaller x taken as 2.3e-308)                     <= 5e-16
+    log1p(y)    y > -1, 1 + y <= 1.8e308                                                  <= 1e-15
+    asinh_pos(x) x in [0, 1e150]                                                          <= 1e-15
+    tanh_pos(x)  x >= 0                                                                   <= 5e-15
+
+Methods (standard, as in fdlibm / Cody & Waite, "Software Manual for the Elementary Functions", 1980):
+exp: x = k ln2 + r, |r| <= ln2 / 2 (ln2 split into a high and a low part), exp(r) by its Taylor series to
+r^12 (truncation r^13 / 13! < 2e-16), times 2^k built from the exponent bits; expm1: the Taylor series
+to x^13 where |x| < ln2 / 2, else exp(x) - 1; log: x = 2^e m with m in [sqrt(1/2), sqrt(2)), log m =
+2 atanh(s), s = (m - 1) / (m + 1), |s| <= 0.1716, series to s^19 (truncation < 1e-16); log1p(y) =
+log(u) + (y - (u - 1)) / u with u = 1 + y rounded (the correction restores the bits lost in 1 + y);
+asinh(x) = log1p(x + x^2 / (1 + sqrt(1 + x^2))); tanh(x) = -expm1(-2x) / (2 + expm1(-2x)).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from llvmlite import ir
+from numba import types
+from numba.extending import intrinsic
+
+from numba import njit
+
+from .jit import ERROR_MODEL, PLAIN_MATH
+
+# own flags: fused multiply-add only, never re-association (it would undo the Cody-Waite reduction and the
+# log1p correction). Not inlined by numba (which would compile them with the caller's flags): LLVM inlines
+# and vectorises them keeping these flags on their instructions.
+_mx = njit(cache=True, error_model=ERROR_MODEL, fastmath=False if PLAIN_MATH else {"contract"})
+
+LN2 = 0.6931471805599453
+_LN2_HI = 6.93147180369123816490e-01     # ln 2 rounded to 32 significant bits (fdlibm): k _LN2_HI is exact
+_LN2_LO = 1.90821492927058770002e-10     # ln 2 - _LN2_HI
+_INV_LN2 = 1.44269504088896338700e+00
+_SQRT2 = 1.4142135623730951
+_HALF_LN2 = 0.34657359027997264
+_TINY = 2.2250738585072014e-308          # smallest normal double
+
+
+@intrinsic
+def _f64_bits(typingctx, x):
+    """The IEEE-754 bits of a float64 as an int64."""
+    if not isinstance(x, types.Float):
+        return None
+
+    def codegen(context, builder, signature, args):
+        return builder.bitcast(args[0], ir.IntType(64))
+    return types.int64(types.float64), codegen
+
+
+@intrinsic
+def _bits_f64(typingctx, n):
+    """The float64 whose IEEE-754 bits are the int64 n."""
+    if not isinstance(n, types.Integer):
+        return None
+
+    def codegen(context, builder, signature, args):
+        return builder.bitcast(args[0], ir.DoubleType())
+    return types.float64(types.int64), codegen
+
+
+@_mx
+def exp(x):
+    """e^x, x clamped to [-708, 708] (module docstring)."""
+    xc = min(max(x, -708.0), 708.0)
+    kf = math.floor(xc * _INV_LN2 + 0.5)
+    r = (xc - kf * _LN2_HI) - kf * _LN2_LO
+    if x != x:
+        r = x
+    p = 1.0 + r * (1.0 + r * (1.0 / 2.0 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (
+        1.0 / 720.0 + r * (1.0 / 5040.0 + r * (1.0 / 40320.0 + r * (1.0 / 362880.0 + r * (
+            1.0 / 3628800.0 + r * (1.0 / 39916800.0 + r * (1.0 / 479001600.0))))))))))))
+    return p * _bits_f64((np.int64(kf) + 1023) << 52)
+
+
+@_mx
+def expm1(x):
+    """e^x - 1, accurate near 0 (module docstring)."""
+    t = x * (1.0 + x * (1.0 / 2.0 + x * (1.0 / 6.0 + x * (1.0 / 24.0 + x * (1.0 / 120.0 + x * (
+        1.0 / 720.0 + x * (1.0 / 5040.0 + x * (1.0 / 40320.0 + x * (1.0 / 362880.0 + x * (
+            1.0 / 3628800.0 + x * (1.0 / 39916800.0 + x * (1.0 / 479001600.0 + x * (
+                1.0 / 6227020800.0)))))))))))))
+    e = exp(x) - 1.0
+    return t if abs(x) < _HALF_LN2 else e
+
+
+@_mx
+def _log1p_reduced(f):
+    """log(1 + f) for f in [sqrt(1/2) - 1, sqrt(2) - 1]: 2 atanh(s), s = f / (2 + f)."""
+    s = f / (2.0 + f)
+    z = s * s
+    R = z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0 + z * (1.0 / 9.0 + z * (1.0 / 11.0 + z * (
+        1.0 / 13.0 + z * (1.0 / 15.0 + z * (1.0 / 17.0 + z * (1.0 / 19.0)))))))))
+    return 2.0 * s + 2.0 * s * R
+
+
+@_mx
+def log(x):
+    """Natural logarithm of x in [2.3e-308, 1.8e308] (module docstring)."""
+    xc = max(x, _TINY)
+    bits = _f64_bits(xc)
+    e = (bits >> 52) - 1023
+    m = _bits_f64((bits & 0x000FFFFFFFFFFFFF) | 0x3FF0000000000000)     # x = 2^e m, m in [1, 2)
+    big = m > _SQRT2
+    m = 0.5 * m if big else m
+    ef = float(e + 1) if big else float(e)
+    if x != x:
+        m = x
+    return ef * _LN2_HI + (_log1p_reduced(m - 1.0) + ef * _LN2_LO)
+
+
+@_mx
+def log1p(y):
+    """log(1 + y), accurate near 0 (module docstring)."""
+    u = 1.0 + y
+    return log(u) + (y - (u - 1.0)) / u
+
+
+@_mx
+def asinh_pos(x):
+    """asinh(x) for x in [0, 1e150] (module docstring)."""
+    return log1p(x + x * x / (1.0 + math.sqrt(1.0 + x * x)))
+
+
+@_mx
+def tanh_pos(x):
+    """tanh(x) for x >= 0 (module docstring)."""
+    e = expm1(-2.0 * x)
+    return -e / (2.0 + e)
