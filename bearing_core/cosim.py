@@ -283,6 +283,7 @@ class CoSimSession:
             self._check_limits()
         except (BearingInputError, FloatingPointError, StepRejected) as e:
             m.y, m.t, m.U, m.stats = saved[:4]
+            m.invalidate_jacobian()
             m.set_thermal_state(saved[4])
             m.quad[:] = saved[5]
             self.t = m.t
@@ -374,6 +375,7 @@ class CoSimSession:
         self.model.t = t
         self.model.U[:] = U
         self.model.stats[:] = stats
+        self.model.invalidate_jacobian()
         self.t = t
         self.outputs = dict(outs)
         self.thermal_runaway = bool(self.outputs.get("thermal_runaway", 0))

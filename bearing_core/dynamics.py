@@ -26,11 +26,14 @@ from .quasistatic import QuasiStaticModel
 TRACTION_MODELS = ("lubricated", "coulomb", "kalker", "lubricated-curve")
 LUBRICATION_REGIMES = ("auto", "oil", "solid", "dry")
 OIL_TRACTIONS = ("lubricated", "lubricated-curve")   # race traction laws of an oil-lubricated bearing
-INTEGRATORS = ("rk4", "adaptive", "implicit", "auto")
+INTEGRATORS = ("rk4", "adaptive", "implicit", "auto", "adaptive-rk4")
+METHOD_CODE = {"rk4": 0, "adaptive": 1, "implicit": 2, "adaptive-rk4": 3}
 # stats: [0] accepted steps, [1] rejected, [2] rhs calls, [3] last step, [4] failure flag (kernels);
-# integrator='auto' selector: current method, cost of each [rhs equivalents / simulated s], intervals
-# since the last probe, last step of each method
-ST_CUR, ST_C1, ST_C2, ST_AGE, ST_H1, ST_H2, NSTATS = 5, 6, 7, 8, 9, 10, 11
+# integrator='auto' selector: current method, cost of the explicit and the implicit method [rhs
+# equivalents / simulated s], intervals since the last probe, last step of each adaptive method (1, 2, 3)
+ST_CUR, ST_C1, ST_C2, ST_AGE, ST_H1, ST_H2, ST_H3, NSTATS = 5, 6, 7, 8, 9, 10, 11, 12
+ST_H = {1: ST_H1, 2: ST_H2, 3: ST_H3}
+AUTO_EXPLICIT = 3     # the explicit candidate of integrator='auto' (bench/bench_dynamics.py)
 AUTO_PROBE = 25
 AUTO_CHUNK = 5e-3   # [s] interval on which 'auto' chooses
 COUPLINGS = ("load", "displacement")
@@ -217,6 +220,8 @@ class DynamicsOptions:
 class DynamicModel:
     """One bearing: outer ring fixed, inner ring at prescribed speed, balls (6 DOF each), cage
     (rotation and whirl), inner ring 5 DOF (load-driven) or prescribed (displacement-driven)."""
+
+    _rosw_ws = None     # implicit integrator's Jacobian workspace (dynamics_kernels.rosw_workspace), per instance
 
     def __init__(self, geometry: BearingGeometry, options: DynamicsOptions = DynamicsOptions()):
         options.validate()
@@ -519,6 +524,7 @@ class DynamicModel:
         self.U[K.U_FX:K.U_MY + 1] = loads_in
         self.stats[:] = 0.0
         self.quad[:] = 0.0
+        self.invalidate_jacobian()
         self._atol = self._atol_scale(nb)
         self.thermal = None
         self.apply_temperatures(self.opt.oil_temperature, self.opt.oil_temperature)
@@ -743,31 +749,42 @@ class DynamicModel:
         if self.opt.integrator == "auto":
             method = self._auto_choose()
         else:
-            method = {"rk4": 0, "adaptive": 1, "implicit": 2}[self.opt.integrator]
+            method = METHOD_CODE[self.opt.integrator]
         if method == 0:
             dt0 = self.opt.dt
         else:
-            hk = self.stats[ST_H1 if method == 1 else ST_H2]
+            hk = self.stats[ST_H[method]]
             dt0 = hk if hk > 0 else (self.stats[3] if self.stats[3] > 0 else self.opt.dt)
         self.stats[4] = 0.0
         before = self.stats[:3].copy()
         if method == 2:
+            nb = int(self.P[K.P_NB])
+            if self._rosw_ws is None or self._rosw_ws[3].shape[0] != nb:
+                self._rosw_ws = K.rosw_workspace(nb)
             n = K.integrate_rosw(self.y, t_start, t_end, dt0, self.opt.rtol, self._atol, self.P, self.U,
                                  self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
-                                 rdt, rec, nmax, self.stats, self.quad)
+                                 rdt, rec, nmax, self.stats, self.quad, *self._rosw_ws)
+            if self.stats[4] != 0.0:
+                self.invalidate_jacobian()
         else:
             n = K.integrate(self.y, t_start, t_end, dt0, method, self.opt.rtol, self._atol, self.P, self.U,
                             self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
                             rdt, rec, nmax, self.stats, self.quad)
         if method > 0:
-            self.stats[ST_H1 if method == 1 else ST_H2] = self.stats[3]
+            self.stats[ST_H[method]] = self.stats[3]
             d = self.stats[:3] - before
             # cost in right-hand-side equivalents per simulated second (deterministic, unlike wall time):
             # the implicit step adds its linear algebra, measured as ~4 rhs calls per step (7218B, 16 balls)
             cost = (d[2] + (4.0 * (d[0] + d[1]) if method == 2 else 0.0)) / (t_end - t_start)
-            k = ST_C1 if method == 1 else ST_C2
+            k = ST_C2 if method == 2 else ST_C1
             self.stats[k] = cost if self.stats[k] <= 0 else 0.5 * (self.stats[k] + cost)
         return n
+
+    def invalidate_jacobian(self):
+        """Make the implicit integrator rebuild its Jacobian at its next step (after the state was set
+        from outside, e.g. an FMU rollback, so that a repeated step repeats the same arithmetic)."""
+        if self._rosw_ws is not None:
+            self._rosw_ws[-1][:] = (K.JAC_EVERY, -1.0)
 
     def _auto_choose(self) -> int:
         """integrator='auto': run the cheaper of the explicit Dormand-Prince (1) and the Rosenbrock-W (2)
@@ -775,9 +792,10 @@ class DynamicModel:
         other one is probed every AUTO_PROBE intervals, or sooner when the current one becomes much
         dearer than the other's last cost. The selector state lives in stats, so FMU rollback restores it."""
         st = self.stats
-        cur = int(st[ST_CUR]) if st[ST_CUR] > 0 else 1
-        other = 3 - cur
-        c_cur, c_oth = st[ST_C1 if cur == 1 else ST_C2], st[ST_C1 if other == 1 else ST_C2]
+        ex = AUTO_EXPLICIT
+        cur = int(st[ST_CUR]) if st[ST_CUR] > 0 else ex
+        other = 2 if cur != 2 else ex
+        c_cur, c_oth = st[ST_C2 if cur == 2 else ST_C1], st[ST_C2 if other == 2 else ST_C1]
         st[ST_AGE] += 1
         probe = st[ST_AGE] >= AUTO_PROBE or (c_oth > 0 and c_cur > 1.5 * c_oth) or (c_oth <= 0 and st[ST_AGE] >= 2)
         if probe:

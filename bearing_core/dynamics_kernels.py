@@ -680,7 +680,8 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
 
     method 0: classical fixed-step RK4 with step dt (the papers' baseline, seed 000: dt = 1e-5 s);
     method 1: adaptive Dormand-Prince 5(4), FSAL, PI step control, RMS error norm (rtol, absolute
-              tolerances atol_scale[k] per state; a negative entry means absolute-only), initial step dt.
+              tolerances atol_scale[k] per state; a negative entry means absolute-only), initial step dt;
+    method 3: adaptive RK4 with an embedded order-3 FSAL error estimate (4 calls per step), same control.
     Records the output channels every rec_dt into rec (nrec_max x NOUT); returns the number of
     records written. stats: [0] accepted steps, [1] rejected steps, [2] rhs calls, [3] last dt.
     quad (NQUAD): time integrals of the output channels, accumulated over the accepted steps."""
@@ -728,6 +729,92 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         _quad_point(quad, t, diag)        # close the last step's trapezoid
         stats[2] += 1
         stats[3] = h
+    elif method == 3:
+        # Classical RK4 advancing the solution with an embedded order-3 error estimate that reuses the
+        # first stage of the next step (FSAL): with c = (0, 1/2, 1/2, 1, 1) and stage 5 = f(t + h, y1), the
+        # weights (1/6, 1/3, 1/3, 0, 1/6) satisfy the four order-3 conditions (Hairer, Norsett & Wanner,
+        # Solving ODEs I, Sec. II.2, Table 2.2), so err = h/6 (k4 - k5) = O(h^4). Four right-hand sides per
+        # accepted step against six for Dormand-Prince, with a slightly larger stability interval per call
+        # (RK4 |R(z)| <= 1 to z = -2.79 and +-2.83i; DP5 to -3.31 and +-3.4i over six calls): where the
+        # step is stability-limited (the stiff ball modes) this is the cheaper explicit method.
+        # Error norm, tolerances and PI control as for method 1 with the exponents of an order-3 estimate.
+        k5 = np.empty(n)
+        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+        _quad_point(quad, t, diag)
+        stats[2] += 1
+        err_prev = 1e-4
+        fresh = True      # diag describes (t, y)
+        while t < t1 - 1e-15:
+            if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
+                if nrec < nrec_max:
+                    if not fresh:
+                        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+                        stats[2] += 1
+                        fresh = True
+                    for k in range(NOUT):
+                        rec[nrec, k] = diag[k]
+                    nrec += 1
+                    next_rec += rec_dt
+                else:
+                    next_rec = 1e300
+            hmax = t1 - t
+            if rec_dt > 0 and next_rec < t1 - 1e-12:
+                hmax = min(hmax, max(next_rec - t, 1e-12))
+            h_prop = h
+            h = min(h, hmax)
+            for i in range(n):
+                yt[i] = y[i] + 0.5 * h * k1[i]
+            rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            for i in range(n):
+                yt[i] = y[i] + 0.5 * h * k2[i]
+            rhs(t + 0.5 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            for i in range(n):
+                yt[i] = y[i] + h * k3[i]
+            rhs(t + h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            for i in range(n):
+                yt[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+            rhs(t + h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            stats[2] += 4
+            fresh = False
+            acc = 0.0
+            ok = True
+            for i in range(n):
+                e = h / 6.0 * (k4[i] - k5[i])
+                at = atol_scale[i]
+                if at < 0.0:
+                    sc = -at
+                else:
+                    sc = at + rtol * max(abs(y[i]), abs(yt[i]))
+                q = e / sc
+                if not math.isfinite(q):
+                    ok = False
+                    break
+                acc += q * q
+            err = math.sqrt(acc / n) if ok else 1e300
+            if ok and err <= 1.0:
+                t += h
+                for i in range(n):
+                    y[i] = yt[i]
+                    k1[i] = k5[i]
+                fresh = True
+                _quad_point(quad, t, diag)
+                stats[0] += 1
+                fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 4.0)) * (max(err_prev, 1e-10) ** (0.4 / 4.0))
+                fac = min(4.0, max(0.2, fac))
+                err_prev = max(err, 1e-4)
+                h = h * fac
+                if h_prop > h and fac >= 1.0:
+                    h = h_prop
+            else:
+                stats[1] += 1
+                if not ok:
+                    h *= 0.25
+                else:
+                    h *= max(0.2, 0.9 * err ** (-0.25))
+                if h < 1e-12:
+                    stats[4] = 2.0
+                    return nrec
+        stats[3] = h
     else:
         # Dormand-Prince 5(4) (Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.5), FSAL, RMS error norm
         # with per-state scales atol_scale[i] + rtol |y_i| (rtol is not applied to the unbounded angles:
@@ -737,10 +824,14 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         _quad_point(quad, t, diag)
         stats[2] += 1
         err_prev = 1e-4
+        fresh = True      # diag describes (t, y): the FSAL call of the last accepted step
         while t < t1 - 1e-15:
             if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
                 if nrec < nrec_max:
-                    rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+                    if not fresh:    # diag is stale after a rejected step
+                        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+                        stats[2] += 1
+                        fresh = True
                     for k in range(NOUT):
                         rec[nrec, k] = diag[k]
                     nrec += 1
@@ -776,6 +867,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                                     - 2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i])
             rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             stats[2] += 6
+            fresh = False
             acc = 0.0
             ok = True
             for i in range(n):
@@ -797,6 +889,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 for i in range(n):
                     y[i] = y5[i]
                     k1[i] = k7[i]
+                fresh = True
                 _quad_point(quad, t, diag)      # diag of the FSAL call rhs(t + h, y5)
                 stats[0] += 1
                 fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 5.0)) * (max(err_prev, 1e-10) ** (0.4 / 5.0))
@@ -1060,9 +1153,22 @@ def _w_matvec(v, out, Wff, Wbf, Wfb, Wbb):
 
 
 @njit(cache=True)
+def rosw_workspace(nb):
+    """Jacobian and factorisation arrays of integrate_rosw, kept between calls so that consecutive
+    intervals (FMU communication steps, 'auto' chunks) reuse W and its LU factors (a W-method keeps its
+    order with any W, so a lagged W from the previous interval is legitimate). jst = [age of W in
+    accepted steps (>= JAC_EVERY: rebuild), h g of the current factorisation (< 0: none)]."""
+    nf = NSTATE_FIXED
+    return (np.zeros((nf, nf)), np.zeros((nb, NSB, nf)), np.zeros((nb, nf, NSB)), np.zeros((nb, NSB, NSB)),
+            np.zeros((nb, NSB, NSB)), np.zeros((nb, NSB), dtype=np.int64), np.zeros((nb, NSB, nf)),
+            np.zeros((nf, nf)), np.zeros(nf, dtype=np.int64), np.array([float(JAC_EVERY), -1.0]))
+
+
+@njit(cache=True)
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                   rec_dt, rec, nrec_max, stats, quad):
-    """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate()."""
+                   rec_dt, rec, nrec_max, stats, quad, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs, jst):
+    """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate(). The W
+    arrays and their factors (Wff .. pivs, jst: rosw_workspace) carry over between calls."""
     n = y.size
     nb = int(P[P_NB])
     nf = NSTATE_FIXED
@@ -1074,15 +1180,6 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     v = np.empty(n)
     wv = np.empty(n)
     ynew = np.empty(n)
-    Wff = np.zeros((nf, nf))
-    Wbf = np.zeros((nb, NSB, nf))
-    Wfb = np.zeros((nb, nf, NSB))
-    Wbb = np.zeros((nb, NSB, NSB))
-    LUb = np.empty((nb, NSB, NSB))
-    pivb = np.zeros((nb, NSB), dtype=np.int64)
-    X = np.empty((nb, NSB, nf))
-    S = np.empty((nf, nf))
-    pivs = np.zeros(nf, dtype=np.int64)
     tmp = np.empty((nb, NSB))
     diag = np.empty(NOUT)
     bd = np.empty((nb, NBD))
@@ -1091,8 +1188,8 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     t = t0
     next_rec = t0 if rec_dt > 0 else 1e300
     h = h0
-    h_lu = -1.0
-    jac_age = JAC_EVERY
+    jac_age = int(jst[0])
+    h_lu = jst[1] if jac_age < JAC_EVERY else -1.0
     nrej = 0
     err_prev = 1e-4
     rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
@@ -1191,6 +1288,9 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
                 jac_age = JAC_EVERY       # repeated rejections: refresh the lagged Jacobian
             if h < 1e-12:
                 stats[4] = 2.0
+                jst[0] = JAC_EVERY
                 return nrec
     stats[3] = h
+    jst[0] = jac_age
+    jst[1] = h_lu
     return nrec
