@@ -296,7 +296,8 @@ class CoSimSession:
     def _update_outputs(self, avg=None):
         """Outputs at the current instant; avg (len NOUT, dynamics_kernels channels) the step averages of
         the last step (None at initialisation: the instantaneous values stand for them)."""
-        o = self.model.outputs()
+        diag, bd = self.model.evaluate_point()      # one right-hand-side call for outputs and films
+        o = dict(zip(K.OUT_NAMES, diag.tolist()))
         w = o["shaft_speed"]
         # ratios to the (signed) shaft speed: 0 below CSR_MIN_SPEED, where they are 0/0 (at rest, passing
         # through zero, or inner ring held with the outer ring turning)
@@ -305,7 +306,7 @@ class CoSimSession:
         heat = {k: o[f"P_{k}"] for k in ("race_inner", "race_outer", "pocket", "land", "drag", "damping",
                                          "churn_cage", "churn_ring")}
         T = self.model.temperatures()
-        fl = self.model.film()
+        fl = self.model.film(bd)
         out = {
             "reaction_Fx": o["Fx"], "reaction_Fy": o["Fy"], "reaction_Fz": o["Fz"],
             "reaction_Mx": o["Mx"], "reaction_My": o["My"],

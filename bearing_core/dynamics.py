@@ -50,10 +50,13 @@ class DynamicsOptions:
     'coulomb' (mu, regularised as mu tanh(|v| / v_reg), v_reg [m/s]) or 'kalker' (FASTSIM with friction
     limit mu on a kalker_grid x kalker_grid grid, seed 000); u_min: floor of the entrainment speed [m/s];
     zeta: normal contact damping as a fraction of critical for the ball mass [-];
-    integrator: 'rk4' (fixed dt, baseline), 'adaptive' (explicit Dormand-Prince 5(4), rtol) or 'implicit'
+    integrator: 'rk4' (fixed dt, baseline), 'adaptive' (explicit Dormand-Prince 5(4), rtol),
+    'adaptive-rk4' (explicit RK4 with an embedded order-3 FSAL error estimate, rtol: four right-hand
+    sides per step against Dormand-Prince's six at the same stability-limited step), 'implicit'
     (Rosenbrock-W ROS34PW2 with the bearing's arrow-structured Jacobian, rtol; integrate_rosw) or 'auto'
-    (per requested interval, whichever of 'adaptive' and 'implicit' costs less: implicit wins where
-    the traction is stiff, at low rolling speed and with Kalker creep forces);
+    (per 5 ms chunk, whichever of 'adaptive-rk4' and 'implicit' costs less by their measured right-hand
+    side counts: implicit wins where the traction is stiff, at low rolling speed and with Kalker creep
+    forces);
     n_major x n_minor: quadrature points over each contact ellipse; reduced: 'auto' | 'full' |
     'axisymmetric' (one representative ball, pure axial load only); pocket/land: penalty stiffness
     [N/m], damping ratio, Coulomb friction; oil_fraction: oil volume fraction of the oil-air mixture for
@@ -384,39 +387,38 @@ class DynamicModel:
                                         math.hypot(rb, rr), mu_bl=o.mu_boundary,
                                         rolling_resistance=o.rolling_resistance, thermal=o.ehl_thermal)
 
-    def film(self) -> dict:
+    def film(self, bd: np.ndarray | None = None) -> dict:
         """Hamrock-Dowson film thickness (bearing_core.film, seed 003 Eq. 23) of every ball-race contact at
         the current instant with the oil at its current temperature: h_c_i, h_min_i, h_c_o, h_min_o [m]
         (arrays over balls; 0 where unloaded) and the smallest film parameter Lambda_min [-] (h_min over the
-        composite roughness of roughness_pair())."""
-        from .film import film_thickness_nb, ellipticity_nb, film_parameter_nb
-        from .lubricants import get_oil
+        composite roughness of roughness_pair()). bd: the per-ball details of evaluate_point() at this
+        instant, if already computed (saves a right-hand-side call)."""
         g = self.g
-        oil = get_oil(self.oil_name)
         T = getattr(self, "_T_oil", self.opt.oil_temperature)
-        eta0, alpha = oil.eta(T), oil.alpha(T)
-        Ep = 2.0 / ((1 - g.ring_material.nu ** 2) / g.ring_material.E + (1 - g.ball_material.nu ** 2) / g.ball_material.E)
-        bd = self.ball_details()
-        out = {}
-        lam = np.inf
-        for race, f, sgn in (("i", g.fi, -1.0), ("o", g.fo, 1.0)):
-            Q = bd[f"Q_{race}"]
-            al = bd[f"alpha_{race}"]
-            u = bd[f"u_{race}"]
-            hc = np.zeros(Q.size)
-            hm = np.zeros(Q.size)
-            Ry = f * g.D / (2.0 * f - 1.0)
-            for j in range(Q.size):
-                if Q[j] <= 0 or u[j] <= 0:
-                    continue
-                Rx = 0.5 * g.D * (g.dm + sgn * g.D * math.cos(al[j])) / g.dm
-                k = ellipticity_nb(Rx, Ry, 0)
-                hc[j], hm[j] = film_thickness_nb(u[j], eta0, alpha, Rx, Ry, Ep, Q[j], k, 1.0)
-                lam = min(lam, film_parameter_nb(hm[j], *self.roughness_pair()))
-            out[f"h_c_{race}"], out[f"h_min_{race}"] = hc, hm
-        out["Lambda_min"] = float(lam) if np.isfinite(lam) else 0.0
-        out["T_oil"] = T
-        return out
+        key = (self.oil_name, T)
+        if getattr(self, "_film_key", None) != key:      # oil properties at T, recomputed when T changes
+            from .lubricants import get_oil
+            oil = get_oil(self.oil_name)
+            Ep = 2.0 / ((1 - g.ring_material.nu ** 2) / g.ring_material.E
+                        + (1 - g.ball_material.nu ** 2) / g.ball_material.E)
+            self._film_key = key
+            self._film_par = (float(oil.eta(T)), float(oil.alpha(T)), Ep, *self.roughness_pair())
+        if bd is None:
+            bd = self.evaluate_point()[1]
+        h = np.zeros((4, bd.shape[0]))
+        eta0, alpha, Ep, s1, s2 = self._film_par
+        lam = K.contact_films(bd, g.D, g.dm, g.fi, g.fo, eta0, alpha, Ep, s1, s2, h)
+        return {"h_c_i": h[0], "h_min_i": h[1], "h_c_o": h[2], "h_min_o": h[3],
+                "Lambda_min": float(lam) if math.isfinite(lam) else 0.0, "T_oil": T}
+
+    def evaluate_point(self) -> tuple[np.ndarray, np.ndarray]:
+        """(output channels (NOUT), per-ball details (nb x NBD)) at the current instant: one right-hand-side
+        call (dynamics_kernels.evaluate)."""
+        diag = np.zeros(K.NOUT)
+        bd = np.zeros((int(self.P[K.P_NB]), K.NBD))
+        K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, self._tp,
+                   *self._quad, diag, bd)
+        return diag, bd
 
     def initialize(self, omega: float, loads=(0.0, 0.0, 0.0, 0.0, 0.0), displacement=None, t0: float = 0.0,
                    start: str = "jones-harris", omega_outer: float = 0.0):

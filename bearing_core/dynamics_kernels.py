@@ -49,6 +49,7 @@ from .contact_kernels import (ball_race_contact, contact_kinematics, ellipse_tra
 from .ehl_traction import ehl_ellipse_traction
 from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 from .churning import cylinder_churning_torque
+from .film import ellipticity_nb, film_parameter_nb, film_thickness_nb
 
 NSTATE_FIXED = 20
 NSB = 9  # states per ball
@@ -917,6 +918,37 @@ def evaluate(t, y, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd)
     dy = np.empty(y.size)
     rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
     return dy
+
+
+@njit(cache=True)
+def contact_films(bd, D, dm, fi, fo, eta0, alpha, Ep, s_ball, s_race, out):
+    """Hamrock-Dowson central and minimum film thickness (bearing_core.film, seed 003 Eq. 23) of every
+    ball-race contact from the per-ball details bd of evaluate() (loads, contact angles, entrainment speeds):
+    out[0..3, j] = h_c inner, h_min inner, h_c outer, h_min outer [m] of ball j (0 where unloaded or not
+    rolling). eta0 [Pa s], alpha [1/Pa] of the oil, Ep [Pa] the reduced modulus, s_ball, s_race [m] rms
+    roughness. Returns the smallest film parameter Lambda [-] (inf if no contact is loaded)."""
+    nb = bd.shape[0]
+    lam = math.inf
+    for r in range(2):
+        f = fi if r == 0 else fo
+        sgn = -1.0 if r == 0 else 1.0
+        cq = BD_QI if r == 0 else BD_QO
+        ca = BD_AI if r == 0 else BD_AO
+        cu = BD_UI if r == 0 else BD_UO
+        Ry = f * D / (2.0 * f - 1.0)
+        for j in range(nb):
+            Q, u = bd[j, cq], bd[j, cu]
+            out[2 * r, j] = 0.0
+            out[2 * r + 1, j] = 0.0
+            if Q <= 0.0 or u <= 0.0:
+                continue
+            Rx = 0.5 * D * (dm + sgn * D * math.cos(bd[j, ca])) / dm
+            k = ellipticity_nb(Rx, Ry, 0)
+            hc, hm = film_thickness_nb(u, eta0, alpha, Rx, Ry, Ep, Q, k, 1.0)
+            out[2 * r, j] = hc
+            out[2 * r + 1, j] = hm
+            lam = min(lam, film_parameter_nb(hm, s_ball, s_race))
+    return lam
 
 
 # ---- Rosenbrock-W integrator with a ball-block Jacobian ------------------------------------------
