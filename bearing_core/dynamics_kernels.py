@@ -674,7 +674,7 @@ def _quad_point(quad, t, diag):
     quad[2 * NOUT + 1] = 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
               rec_dt, rec, nrec_max, stats, quad):
     """Advance y (in place) from t0 to exactly t1 inside compiled code.
@@ -912,7 +912,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
     return nrec
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def evaluate(t, y, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd):
     """Output channels and per-ball details at (t, y) without integrating."""
     dy = np.empty(y.size)
@@ -1196,7 +1196,7 @@ def rosw_workspace(nb):
             np.zeros((nf, nf)), np.zeros(nf, dtype=np.int64), np.array([float(JAC_EVERY), -1.0]))
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                    rec_dt, rec, nrec_max, stats, quad, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs, jst):
     """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate(). The W
