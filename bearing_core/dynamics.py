@@ -395,7 +395,7 @@ class DynamicModel:
         instant, if already computed (saves a right-hand-side call)."""
         g = self.g
         T = getattr(self, "_T_oil", self.opt.oil_temperature)
-        key = (self.oil_name, T)
+        key = (id(self.opt), T)
         if getattr(self, "_film_key", None) != key:      # oil properties at T, recomputed when T changes
             from .lubricants import get_oil
             oil = get_oil(self.oil_name)
@@ -789,6 +789,17 @@ class DynamicModel:
             k = ST_C2 if method == 2 else ST_C1
             self.stats[k] = cost if self.stats[k] <= 0 else 0.5 * (self.stats[k] + cost)
         return n
+
+    def integrator_state(self):
+        """A copy of the integrator's memory beyond stats (the implicit method's W and its factors), for
+        rollback with set_integrator_state: a step repeated from a restored state repeats the arithmetic."""
+        return None if self._rosw_ws is None else tuple(a.copy() for a in self._rosw_ws)
+
+    def set_integrator_state(self, ws):
+        if ws is None:
+            self.invalidate_jacobian()
+        else:
+            self._rosw_ws = tuple(a.copy() for a in ws)
 
     def invalidate_jacobian(self):
         """Make the implicit integrator rebuild its Jacobian at its next step (after the state was set
