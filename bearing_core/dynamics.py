@@ -225,6 +225,7 @@ class DynamicModel:
     (rotation and whirl), inner ring 5 DOF (load-driven) or prescribed (displacement-driven)."""
 
     _rosw_ws = None     # implicit integrator's Jacobian workspace (dynamics_kernels.rosw_workspace), per instance
+    _end_diag = _end_bd = _end_key = None   # outputs at the end of the last integration and its (t, y, U)
 
     def __init__(self, geometry: BearingGeometry, options: DynamicsOptions = DynamicsOptions()):
         options.validate()
@@ -412,8 +413,13 @@ class DynamicModel:
                 "Lambda_min": float(lam) if math.isfinite(lam) else 0.0, "T_oil": T}
 
     def evaluate_point(self) -> tuple[np.ndarray, np.ndarray]:
-        """(output channels (NOUT), per-ball details (nb x NBD)) at the current instant: one right-hand-side
-        call (dynamics_kernels.evaluate)."""
+        """(output channels (NOUT), per-ball details (nb x NBD)) at the current instant: those the last
+        integration computed at its end point if the state, time and inputs are still those, else one
+        right-hand-side call (dynamics_kernels.evaluate). Read-only arrays."""
+        k = self._end_key
+        if (k is not None and k[0] == self.t and k[4] is self._tp and np.array_equal(k[1], self.y)
+                and np.array_equal(k[2], self.U) and np.array_equal(k[3], self.P)):
+            return self._end_diag, self._end_bd
         diag = np.zeros(K.NOUT)
         bd = np.zeros((int(self.P[K.P_NB]), K.NBD))
         K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, self._tp,
@@ -766,20 +772,28 @@ class DynamicModel:
             dt0 = hk if hk > 0 else (self.stats[3] if self.stats[3] > 0 else self.opt.dt)
         self.stats[4] = 0.0
         before = self.stats[:3].copy()
+        nb = int(self.P[K.P_NB])
+        if self._end_diag is None or self._end_bd.shape[0] != nb:
+            self._end_diag, self._end_bd = np.zeros(K.NOUT), np.zeros((nb, K.NBD))
+        self._end_key = None
         if method == 2:
             nb = int(self.P[K.P_NB])
             if self._rosw_ws is None or self._rosw_ws[3].shape[0] != nb:
                 self._rosw_ws = K.rosw_workspace(nb)
             n = K.integrate_rosw(self.y, t_start, t_end, dt0, self.opt.rtol, self._atol, self.P, self.U,
                                  self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
-                                 rdt, rec, nmax, self.stats, self.quad, *self._rosw_ws)
+                                 rdt, rec, nmax, self.stats, self.quad, self._end_diag, self._end_bd,
+                                 *self._rosw_ws)
             if self.stats[4] != 0.0:
                 self.invalidate_jacobian()
         else:
             n = K.integrate(self.y, t_start, t_end, dt0, method, self.opt.rtol,
                             self._atol_dp if method == 1 else self._atol, self.P, self.U,
                             self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
-                            rdt, rec, nmax, self.stats, self.quad)
+                            rdt, rec, nmax, self.stats, self.quad, self._end_diag, self._end_bd)
+        if self.stats[4] == 0.0:
+            # outputs at the end point come with the integration (evaluate_point reuses them)
+            self._end_key = (float(t_end), self.y.copy(), self.U.copy(), self.P.copy(), self._tp)
         if method > 0:
             self.stats[ST_H[method]] = self.stats[3]
             d = self.stats[:3] - before

@@ -676,7 +676,7 @@ def _quad_point(quad, t, diag):
 
 @njit(cache=True, nogil=True)
 def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-              rec_dt, rec, nrec_max, stats, quad):
+              rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out):
     """Advance y (in place) from t0 to exactly t1 inside compiled code.
 
     method 0: classical fixed-step RK4 with step dt (the papers' baseline, seed 000: dt = 1e-5 s);
@@ -685,7 +685,9 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
     method 3: adaptive RK4 with an embedded order-3 FSAL error estimate (4 calls per step), same control.
     Records the output channels every rec_dt into rec (nrec_max x NOUT); returns the number of
     records written. stats: [0] accepted steps, [1] rejected steps, [2] rhs calls, [3] last dt.
-    quad (NQUAD): time integrals of the output channels, accumulated over the accepted steps."""
+    quad (NQUAD): time integrals of the output channels, accumulated over the accepted steps.
+    diag_out (NOUT), bd_out (nb x NBD): the output channels and per-ball details at the final (t1, y), from
+    the last right-hand side of the last step (no extra call for the outputs at a communication point)."""
     n = y.size
     nb = int(P[P_NB])
     k1 = np.empty(n); k2 = np.empty(n); k3 = np.empty(n); k4 = np.empty(n)
@@ -726,7 +728,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             t += h
             stats[0] += 1
             stats[2] += 4
-        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
         _quad_point(quad, t, diag)        # close the last step's trapezoid
         stats[2] += 1
         stats[3] = h
@@ -740,7 +742,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         # step is stability-limited (the stiff ball modes) this is the cheaper explicit method.
         # Error norm, tolerances and PI control as for method 1 with the exponents of an order-3 estimate.
         k5 = np.empty(n)
-        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
         _quad_point(quad, t, diag)
         stats[2] += 1
         err_prev = 1e-4
@@ -774,7 +776,8 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             rhs(t + h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             for i in range(n):
                 yt[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-            rhs(t + h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            # the last step's FSAL call also fills the per-ball details (outputs at t1)
+            rhs(t + h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
             stats[2] += 4
             fresh = False
             acc = 0.0
@@ -821,7 +824,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         # with per-state scales atol_scale[i] + rtol |y_i| (rtol is not applied to the unbounded angles:
         # their atol_scale entries are negative, flagging an absolute-only tolerance), PI step control.
         k5 = np.empty(n); k6 = np.empty(n); k7 = np.empty(n); y5 = np.empty(n)
-        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
         _quad_point(quad, t, diag)
         stats[2] += 1
         err_prev = 1e-4
@@ -866,7 +869,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             for i in range(n):
                 y5[i] = y[i] + h * (35.0 / 384.0 * k1[i] + 500.0 / 1113.0 * k3[i] + 125.0 / 192.0 * k4[i]
                                     - 2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i])
-            rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
             stats[2] += 6
             fresh = False
             acc = 0.0
@@ -909,6 +912,11 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                     stats[4] = 2.0
                     return nrec
         stats[3] = h
+    for k in range(NOUT):
+        diag_out[k] = diag[k]
+    for j in range(nb):
+        for k in range(NBD):
+            bd_out[j, k] = bd[j, k]
     return nrec
 
 
@@ -1198,8 +1206,10 @@ def rosw_workspace(nb):
 
 @njit(cache=True, nogil=True)
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                   rec_dt, rec, nrec_max, stats, quad, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs, jst):
-    """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate(). The W
+                   rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs,
+                   jst):
+    """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate() (diag_out,
+    bd_out included). The W
     arrays and their factors (Wff .. pivs, jst: rosw_workspace) carry over between calls."""
     n = y.size
     nb = int(P[P_NB])
@@ -1224,7 +1234,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     h_lu = jst[1] if jac_age < JAC_EVERY else -1.0
     nrej = 0
     err_prev = 1e-4
-    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
     _quad_point(quad, t, diag)
     stats[2] += 1
     while t < t1 - 1e-15:
@@ -1297,7 +1307,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
             stats[0] += 1
             jac_age += 1
             nrej = 0
-            rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t >= t1 - 1e-15)
             _quad_point(quad, t, diag)
             stats[2] += 1
             # PI controller for an order-2 error estimate (Gustafsson; Hairer & Wanner II, IV.8)
@@ -1325,4 +1335,9 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     stats[3] = h
     jst[0] = jac_age
     jst[1] = h_lu
+    for k in range(NOUT):
+        diag_out[k] = diag[k]
+    for j in range(nb):
+        for k in range(NBD):
+            bd_out[j, k] = bd[j, k]
     return nrec
