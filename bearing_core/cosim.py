@@ -301,7 +301,7 @@ class CoSimSession:
     def _update_outputs(self, avg=None):
         """Outputs at the current instant; avg (len NOUT, dynamics_kernels channels) the step averages of
         the last step (None at initialisation: the instantaneous values stand for them)."""
-        diag, bd = self.model.evaluate_point()      # one right-hand-side call for outputs and films
+        diag, bd = self.model.evaluate_point()      # from the integration's end point (or one rhs call)
         o = dict(zip(K.OUT_NAMES, diag.tolist()))
         w = o["shaft_speed"]
         # ratios to the (signed) shaft speed: 0 below CSR_MIN_SPEED, where they are 0/0 (at rest, passing

@@ -862,11 +862,7 @@ class DynamicModel:
 
     def outputs(self) -> dict:
         """Output channels at the current instant (names: dynamics_kernels.OUT_NAMES)."""
-        diag = np.zeros(K.NOUT)
-        bd = np.zeros((int(self.P[K.P_NB]), K.NBD))
-        K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, self._tp,
-                   *self._quad, diag, bd)
-        return dict(zip(K.OUT_NAMES, diag.tolist()))
+        return dict(zip(K.OUT_NAMES, self.evaluate_point()[0].tolist()))
 
     def ball_details(self) -> dict:
         """Per-ball contact angles [rad], loads [N], semi-axes [m], pressures [Pa], traction forces
