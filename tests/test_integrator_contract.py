@@ -44,7 +44,6 @@ def test_production_integrator_contract(rpm):
     within 0.5 %, energy residual within 1 % of the dissipated energy (both runs); tolerances: the speed issue's accuracy contract."""
     _, _, ref, res0 = _window(rpm, integrator="rk4", dt=1e-6)
     m, rec, got, res = _window(rpm, integrator="auto")
-    print(rpm, ref, got, res0, res)
     assert np.all(np.isfinite(rec["cage_speed"]))
     for k in ("cage_speed", "Fx", "Fz"):
         assert abs(got[k] / ref[k] - 1.0) < 5e-3, (k, got[k], ref[k])
