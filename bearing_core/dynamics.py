@@ -225,7 +225,7 @@ class DynamicModel:
     (rotation and whirl), inner ring 5 DOF (load-driven) or prescribed (displacement-driven)."""
 
     _rosw_ws = None     # implicit integrator's Jacobian workspace (dynamics_kernels.rosw_workspace), per instance
-    _end_diag = _end_bd = _end_key = None   # outputs at the end of the last integration and its (t, y, U)
+    _end_diag = _end_bd = _end_key = None   # outputs at the last integration's end, key (t, y, U, P, tp)
 
     def __init__(self, geometry: BearingGeometry, options: DynamicsOptions = DynamicsOptions()):
         options.validate()
