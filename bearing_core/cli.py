@@ -76,7 +76,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="lubrication regime of races and cage: oil (lubricated traction, oil-lubricated pocket "
                          "and land), solid (Kalker/Coulomb traction with --mu, dry cage with --mu-cage), dry "
                          "(Coulomb everywhere); auto: oil for --traction lubricated, else solid")
-    dy.add_argument("--integrator", choices=("adaptive", "implicit", "auto", "rk4"), default="auto")
+    dy.add_argument("--integrator", choices=("adaptive", "implicit", "auto", "rk4", "adaptive-rk4"), default="auto")
     dy.add_argument("--start", choices=("jones-harris", "tribological"), default="jones-harris",
                     help="initial state: Jones-Harris quasi-static or the quasi-static tribological model")
     dy.add_argument("--reduced", choices=("auto", "full", "axisymmetric"), default="auto")

@@ -26,11 +26,14 @@ from .quasistatic import quasistatic_model
 TRACTION_MODELS = ("lubricated", "coulomb", "kalker", "lubricated-curve")
 LUBRICATION_REGIMES = ("auto", "oil", "solid", "dry")
 OIL_TRACTIONS = ("lubricated", "lubricated-curve")   # race traction laws of an oil-lubricated bearing
-INTEGRATORS = ("rk4", "adaptive", "implicit", "auto")
+INTEGRATORS = ("rk4", "adaptive", "implicit", "auto", "adaptive-rk4")
+METHOD_CODE = {"rk4": 0, "adaptive": 1, "implicit": 2, "adaptive-rk4": 3}
 # stats: [0] accepted steps, [1] rejected, [2] rhs calls, [3] last step, [4] failure flag (kernels);
-# integrator='auto' selector: current method, cost of each [rhs equivalents / simulated s], intervals
-# since the last probe, last step of each method
-ST_CUR, ST_C1, ST_C2, ST_AGE, ST_H1, ST_H2, NSTATS = 5, 6, 7, 8, 9, 10, 11
+# integrator='auto' selector: current method, cost of the explicit and the implicit method [rhs
+# equivalents / simulated s], intervals since the last probe, last step of each adaptive method (1, 2, 3)
+ST_CUR, ST_C1, ST_C2, ST_AGE, ST_H1, ST_H2, ST_H3, NSTATS = 5, 6, 7, 8, 9, 10, 11, 12
+ST_H = {1: ST_H1, 2: ST_H2, 3: ST_H3}
+AUTO_EXPLICIT = 3     # the explicit candidate of integrator='auto' (bench/bench_dynamics.py)
 AUTO_PROBE = 25
 AUTO_CHUNK = 5e-3   # [s] interval on which 'auto' chooses
 COUPLINGS = ("load", "displacement")
@@ -47,10 +50,13 @@ class DynamicsOptions:
     'coulomb' (mu, regularised as mu tanh(|v| / v_reg), v_reg [m/s]) or 'kalker' (FASTSIM with friction
     limit mu on a kalker_grid x kalker_grid grid, seed 000); u_min: floor of the entrainment speed [m/s];
     zeta: normal contact damping as a fraction of critical for the ball mass [-];
-    integrator: 'rk4' (fixed dt, baseline), 'adaptive' (explicit Dormand-Prince 5(4), rtol) or 'implicit'
+    integrator: 'rk4' (fixed dt, baseline), 'adaptive' (explicit Dormand-Prince 5(4), rtol),
+    'adaptive-rk4' (explicit RK4 with an embedded order-3 FSAL error estimate, rtol: four right-hand
+    sides per step against Dormand-Prince's six at the same stability-limited step), 'implicit'
     (Rosenbrock-W ROS34PW2 with the bearing's arrow-structured Jacobian, rtol; integrate_rosw) or 'auto'
-    (per requested interval, whichever of 'adaptive' and 'implicit' costs less: implicit wins where
-    the traction is stiff, at low rolling speed and with Kalker creep forces);
+    (per 5 ms chunk, whichever of 'adaptive-rk4' and 'implicit' costs less by their measured right-hand
+    side counts: implicit wins where the traction is stiff, at low rolling speed and with Kalker creep
+    forces);
     n_major x n_minor: quadrature points over each contact ellipse; reduced: 'auto' | 'full' |
     'axisymmetric' (one representative ball, pure axial load only); pocket/land: penalty stiffness
     [N/m], damping ratio, Coulomb friction; oil_fraction: oil volume fraction of the oil-air mixture for
@@ -236,6 +242,9 @@ class DynamicsOptions:
 class DynamicModel:
     """One bearing: outer ring fixed, inner ring at prescribed speed, balls (6 DOF each), cage
     (rotation and whirl), inner ring 5 DOF (load-driven) or prescribed (displacement-driven)."""
+
+    _rosw_ws = None     # implicit integrator's Jacobian workspace (dynamics_kernels.rosw_workspace), per instance
+    _end_diag = _end_bd = _end_key = None   # outputs at the last integration's end, key (t, y, U, P, tp)
 
     def __init__(self, geometry: BearingGeometry, options: DynamicsOptions = DynamicsOptions()):
         options.validate()
@@ -476,39 +485,43 @@ class DynamicModel:
                                         math.hypot(rb, rr), mu_bl=o.mu_boundary,
                                         rolling_resistance=o.rolling_resistance, thermal=o.ehl_thermal)
 
-    def film(self) -> dict:
+    def film(self, bd: np.ndarray | None = None) -> dict:
         """Hamrock-Dowson film thickness (bearing_core.film, seed 003 Eq. 23) of every ball-race contact at
         the current instant with the oil at its current temperature: h_c_i, h_min_i, h_c_o, h_min_o [m]
         (arrays over balls; 0 where unloaded) and the smallest film parameter Lambda_min [-] (h_min over the
-        composite roughness of roughness_pair())."""
-        from .film import film_thickness_nb, ellipticity_nb, film_parameter_nb
-        from .lubricants import get_oil
+        composite roughness of roughness_pair()). bd: the per-ball details of evaluate_point() at this
+        instant, if already computed (saves a right-hand-side call)."""
         g = self.g
-        oil = get_oil(self.oil_name)
         T = getattr(self, "_T_oil", self.opt.oil_temperature)
-        eta0, alpha = oil.eta(T), oil.alpha(T)
-        Ep = 2.0 / ((1 - g.ring_material.nu ** 2) / g.ring_material.E + (1 - g.ball_material.nu ** 2) / g.ball_material.E)
-        bd = self.ball_details()
-        out = {}
-        lam = np.inf
-        for race, f, sgn in (("i", g.fi, -1.0), ("o", g.fo, 1.0)):
-            Q = bd[f"Q_{race}"]
-            al = bd[f"alpha_{race}"]
-            u = bd[f"u_{race}"]
-            hc = np.zeros(Q.size)
-            hm = np.zeros(Q.size)
-            Ry = f * g.D / (2.0 * f - 1.0)
-            for j in range(Q.size):
-                if Q[j] <= 0 or u[j] <= 0:
-                    continue
-                Rx = 0.5 * g.D * (g.dm + sgn * g.D * math.cos(al[j])) / g.dm
-                k = ellipticity_nb(Rx, Ry, 0)
-                hc[j], hm[j] = film_thickness_nb(u[j], eta0, alpha, Rx, Ry, Ep, Q[j], k, 1.0)
-                lam = min(lam, film_parameter_nb(hm[j], *self.roughness_pair()))
-            out[f"h_c_{race}"], out[f"h_min_{race}"] = hc, hm
-        out["Lambda_min"] = float(lam) if np.isfinite(lam) else 0.0
-        out["T_oil"] = T
-        return out
+        key = (id(self.opt), T)
+        if getattr(self, "_film_key", None) != key:      # oil properties at T, recomputed when T changes
+            from .lubricants import get_oil
+            oil = get_oil(self.oil_name)
+            Ep = 2.0 / ((1 - g.ring_material.nu ** 2) / g.ring_material.E
+                        + (1 - g.ball_material.nu ** 2) / g.ball_material.E)
+            self._film_key = key
+            self._film_par = (float(oil.eta(T)), float(oil.alpha(T)), Ep, *self.roughness_pair())
+        if bd is None:
+            bd = self.evaluate_point()[1]
+        h = np.zeros((4, bd.shape[0]))
+        eta0, alpha, Ep, s1, s2 = self._film_par
+        lam = K.contact_films(bd, g.D, g.dm, g.fi, g.fo, eta0, alpha, Ep, s1, s2, h)
+        return {"h_c_i": h[0], "h_min_i": h[1], "h_c_o": h[2], "h_min_o": h[3],
+                "Lambda_min": float(lam) if math.isfinite(lam) else 0.0, "T_oil": T}
+
+    def evaluate_point(self) -> tuple[np.ndarray, np.ndarray]:
+        """(output channels (NOUT), per-ball details (nb x NBD)) at the current instant: those the last
+        integration computed at its end point if the state, time and inputs are still those, else one
+        right-hand-side call (dynamics_kernels.evaluate). Read-only arrays."""
+        k = self._end_key
+        if (k is not None and k[0] == self.t and k[4] is self._tp and np.array_equal(k[1], self.y)
+                and np.array_equal(k[2], self.U) and np.array_equal(k[3], self.P)):
+            return self._end_diag, self._end_bd
+        diag = np.zeros(K.NOUT)
+        bd = np.zeros((int(self.P[K.P_NB]), K.NBD))
+        K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, self._tp,
+                   *self._quad, diag, bd)
+        return diag, bd
 
     def initialize(self, omega: float, loads=(0.0, 0.0, 0.0, 0.0, 0.0), displacement=None, t0: float = 0.0,
                    start: str = "jones-harris", omega_outer: float = 0.0):
@@ -620,6 +633,7 @@ class DynamicModel:
         self.U[K.U_FX:K.U_MY + 1] = loads_in
         self.stats[:] = 0.0
         self.quad[:] = 0.0
+        self.invalidate_jacobian()
         self._atol = self._atol_scale(nb)
         self.thermal = None
         self.apply_temperatures(self.opt.oil_temperature, self.opt.oil_temperature)
@@ -641,6 +655,9 @@ class DynamicModel:
         the unbounded angles): positions atol_pos [m] (contact deflections are um), velocities
         1e4 atol_pos [m/s], angular velocities 1e6-1e7 atol_pos [rad/s]."""
         a = np.empty(K.NSTATE_FIXED + K.NSB * nb)
+        # measured: velocities at 1e5 atol_pos (the highest natural frequency times atol_pos) save a third of
+        # the steps at 10,000 rpm but overstate the dissipated energy of a run-up from rest by 70 % (SSP
+        # drivetrain, tests/test_ssp.py) and move Dormand-Prince's mean friction torque 6 % off RK4
         sp, sv, sw = self.opt.atol_pos, self.opt.atol_pos * 1e4, self.opt.atol_pos * 1e6
         a[0:3] = sp; a[3:5] = 10 * sp; a[5:8] = sv; a[8:10] = 10 * sv
         a[10] = -1e-5; a[11] = sw; a[12:14] = 10 * sp; a[14:16] = 10 * sv
@@ -846,43 +863,77 @@ class DynamicModel:
         if self.opt.integrator == "auto":
             method = self._auto_choose()
         else:
-            method = {"rk4": 0, "adaptive": 1, "implicit": 2}[self.opt.integrator]
+            method = METHOD_CODE[self.opt.integrator]
         if method == 0:
             dt0 = self.opt.dt
         else:
-            hk = self.stats[ST_H1 if method == 1 else ST_H2]
+            hk = self.stats[ST_H[method]]
             dt0 = hk if hk > 0 else (self.stats[3] if self.stats[3] > 0 else self.opt.dt)
         self.stats[4] = 0.0
         before = self.stats[:3].copy()
+        nb = int(self.P[K.P_NB])
+        if self._end_diag is None or self._end_bd.shape[0] != nb:
+            self._end_diag, self._end_bd = np.zeros(K.NOUT), np.zeros((nb, K.NBD))
+        self._end_key = None
         if method == 2:
+            nb = int(self.P[K.P_NB])
+            if self._rosw_ws is None or self._rosw_ws[3].shape[0] != nb:
+                self._rosw_ws = K.rosw_workspace(nb)
             n = K.integrate_rosw(self.y, t_start, t_end, dt0, self.opt.rtol, self._atol, self.P, self.U,
                                  self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
-                                 rdt, rec, nmax, self.stats, self.quad)
+                                 rdt, rec, nmax, self.stats, self.quad, self._end_diag, self._end_bd,
+                                 *self._rosw_ws)
+            if self.stats[4] != 0.0:
+                self.invalidate_jacobian()
         else:
             n = K.integrate(self.y, t_start, t_end, dt0, method, self.opt.rtol, self._atol, self.P, self.U,
                             self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
-                            rdt, rec, nmax, self.stats, self.quad)
+                            rdt, rec, nmax, self.stats, self.quad, self._end_diag, self._end_bd)
+        if self.stats[4] == 0.0:
+            # outputs at the end point come with the integration (evaluate_point reuses them)
+            self._end_key = (float(t_end), self.y.copy(), self.U.copy(), self.P.copy(), self._tp)
         if method > 0:
-            self.stats[ST_H1 if method == 1 else ST_H2] = self.stats[3]
+            self.stats[ST_H[method]] = self.stats[3]
             d = self.stats[:3] - before
             # cost in right-hand-side equivalents per simulated second (deterministic, unlike wall time):
             # the implicit step adds its linear algebra, measured as ~4 rhs calls per step (7218B, 16 balls)
             cost = (d[2] + (4.0 * (d[0] + d[1]) if method == 2 else 0.0)) / (t_end - t_start)
-            k = ST_C1 if method == 1 else ST_C2
+            k = ST_C2 if method == 2 else ST_C1
             self.stats[k] = cost if self.stats[k] <= 0 else 0.5 * (self.stats[k] + cost)
         return n
+
+    def integrator_state(self):
+        """A copy of the integrator's memory beyond stats (the implicit method's W and its factors), for
+        rollback with set_integrator_state: a step repeated from a restored state repeats the arithmetic."""
+        return None if self._rosw_ws is None else tuple(a.copy() for a in self._rosw_ws)
+
+    def set_integrator_state(self, ws):
+        if ws is None:
+            self.invalidate_jacobian()
+        else:
+            self._rosw_ws = tuple(a.copy() for a in ws)
+
+    def invalidate_jacobian(self):
+        """Make the implicit integrator rebuild its Jacobian at its next step (after the state was set
+        from outside, e.g. an FMU rollback, so that a repeated step repeats the same arithmetic)."""
+        if self._rosw_ws is not None:
+            self._rosw_ws[-1][:] = (K.JAC_EVERY, -1.0)
 
     def _auto_choose(self) -> int:
         """integrator='auto': run the cheaper of the explicit Dormand-Prince (1) and the Rosenbrock-W (2)
         integrators, by their measured cost per simulated second (stats[ST_C1], stats[ST_C2]); the
-        other one is probed every AUTO_PROBE intervals, or sooner when the current one becomes much
-        dearer than the other's last cost. The selector state lives in stats, so FMU rollback restores it."""
+        other one is probed every AUTO_PROBE intervals (times how much dearer it was, up to 8x), or sooner
+        when the current one becomes much dearer than the other's last cost. The selector state lives in stats, so FMU rollback restores it."""
         st = self.stats
-        cur = int(st[ST_CUR]) if st[ST_CUR] > 0 else 1
-        other = 3 - cur
-        c_cur, c_oth = st[ST_C1 if cur == 1 else ST_C2], st[ST_C1 if other == 1 else ST_C2]
+        ex = AUTO_EXPLICIT
+        cur = int(st[ST_CUR]) if st[ST_CUR] > 0 else ex
+        other = 2 if cur != 2 else ex
+        c_cur, c_oth = st[ST_C2 if cur == 2 else ST_C1], st[ST_C2 if other == 2 else ST_C1]
         st[ST_AGE] += 1
-        probe = st[ST_AGE] >= AUTO_PROBE or (c_oth > 0 and c_cur > 1.5 * c_oth) or (c_oth <= 0 and st[ST_AGE] >= 2)
+        # the probe interval grows with how much dearer the other method was (up to 8x): a probe of a
+        # method 5x dearer every AUTO_PROBE chunks cost ~15 % (explicit at 1000 rpm, EHL traction)
+        every = AUTO_PROBE * min(8.0, max(1.0, c_oth / c_cur)) if c_oth > 0 and c_cur > 0 else AUTO_PROBE
+        probe = st[ST_AGE] >= every or (c_oth > 0 and c_cur > 1.5 * c_oth) or (c_oth <= 0 and st[ST_AGE] >= 2)
         if probe:
             st[ST_AGE] = 0
             st[ST_CUR] = other       # run the other one now; the next choice compares the two costs
@@ -909,11 +960,7 @@ class DynamicModel:
 
     def outputs(self) -> dict:
         """Output channels at the current instant (names: dynamics_kernels.OUT_NAMES)."""
-        diag = np.zeros(K.NOUT)
-        bd = np.zeros((int(self.P[K.P_NB]), K.NBD))
-        K.evaluate(self.t, self.y, self.P, self.U, self._tab_i, self._tab_o, self._ta0, self._tda, self._tp,
-                   *self._quad, diag, bd)
-        return dict(zip(K.OUT_NAMES, diag.tolist()))
+        return dict(zip(K.OUT_NAMES, self.evaluate_point()[0].tolist()))
 
     def ball_details(self) -> dict:
         """Per-ball contact angles [rad], loads [N], semi-axes [m], pressures [Pa], traction forces
@@ -1040,6 +1087,29 @@ def simulate_profile(model: DynamicModel, profile, record_dt: float | None = Non
             if progress is not None:
                 progress(model.t, t_end)
     return np.concatenate(out) if out else np.zeros((0, K.NOUT))
+
+
+def advance_many(models, t_end, omega_end=None, record_dt: float | None = None, workers: int | None = None) -> list:
+    """Advance independent initialised models (e.g. the operating points of a sweep) to t_end [s] (a scalar
+    or one per model) concurrently in one process: each model runs in a thread of a pool of ``workers``
+    (default: one per CPU); the integration kernels release the GIL (numba nogil), so the threads run in
+    parallel for all but the little Python around each kernel call. omega_end: None, a scalar or one per
+    model [rad/s]. Returns the records of each model (as DynamicModel.advance), in order; the first error
+    of any model is raised after all have finished."""
+    import os
+    from concurrent.futures import ThreadPoolExecutor
+    models = list(models)
+    n = len(models)
+    t_end = list(t_end) if np.ndim(t_end) else [t_end] * n
+    omega_end = list(omega_end) if np.ndim(omega_end) else [omega_end] * n
+    if len(t_end) != n or len(omega_end) != n:
+        raise BearingInputError("t_end / omega_end", (len(t_end), len(omega_end)), f"scalars or {n} values")
+    workers = max(1, min(n, workers or os.cpu_count() or 1))
+    if workers == 1:
+        return [m.advance(t, omega_end=w, record_dt=record_dt) for m, t, w in zip(models, t_end, omega_end)]
+    with ThreadPoolExecutor(max_workers=workers) as ex:
+        futs = [ex.submit(m.advance, t, w, record_dt) for m, t, w in zip(models, t_end, omega_end)]
+        return [f.result() for f in futs]
 
 
 def records_to_dict(rec: np.ndarray) -> dict:

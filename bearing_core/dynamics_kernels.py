@@ -51,6 +51,7 @@ from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_ki
 from .ehl_traction import ehl_ellipse_traction
 from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 from .churning import cylinder_churning_torque
+from .film import ellipticity_nb, film_parameter_nb, film_thickness_nb
 
 NSTATE_FIXED = 20
 NSB = 9  # states per ball
@@ -808,17 +809,20 @@ def _quad_point(quad, t, diag):
     quad[2 * NOUT + 1] = 1.0
 
 
-@hot
+@hot(nogil=True)
 def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-              rec_dt, rec, nrec_max, stats, quad):
+              rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out):
     """Advance y (in place) from t0 to exactly t1 inside compiled code.
 
     method 0: classical fixed-step RK4 with step dt (the papers' baseline, seed 000: dt = 1e-5 s);
     method 1: adaptive Dormand-Prince 5(4), FSAL, PI step control, RMS error norm (rtol, absolute
-              tolerances atol_scale[k] per state; a negative entry means absolute-only), initial step dt.
+              tolerances atol_scale[k] per state; a negative entry means absolute-only), initial step dt;
+    method 3: adaptive RK4 with an embedded order-3 FSAL error estimate (4 calls per step), same control.
     Records the output channels every rec_dt into rec (nrec_max x NOUT); returns the number of
     records written. stats: [0] accepted steps, [1] rejected steps, [2] rhs calls, [3] last dt.
-    quad (NQUAD): time integrals of the output channels, accumulated over the accepted steps."""
+    quad (NQUAD): time integrals of the output channels, accumulated over the accepted steps.
+    diag_out (NOUT), bd_out (nb x NBD): the output channels and per-ball details at the final (t1, y), from
+    the last right-hand side of the last step (no extra call for the outputs at a communication point)."""
     n = y.size
     nb = int(P[P_NB])
     k1 = np.empty(n); k2 = np.empty(n); k3 = np.empty(n); k4 = np.empty(n)
@@ -859,23 +863,114 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             t += h
             stats[0] += 1
             stats[2] += 4
-        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
         _quad_point(quad, t, diag)        # close the last step's trapezoid
         stats[2] += 1
+        stats[3] = h
+    elif method == 3:
+        # Classical RK4 advancing the solution with an embedded order-3 error estimate that reuses the
+        # first stage of the next step (FSAL): with c = (0, 1/2, 1/2, 1, 1) and stage 5 = f(t + h, y1), the
+        # weights (1/6, 1/3, 1/3, 0, 1/6) satisfy the four order-3 conditions (Hairer, Norsett & Wanner,
+        # Solving ODEs I, Sec. II.2, Table 2.2), so err = h/6 (k4 - k5) = O(h^4). Four right-hand sides per
+        # accepted step against six for Dormand-Prince, with a slightly larger stability interval per call
+        # (RK4 |R(z)| <= 1 to z = -2.79 and +-2.83i; DP5 to -3.31 and +-3.4i over six calls): where the
+        # step is stability-limited (the stiff ball modes) this is the cheaper explicit method.
+        # Error norm, tolerances and PI control as for method 1 with the exponents of an order-3 estimate.
+        k5 = np.empty(n)
+        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
+        _quad_point(quad, t, diag)
+        stats[2] += 1
+        err_prev = 1e-4
+        fresh = True      # diag describes (t, y)
+        while t < t1 - 1e-15:
+            if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
+                if nrec < nrec_max:
+                    if not fresh:
+                        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+                        stats[2] += 1
+                        fresh = True
+                    for k in range(NOUT):
+                        rec[nrec, k] = diag[k]
+                    nrec += 1
+                    next_rec += rec_dt
+                else:
+                    next_rec = 1e300
+            hmax = t1 - t
+            if rec_dt > 0 and next_rec < t1 - 1e-12:
+                hmax = min(hmax, max(next_rec - t, 1e-12))
+            h_prop = h
+            h = min(h, hmax)
+            for i in range(n):
+                yt[i] = y[i] + 0.5 * h * k1[i]
+            rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            for i in range(n):
+                yt[i] = y[i] + 0.5 * h * k2[i]
+            rhs(t + 0.5 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            for i in range(n):
+                yt[i] = y[i] + h * k3[i]
+            rhs(t + h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            for i in range(n):
+                yt[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+            # the last step's FSAL call also fills the per-ball details (outputs at t1)
+            rhs(t + h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
+            stats[2] += 4
+            fresh = False
+            acc = 0.0
+            ok = True
+            for i in range(n):
+                e = h / 6.0 * (k4[i] - k5[i])
+                at = atol_scale[i]
+                if at < 0.0:
+                    sc = -at
+                else:
+                    sc = at + rtol * max(abs(y[i]), abs(yt[i]))
+                q = e / sc
+                if not math.isfinite(q):
+                    ok = False
+                    break
+                acc += q * q
+            err = math.sqrt(acc / n) if ok else 1e300
+            if ok and err <= 1.0:
+                t += h
+                for i in range(n):
+                    y[i] = yt[i]
+                    k1[i] = k5[i]
+                fresh = True
+                _quad_point(quad, t, diag)
+                stats[0] += 1
+                fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 4.0)) * (max(err_prev, 1e-10) ** (0.4 / 4.0))
+                fac = min(4.0, max(0.2, fac))
+                err_prev = max(err, 1e-4)
+                h = h * fac
+                if h_prop > h and fac >= 1.0:
+                    h = h_prop
+            else:
+                stats[1] += 1
+                if not ok:
+                    h *= 0.25
+                else:
+                    h *= max(0.2, 0.9 * err ** (-0.25))
+                if h < 1e-12:
+                    stats[4] = 2.0
+                    return nrec
         stats[3] = h
     else:
         # Dormand-Prince 5(4) (Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.5), FSAL, RMS error norm
         # with per-state scales atol_scale[i] + rtol |y_i| (rtol is not applied to the unbounded angles:
         # their atol_scale entries are negative, flagging an absolute-only tolerance), PI step control.
         k5 = np.empty(n); k6 = np.empty(n); k7 = np.empty(n); y5 = np.empty(n)
-        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
         _quad_point(quad, t, diag)
         stats[2] += 1
         err_prev = 1e-4
+        fresh = True      # diag describes (t, y): the FSAL call of the last accepted step
         while t < t1 - 1e-15:
             if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
                 if nrec < nrec_max:
-                    rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+                    if not fresh:    # diag is stale after a rejected step
+                        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+                        stats[2] += 1
+                        fresh = True
                     for k in range(NOUT):
                         rec[nrec, k] = diag[k]
                     nrec += 1
@@ -909,8 +1004,9 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             for i in range(n):
                 y5[i] = y[i] + h * (35.0 / 384.0 * k1[i] + 500.0 / 1113.0 * k3[i] + 125.0 / 192.0 * k4[i]
                                     - 2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i])
-            rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
             stats[2] += 6
+            fresh = False
             acc = 0.0
             ok = True
             for i in range(n):
@@ -932,6 +1028,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 for i in range(n):
                     y[i] = y5[i]
                     k1[i] = k7[i]
+                fresh = True
                 _quad_point(quad, t, diag)      # diag of the FSAL call rhs(t + h, y5)
                 stats[0] += 1
                 fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 5.0)) * (max(err_prev, 1e-10) ** (0.4 / 5.0))
@@ -950,15 +1047,51 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                     stats[4] = 2.0
                     return nrec
         stats[3] = h
+    for k in range(NOUT):
+        diag_out[k] = diag[k]
+    for j in range(nb):
+        for k in range(NBD):
+            bd_out[j, k] = bd[j, k]
     return nrec
 
 
-@hot
+@hot(nogil=True)
 def evaluate(t, y, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd):
     """Output channels and per-ball details at (t, y) without integrating."""
     dy = np.empty(y.size)
     rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
     return dy
+
+
+@hot
+def contact_films(bd, D, dm, fi, fo, eta0, alpha, Ep, s_ball, s_race, out):
+    """Hamrock-Dowson central and minimum film thickness (bearing_core.film, seed 003 Eq. 23) of every
+    ball-race contact from the per-ball details bd of evaluate() (loads, contact angles, entrainment speeds):
+    out[0..3, j] = h_c inner, h_min inner, h_c outer, h_min outer [m] of ball j (0 where unloaded or not
+    rolling). eta0 [Pa s], alpha [1/Pa] of the oil, Ep [Pa] the reduced modulus, s_ball, s_race [m] rms
+    roughness. Returns the smallest film parameter Lambda [-] (inf if no contact is loaded)."""
+    nb = bd.shape[0]
+    lam = math.inf
+    for r in range(2):
+        f = fi if r == 0 else fo
+        sgn = -1.0 if r == 0 else 1.0
+        cq = BD_QI if r == 0 else BD_QO
+        ca = BD_AI if r == 0 else BD_AO
+        cu = BD_UI if r == 0 else BD_UO
+        Ry = f * D / (2.0 * f - 1.0)
+        for j in range(nb):
+            Q, u = bd[j, cq], bd[j, cu]
+            out[2 * r, j] = 0.0
+            out[2 * r + 1, j] = 0.0
+            if Q <= 0.0 or u <= 0.0:
+                continue
+            Rx = 0.5 * D * (dm + sgn * D * math.cos(bd[j, ca])) / dm
+            k = ellipticity_nb(Rx, Ry, 0)
+            hc, hm = film_thickness_nb(u, eta0, alpha, Rx, Ry, Ep, Q, k, 1.0)
+            out[2 * r, j] = hc
+            out[2 * r + 1, j] = hm
+            lam = min(lam, film_parameter_nb(hm, s_ball, s_race))
+    return lam
 
 
 # ---- Rosenbrock-W integrator with a ball-block Jacobian ------------------------------------------
@@ -1195,9 +1328,24 @@ def _w_matvec(v, out, Wff, Wbf, Wfb, Wbb):
 
 
 @hot
+def rosw_workspace(nb):
+    """Jacobian and factorisation arrays of integrate_rosw, kept between calls so that consecutive
+    intervals (FMU communication steps, 'auto' chunks) reuse W and its LU factors (a W-method keeps its
+    order with any W, so a lagged W from the previous interval is legitimate). jst = [age of W in
+    accepted steps (>= JAC_EVERY: rebuild), h g of the current factorisation (< 0: none)]."""
+    nf = NSTATE_FIXED
+    return (np.zeros((nf, nf)), np.zeros((nb, NSB, nf)), np.zeros((nb, nf, NSB)), np.zeros((nb, NSB, NSB)),
+            np.zeros((nb, NSB, NSB)), np.zeros((nb, NSB), dtype=np.int64), np.zeros((nb, NSB, nf)),
+            np.zeros((nf, nf)), np.zeros(nf, dtype=np.int64), np.array([float(JAC_EVERY), -1.0]))
+
+
+@hot(nogil=True)
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                   rec_dt, rec, nrec_max, stats, quad):
-    """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate()."""
+                   rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs,
+                   jst):
+    """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate() (diag_out,
+    bd_out included). The W
+    arrays and their factors (Wff .. pivs, jst: rosw_workspace) carry over between calls."""
     n = y.size
     nb = int(P[P_NB])
     nf = NSTATE_FIXED
@@ -1209,15 +1357,6 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     v = np.empty(n)
     wv = np.empty(n)
     ynew = np.empty(n)
-    Wff = np.zeros((nf, nf))
-    Wbf = np.zeros((nb, NSB, nf))
-    Wfb = np.zeros((nb, nf, NSB))
-    Wbb = np.zeros((nb, NSB, NSB))
-    LUb = np.empty((nb, NSB, NSB))
-    pivb = np.zeros((nb, NSB), dtype=np.int64)
-    X = np.empty((nb, NSB, nf))
-    S = np.empty((nf, nf))
-    pivs = np.zeros(nf, dtype=np.int64)
     tmp = np.empty((nb, NSB))
     diag = np.empty(NOUT)
     bd = np.empty((nb, NBD))
@@ -1226,11 +1365,11 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     t = t0
     next_rec = t0 if rec_dt > 0 else 1e300
     h = h0
-    h_lu = -1.0
-    jac_age = JAC_EVERY
+    jac_age = int(jst[0])
+    h_lu = jst[1] if jac_age < JAC_EVERY else -1.0
     nrej = 0
     err_prev = 1e-4
-    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
     _quad_point(quad, t, diag)
     stats[2] += 1
     while t < t1 - 1e-15:
@@ -1303,7 +1442,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
             stats[0] += 1
             jac_age += 1
             nrej = 0
-            rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+            rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t >= t1 - 1e-15)
             _quad_point(quad, t, diag)
             stats[2] += 1
             # PI controller for an order-2 error estimate (Gustafsson; Hairer & Wanner II, IV.8)
@@ -1326,6 +1465,14 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
                 jac_age = JAC_EVERY       # repeated rejections: refresh the lagged Jacobian
             if h < 1e-12:
                 stats[4] = 2.0
+                jst[0] = JAC_EVERY
                 return nrec
     stats[3] = h
+    jst[0] = jac_age
+    jst[1] = h_lu
+    for k in range(NOUT):
+        diag_out[k] = diag[k]
+    for j in range(nb):
+        for k in range(NBD):
+            bd_out[j, k] = bd[j, k]
     return nrec

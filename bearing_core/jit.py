@@ -33,10 +33,11 @@ if PLAIN_MATH:
         _nb_config.CACHE_DIR = os.path.join(_base, "plain_math")
 
 
-def hot(fn=None, *, inline: str = "never"):
-    """numba.njit with the module's flags and cache=True; use as @hot or @hot(inline='always')."""
+def hot(fn=None, *, inline: str = "never", nogil: bool = False):
+    """numba.njit with the module's flags and cache=True; use as @hot, @hot(inline='always') or
+    @hot(nogil=True) (integration loops that release the GIL for threaded batches)."""
     kw = dict(cache=True, error_model=ERROR_MODEL, fastmath=set(FASTMATH) if FASTMATH else False,
-              inline=inline)
+              inline=inline, nogil=nogil)
     if fn is None:
         return lambda f: njit(**kw)(f)
     return njit(**kw)(fn)

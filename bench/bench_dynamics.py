@@ -2,10 +2,12 @@
 10,000 rpm/s to 10,000 rpm at 1.4 s, held to 2 s), full 16-ball model.
 
 Prints wall time, simulated time, real-time factor (wall / simulated; < 1 is faster than real time) of
-the production integrator ('auto' by default: per 5 ms chunk the cheaper of the explicit Dormand-Prince
-5(4) and the Rosenbrock-W ROS34PW2 with the arrow-structured ball/ring/cage Jacobian), and its speed-up
+the production integrator ('auto' by default: per 5 ms chunk the cheaper of the explicit adaptive RK4(3)
+(FSAL error estimate) and the Rosenbrock-W ROS34PW2 with the arrow-structured ball/ring/cage Jacobian), and its speed-up
 over the papers' fixed-step RK4 (dt = 1e-5 s) measured in the same run, with the relative difference of
 the mean cage speed over the last 0.3 s between the two; also the explicit and implicit integrators alone.
+``phases``: wall time, real-time factor, rhs calls, steps and speed-up over RK4 of each phase of the profile
+(1000 rpm to 0.5 s, the ramp to 1.4 s, 10,000 rpm to 2 s).
 Numba compilation is done (or loaded from cache) before timing.
 
 Right-hand-side cost: ``rhs_us`` is the mean wall time of one call of the compiled right-hand side
@@ -14,7 +16,7 @@ Right-hand-side cost: ``rhs_us`` is the mean wall time of one call of the compil
 measures just that (after the production run to t_end) and skips the integrator timings.
 
     python bench/bench_dynamics.py [--t-end 2.0] [--json] [--fx 1000 --fz 3000] [--traction lubricated]
-                                   [--integrator auto|adaptive|implicit] [--no-others] [--rhs-only]
+                                   [--integrator auto|adaptive|implicit|adaptive-rk4] [--no-others] [--rhs-only]
 """
 from __future__ import annotations
 
@@ -56,15 +58,35 @@ def rhs_cost_us(m, n=20000):
     return best
 
 
-def run(integrator, t_end, loads, traction, mu, rtol):
+PHASES = (("1000rpm", 0.0, 0.5), ("ramp", 0.5, 1.4), ("10000rpm", 1.4, 2.0))
+
+
+def run(integrator, t_end, loads, traction, mu, rtol, phases=None):
+    """Run the profile to t_end; phases (dict) receives per phase of PHASES its wall time [s], simulated
+    time [s], rhs calls, accepted and rejected steps."""
     g = load_preset("7218B")
     m = DynamicModel(g, DynamicsOptions(integrator=integrator, reduced="full", traction=traction, mu=mu,
                                         rtol=rtol))
     m.initialize(1000 * math.pi / 30, loads)
     prof = [(t, n) for t, n in SEED000_PROFILE if t < t_end] + [(t_end, _speed_at(t_end))]
-    t0 = time.perf_counter()
-    rec = records_to_dict(simulate_profile(m, prof, record_dt=1e-3))
-    wall = time.perf_counter() - t0
+    out = []
+    wall = 0.0
+    for name, ta, tb in PHASES:
+        tb = min(tb, t_end)
+        if tb <= ta:
+            continue
+        seg = [(t, n) for t, n in prof if ta < t < tb]
+        seg = [(ta, _speed_at(ta))] + seg + [(tb, _speed_at(tb))]
+        s0 = m.stats[:3].copy()
+        t0 = time.perf_counter()
+        out.append(simulate_profile(m, seg, record_dt=1e-3))
+        w = time.perf_counter() - t0
+        wall += w
+        if phases is not None:
+            d = m.stats[:3] - s0
+            phases[name] = {"wall_s": w, "simulated_s": tb - ta, "rtf": w / (tb - ta), "rhs_calls": int(d[2]),
+                            "steps": int(d[0]), "rejected": int(d[1]), "mean_step_s": (tb - ta) / max(d[0], 1)}
+    rec = records_to_dict(np.concatenate(out))
     return wall, rec, m.stats.copy(), m
 
 
@@ -81,7 +103,7 @@ def main(argv=None):
     ap.add_argument("--traction", default="lubricated", choices=("lubricated", "coulomb", "kalker"))
     ap.add_argument("--mu", type=float, default=0.1)
     ap.add_argument("--rtol", type=float, default=1e-4)
-    ap.add_argument("--integrator", default="auto", choices=("auto", "adaptive", "implicit"),
+    ap.add_argument("--integrator", default="auto", choices=("auto", "adaptive", "implicit", "adaptive-rk4"),
                     help="production integrator to time against RK4")
     ap.add_argument("--no-others", action="store_true", help="skip timing the other two integrators")
     ap.add_argument("--rhs-only", action="store_true", help="only the per-call right-hand-side cost")
@@ -97,11 +119,15 @@ def main(argv=None):
         print(json.dumps(out) if a.json else
               f"7218B, state at t = {m.t:g} s, {a.traction}: {us:.2f} us per right-hand side")
         return out
-    for integ in ("adaptive", "implicit", "auto", "rk4"):
+    for integ in ("adaptive", "implicit", "auto", "rk4", "adaptive-rk4"):
         run(integ, 0.002, loads, a.traction, a.mu, a.rtol)
-    wall, rec, st, m = run(a.integrator, a.t_end, loads, a.traction, a.mu, a.rtol)
+    ph = {}
+    wall, rec, st, m = run(a.integrator, a.t_end, loads, a.traction, a.mu, a.rtol, ph)
     rhs_us = rhs_cost_us(m, a.rhs_calls)
-    wall0, rec0, st0, _ = run("rk4", a.t_end, loads, a.traction, a.mu, a.rtol)
+    ph0 = {}
+    wall0, rec0, st0, _ = run("rk4", a.t_end, loads, a.traction, a.mu, a.rtol, ph0)
+    for k, v in ph.items():
+        v["speedup_vs_rk4"] = ph0[k]["wall_s"] / v["wall_s"]
     tail = rec["t"] > a.t_end - 0.3
     tail0 = rec0["t"] > a.t_end - 0.3
     c1 = rec["cage_speed"][tail].mean()
@@ -118,10 +144,11 @@ def main(argv=None):
         "steps": int(st[0]), "rejected": int(st[1]), "rhs_calls": int(st[2]),
         "baseline_rhs_calls": int(st0[2]),
         "rhs_us": rhs_us,
+        "phases": ph,
         "loads_N": {"Fx": a.fx, "Fz": a.fz}, "traction": a.traction, "integrator": a.integrator,
     }
     if not a.no_others:
-        for integ in ("adaptive", "implicit", "auto"):
+        for integ in ("adaptive", "implicit", "auto", "adaptive-rk4"):
             if integ == a.integrator:
                 continue
             w2, rec2, st2, _ = run(integ, a.t_end, loads, a.traction, a.mu, a.rtol)
@@ -136,10 +163,14 @@ def main(argv=None):
         print(f"production ({a.integrator}, rtol {a.rtol:g}): wall {wall:.2f} s, real-time factor {wall / a.t_end:.2f}, "
               f"{int(st[2])} rhs calls ({int(st[0])} steps, {int(st[1])} rejected)")
         print(f"right-hand side: {rhs_us:.2f} us per call at the final state")
+        for k, v in ph.items():
+            print(f"  {k}: real-time factor {v['rtf']:.2f}, {v['rhs_calls'] / v['simulated_s']:.0f} rhs calls per "
+                  f"simulated s, mean step {v['mean_step_s']:.2e} s ({v['rejected']} rejected), "
+                  f"speed-up vs RK4 {v['speedup_vs_rk4']:.2f}x")
         print(f"baseline (RK4, dt 1e-5 s): wall {wall0:.2f} s, {int(st0[2])} rhs calls")
         print(f"speed-up vs RK4: {wall0 / wall:.2f}x; mean cage speed over the last 0.3 s: "
               f"{c1 * 30 / math.pi:.1f} vs {c0 * 30 / math.pi:.1f} rpm (rel. diff {abs(c1 / c0 - 1):.2e})")
-        for integ in ("adaptive", "implicit", "auto"):
+        for integ in ("adaptive", "implicit", "auto", "adaptive-rk4"):
             if f"{integ}_wall_s" in out:
                 print(f"  {integ}: wall {out[integ + '_wall_s']:.2f} s, speed-up vs RK4 "
                       f"{out[integ + '_speedup_vs_rk4']:.2f}x, cage rel. diff {out[integ + '_cage_speed_rel_diff']:.2e}")

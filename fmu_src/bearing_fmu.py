@@ -73,7 +73,7 @@ _ENUM_DESC = {
                        "Coulomb friction (friction_coefficient)", "Kalker's FASTSIM (dry rolling contact)"),
     "coupling": ("loads Fx..My are inputs", "the inner-ring pose dx..wy is an input"),
     "outer_mounting": ("outer ring fixed", "outer ring on a radial housing spring (housing_stiffness)"),
-    "integrator": ("the cheaper of adaptive and implicit per 5 ms", "Dormand-Prince 5(4)", "Rosenbrock-W",
+    "integrator": ("per 5 ms (or communication step) the cheaper of an adaptive RK4 and implicit", "Dormand-Prince 5(4)", "Rosenbrock-W",
                    "fixed-step RK4 (1e-5 s)"),
 }
 # Geometry of the bearing as parameters (0: keep the value of the bearing definition); applied by
@@ -105,7 +105,7 @@ _PARAMS = (
     ("outer_mounting", str, "fixed", None, "outer ring: fixed | elastic (housing spring)", None),
     ("housing_stiffness", float, 1e8, "N/m", "radial housing stiffness for outer_mounting = elastic", (1e4, 1e12)),
     ("fixed_tilt", bool, False, None, "inner ring cannot tilt (shaft held by other bearings)", None),
-    ("integrator", str, "auto", None, "auto (cheaper of the two below per 5 ms) | adaptive (Dormand-Prince 5(4)) | implicit (Rosenbrock-W) | rk4 (fixed 1e-5 s)", None),
+    ("integrator", str, "auto", None, "auto (per 5 ms or communication step, the cheaper of an adaptive RK4(3) and implicit) | adaptive (Dormand-Prince 5(4)) | implicit (Rosenbrock-W) | rk4 (fixed 1e-5 s)", None),
     ("integrator_tolerance", float, 1e-4, "1", "relative tolerance of the adaptive integrator", (1e-10, 1e-2)),
     ("free_contact_angle", float, 0.0, "rad", "override of the preset's free contact angle (0: preset)", (0.0, 1.0472)),
     ("pocket_clearance", float, 0.0, "m", "override of the diametral ball-pocket clearance (0: preset)", (0.0, 0.01)),

@@ -1,0 +1,205 @@
+"""Benchmark of the bearing FMU driven through fmpy with default parameters and inputs (7218B, 3000 rpm,
+Fx 1000 N, Fz 3000 N, lubricated, integrator 'auto') at 1 ms communication steps.
+
+Builds the FMU (bearing_cosim.fmu_build.build, as ``bearing build-fmu``) into a temporary folder, or takes
+--fmu, and runs it in fresh processes:
+  * cold: an empty FMU cache folder (BEARING_FMU_CACHE), so numba compiles every kernel;
+  * warm: the same folder again (compiled kernels loaded from numba's cache).
+Reports per run the wall time of instantiate + initialisation, of the first doStep, and the marginal wall
+time per simulated second over the steps after the first (``wall_per_sim_s``; < 1 is faster than real
+time). The per-step overhead is the wall time per doStep that is not time integration: the same steps are
+run in process through bearing_core.cosim.CoSimSession (same arithmetic, same integrator choices) with the
+integration kernels timed, and their time per step is subtracted from the FMU's wall time per step
+(``fmu_overhead_us``: FMI layer + session; ``session_overhead_us``: the session alone; medians over the
+steps). On a loaded machine the wall times vary from run to run; the overheads are the robust figures.
+
+    python bench/bench_fmu.py [--t-end 0.2] [--fmu dist/BearingFMU.fmu] [--cache DIR] [--json]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+H = 1e-3
+
+
+def worker(fmu: str, t_end: float) -> dict:
+    """Drive the FMU with fmpy (in this process) and time it."""
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+    t0 = time.perf_counter()
+    md = read_model_description(fmu)
+    unz = extract(fmu)
+    f = FMU2Slave(guid=md.guid, unzipDirectory=unz, modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName="bench")
+    f.instantiate()
+    f.setupExperiment(startTime=0.0)
+    f.enterInitializationMode()
+    f.exitInitializationMode()
+    t_init = time.perf_counter() - t0
+    # the FMU's model code runs in this interpreter under a content-hashed package name: time its
+    # integration kernels from here (the per-step overhead is then measured within each step)
+    kern = [0.0]
+    for name, mod in list(sys.modules.items()):
+        if name.startswith("bearing_core_") and name.endswith(".dynamics") and hasattr(mod, "DynamicModel"):
+            orig = mod.DynamicModel._integrate
+
+            def timed(self, *a, _orig=orig):
+                t1 = time.perf_counter()
+                try:
+                    return _orig(self, *a)
+                finally:
+                    kern[0] += time.perf_counter() - t1
+            mod.DynamicModel._integrate = timed
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    outs = [vr["cage_speed"], vr["reaction_Fx"], vr["heat_flux_total"]]
+    n = int(round(t_end / H))
+    walls, kerns = [], []
+    t = 0.0
+    for k in range(n):
+        kern[0] = 0.0
+        a = time.perf_counter()
+        f.doStep(currentCommunicationPoint=t, communicationStepSize=H)
+        f.getReal(outs)
+        walls.append(time.perf_counter() - a)
+        kerns.append(kern[0])
+        t = (k + 1) * H
+    last = f.getReal(outs)
+    f.terminate()
+    f.freeInstance()
+    return {"init_s": t_init, "first_step_s": walls[0], "step_walls": walls, "kernel_walls": kerns,
+            "cage_speed_end": last[0]}
+
+
+def in_process(t_end: float) -> dict:
+    """The same steps through CoSimSession in this process, with the integration kernels timed."""
+    from bearing_core.cosim import CoSimParameters, CoSimSession
+    from bearing_core.cosim_spec import INPUT_NAMES
+    from bearing_core import dynamics
+    sys.path.insert(0, str(ROOT / "fmu_src"))
+    from bearing_fmu import INPUT_START
+    inputs = {k: INPUT_START.get(k, 0.0) for k in INPUT_NAMES}
+    # compile / load every integration kernel before timing ('auto' probes both of its methods)
+    w = CoSimSession(CoSimParameters())
+    w.initialize(0.0, inputs)
+    for integ in ("implicit", "adaptive-rk4", "adaptive"):
+        w.model.opt = dynamics.replace(w.model.opt, integrator=integ)
+        w.model.advance(w.model.t + 2e-4)
+    s = CoSimSession(CoSimParameters())
+    s.initialize(0.0, inputs)
+    kern = [0.0]
+    ev = [0.0]
+    orig = dynamics.DynamicModel._integrate
+    orig_ev = dynamics.DynamicModel.evaluate_point
+
+    def timed(self, *a):
+        t0 = time.perf_counter()
+        try:
+            return orig(self, *a)
+        finally:
+            kern[0] += time.perf_counter() - t0
+
+    def timed_ev(self):
+        t0 = time.perf_counter()
+        try:
+            return orig_ev(self)
+        finally:
+            ev[0] += time.perf_counter() - t0
+    dynamics.DynamicModel._integrate = timed
+    dynamics.DynamicModel.evaluate_point = timed_ev
+    n = int(round(t_end / H))
+    walls, kerns, evs = [], [], []
+    try:
+        for k in range(n):
+            kern[0] = ev[0] = 0.0
+            a = time.perf_counter()
+            s.step(k * H, H, inputs)
+            walls.append(time.perf_counter() - a)
+            kerns.append(kern[0])
+            evs.append(ev[0])
+    finally:
+        dynamics.DynamicModel._integrate = orig
+        dynamics.DynamicModel.evaluate_point = orig_ev
+    return {"step_walls": walls, "kernel_walls": kerns, "eval_walls": evs, "cage_speed_end": s.outputs["cage_speed"]}
+
+
+def _run_worker(fmu, t_end, cache):
+    env = dict(os.environ, BEARING_FMU_CACHE=str(cache))
+    env.pop("NUMBA_CACHE_DIR", None)
+    p = subprocess.run([sys.executable, __file__, "--worker", "--fmu", str(fmu), "--t-end", str(t_end)],
+                       capture_output=True, text=True, env=env)
+    lines = [ln for ln in p.stdout.splitlines() if ln.startswith("RESULT ")]
+    if p.returncode != 0 or not lines:
+        raise RuntimeError(f"FMU worker failed ({p.returncode}): {p.stderr[-2000:]}")
+    return json.loads(lines[-1][7:])
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--t-end", type=float, default=0.2, help="simulated time [s] per run")
+    ap.add_argument("--fmu", default=None, help="an FMU to drive (default: build one into a temporary folder)")
+    ap.add_argument("--cache", default=None, help="FMU cache folder (default: a new, empty one: the first run "
+                                                  "is cold)")
+    ap.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--json", action="store_true")
+    a = ap.parse_args(argv)
+    if a.worker:
+        print("RESULT " + json.dumps(worker(a.fmu, a.t_end)))
+        return None
+    with tempfile.TemporaryDirectory(prefix="bench_fmu_") as tmp:
+        fmu = a.fmu
+        if fmu is None:
+            from bearing_cosim.fmu_build import build
+            fmu = str(build(Path(tmp) / "dist"))
+        cache = Path(a.cache) if a.cache else Path(tmp) / "cache"
+        cold = _run_worker(fmu, min(a.t_end, 0.01), cache)     # cold if the cache folder was empty
+        warm = _run_worker(fmu, a.t_end, cache)
+    ip = in_process(a.t_end)
+    sw = warm["step_walls"][1:]
+    n = len(sw)
+    kw = ip["kernel_walls"][1:]
+    kern = sum(kw) / n
+    # overheads: medians over the steps of (step wall - the same step's integration time), robust to the
+    # noise of a shared machine
+    out = {
+        "step_s": H, "simulated_s": a.t_end,
+        "wall_per_sim_s": sum(sw) / (n * H),
+        "wall_per_step_ms": sum(sw) / n * 1e3,
+        "fmu_overhead_us": (float(np.median(np.subtract(sw, warm["kernel_walls"][1:]))) * 1e6
+                            if any(warm["kernel_walls"]) else float(np.median(np.subtract(sw, kw))) * 1e6),
+        "session_overhead_us": float(np.median(np.subtract(ip["step_walls"][1:], kw))) * 1e6,
+        # of which the one right-hand-side call for the outputs and films at the communication point
+        "output_eval_us": float(np.median(ip["eval_walls"][1:])) * 1e6,
+        "kernel_per_step_ms": kern * 1e3,
+        "in_process_wall_per_sim_s": sum(ip["step_walls"][1:]) / (n * H),
+        "warm_init_s": warm["init_s"], "warm_first_step_s": warm["first_step_s"],
+        "cold_init_s": cold["init_s"], "cold_first_step_s": cold["first_step_s"],
+        "cage_speed_end_fmu": warm["cage_speed_end"], "cage_speed_end_in_process": ip["cage_speed_end"],
+    }
+    if a.json:
+        print(json.dumps(out))
+    else:
+        print(f"BearingFMU, default parameters and inputs, {H * 1e3:g} ms steps, {a.t_end:g} s simulated (fmpy)")
+        print(f"marginal wall time per simulated second: {out['wall_per_sim_s']:.2f} "
+              f"({out['wall_per_step_ms']:.3f} ms per step, of which integration {out['kernel_per_step_ms']:.3f} ms)")
+        print(f"per-step overhead: {out['fmu_overhead_us']:.0f} us through the FMU, "
+              f"{out['session_overhead_us']:.0f} us in the session alone (of which {out['output_eval_us']:.0f} us "
+              "the right-hand-side call for outputs and films)")
+        print(f"warm: initialisation {out['warm_init_s']:.2f} s, first step {out['warm_first_step_s']:.3f} s")
+        print(f"first run (cold if the cache folder was empty): initialisation {out['cold_init_s']:.2f} s, "
+              f"first step {out['cold_first_step_s']:.3f} s")
+    return out
+
+
+if __name__ == "__main__":
+    main()
