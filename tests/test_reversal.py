@@ -28,8 +28,10 @@ def test_mirrored_runs_give_mirrored_outputs(traction):
     """+omega and -omega from the quasi-static start, 16 balls, Fx 1 kN, Fz 3 kN, 3000 rpm, 5 ms. The kernels
     are written for signed speeds, the start is the mirrored state, so the two runs differ only by the
     rounding of sums taken in another ball order (ball j <-> ball Z - j), which the adaptive step control
-    can amplify up to its tolerance: asserted to 1e-6 of each channel's scale (rtol = 1e-4 would allow
-    more; measured: ~1e-9 relative on the torques and forces)."""
+    can amplify up to its tolerance (the fast build's re-associated sums, bearing_core.jit, add rounding of
+    the same order): asserted to the integrator's relative tolerance, 1e-4 of each channel's scale
+    (measured: ~1e-9 relative on the torques and forces, up to ~1e-5 on the pocket power once a step
+    decision differs)."""
     runs = {}
     for sgn in (1.0, -1.0):
         m = _model(traction=traction, reduced="full")
@@ -46,7 +48,7 @@ def test_mirrored_runs_give_mirrored_outputs(traction):
         if k == "Fy":
             scale = np.abs(p["Fx"]).max()      # ~0 by symmetry of the load: measured on the force scale
         assert np.all(np.isfinite(n[k]))
-        assert np.abs(n[k] - ref).max() <= 1e-6 * scale, (k, p[k], n[k])
+        assert np.abs(n[k] - ref).max() <= 1e-4 * scale, (k, p[k], n[k])
     assert np.all(p["cage_speed"] > 0) and np.all(n["cage_speed"] < 0)
 
 
