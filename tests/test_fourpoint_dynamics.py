@@ -47,7 +47,8 @@ def test_gothic_arch_with_unloaded_second_arcs_is_its_two_point_bearing():
     assert r4.shape == r2.shape
     for name in SYMMETRIC_ZERO:          # zero by symmetry, up to the rounding noise of both models
         k = K.OUT_INDEX[name]
-        tol = 1e-3 if name in ("Fx", "Fy") else 1e-4 if name in ("Mx", "My") else 1e-12
+        # tilts: 1e-10 rad, rounding noise growing linearly over the run (1e-12 rad after 10 ms measured)
+        tol = 1e-3 if name in ("Fx", "Fy") else 1e-4 if name in ("Mx", "My") else 1e-10
         assert np.abs(r4[:, k]).max() < tol and np.abs(r2[:, k]).max() < tol, name
     for name in COMPARED:
         k = K.OUT_INDEX[name]
