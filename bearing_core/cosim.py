@@ -72,7 +72,7 @@ class CoSimParameters:
     number_of_balls: int = 0               # Z
     inner_groove_conformity: float = 0.0   # fi = inner groove radius / D
     outer_groove_conformity: float = 0.0   # fo = outer groove radius / D
-    # oil, churning and the thermal network (issue 5)
+    # oil, churning and the thermal network
     oil: str = ""                          # lubricants.OILS name ("" = the traction curve's oil)
     oil_fraction: float = 0.0              # oil volume fraction of the oil-air mixture (drag, churning)
     churning: bool = False                 # seed 001 Eqs. 12-17 churning torques on cage and inner ring

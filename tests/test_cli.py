@@ -1,4 +1,4 @@
-"""The `bearing` console script contract (issue 2)."""
+"""The `bearing` console script contract."""
 import json
 import subprocess
 import sys
@@ -84,7 +84,7 @@ def test_microslip_subcommand(tmp_path, capsys):
 
 def test_thermal_command_json(capsys):
     """`bearing thermal`: coupled dynamic-thermal steady state; heat generated = rejected within 1%
-    (issue 5) and the drive power equals the heat generated within 1% (energy bookkeeping)."""
+    and the drive power equals the heat generated within 1% (energy bookkeeping)."""
     rc = main(["thermal", "--bearing", "7218B", "--speed-rpm", "4000", "--fz", "3000", "--oil-flow-lpm", "0.5",
                "--json"])
     assert rc == 0

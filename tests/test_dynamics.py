@@ -1,4 +1,4 @@
-"""Transient tribo-dynamic model (issue 3): steady state against the quasi-static model, reactions,
+"""Transient tribo-dynamic model: steady state against the quasi-static model, reactions,
 power balance, reduced vs full model, integrators, bad input."""
 import math
 
@@ -37,7 +37,7 @@ def test_steady_state_matches_quasistatic_axial(traction, control):
     """Constant speed and thrust (7218B, 1000 rpm, Fz = 5000 N, full 16-ball model): the dynamic steady
     state against the Jones-Harris quasi-static model. The dynamics has no raceway-control hypothesis (the
     traction shares the gyroscopic moment); at 1000 rpm the gyroscopic moment is small and both QS
-    hypotheses are comparable, so the dynamics must match either. Tolerances (issue 3): contact angles
+    hypotheses are comparable, so the dynamics must match either. Tolerances: contact angles
     0.5 deg, contact loads 2%, mean cage speed 1%, mean reactions 0.5% of the applied load. The lubricated
     (EHL) traction has an elastic small-slip slope (~50 per unit slide-roll ratio) that puts the ball slip
     time constant near 1e-6 s, beyond fixed-step RK4 at 1e-5 s: it runs on the 'auto' integrator."""
@@ -74,7 +74,7 @@ def test_combined_load_reactions_and_cage(traction):
 
 
 def test_power_balance():
-    """Energy conservation (issue 3 acceptance): drive power + external-load power = dissipated power
+    """Energy conservation: drive power + external-load power = dissipated power
     + d(kinetic + elastic energy)/dt over 0.05 s windows, within 1%. EHL traction (default), explicit
     adaptive RK4 (measured 0.25 %; the Rosenbrock-W method that 'auto' picks at this low speed closes this
     heavy combined-load case to ~2 % only, docs/speed.md). The energies are the integrator's own time
@@ -98,7 +98,7 @@ def test_power_balance():
 
 def test_reduced_model_matches_full_pure_axial():
     """Seed 002's adaptive equation numbers: under pure axial load all balls are identical, so one
-    representative ball (reduced model) must reproduce the full 16-ball model within 0.5% (issue 3)."""
+    representative ball (reduced model) must reproduce the full 16-ball model within 0.5%."""
     loads = (0.0, 0.0, 3000.0, 0.0, 0.0)
     mf, rf = _run(loads, T=0.1, reduced="full", integrator="auto")
     mr, rr = _run(loads, T=0.1, reduced="auto", integrator="auto")

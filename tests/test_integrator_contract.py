@@ -41,7 +41,7 @@ def _window(rpm, **opt):
 @pytest.mark.parametrize("rpm", [1000.0, 10000.0])
 def test_production_integrator_contract(rpm):
     """'auto' against RK4 at dt = 1e-6 s over an 8 ms window: mean cage speed and mean reactions Fx, Fz
-    within 0.5 %, energy residual within 1 % of the dissipated energy (both runs); tolerances: the speed issue's accuracy contract."""
+    within 0.5 %, energy residual within 1 % of the dissipated energy (both runs); tolerances: the production integrator's accuracy contract."""
     _, _, ref, res0 = _window(rpm, integrator="rk4", dt=1e-6)
     m, rec, got, res = _window(rpm, integrator="auto")
     assert np.all(np.isfinite(rec["cage_speed"]))

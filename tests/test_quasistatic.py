@@ -78,7 +78,7 @@ LOADS = {
 @pytest.mark.parametrize("control", ["outer", "inner", "hybrid"])
 def test_equilibrium_residual_over_sweep(case, speed_rpm, control):
     """Ring equilibrium: the sum of ball forces on the inner ring equals the applied load within 1e-6
-    relative (issue 2 acceptance), for pure axial, pure radial, moment, combined, light and partly
+    relative, for pure axial, pure radial, moment, combined, light and partly
     unloaded cases, static and at speed, for every raceway control."""
     g = load_preset("7218B")
     loads = np.array(LOADS[case], dtype=float)

@@ -59,7 +59,7 @@ def test_two_node_against_matrix_exponential():
 
 @pytest.mark.parametrize("flow", [0.0, 2e-5])
 def test_steady_state_balance(flow):
-    # issue 5: at thermal steady state heat generated = heat rejected (ambient + oil flow) within 1e-9
+    # at thermal steady state heat generated = heat rejected (ambient + oil flow) within 1e-9
     n = net(flow_rate=flow)
     T = n.steady_state(Q)
     rejected = n.heat_to_ambient(T) + n.heat_to_oil_flow(T)

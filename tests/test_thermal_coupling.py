@@ -1,4 +1,4 @@
-"""Issue 5 in the dynamics: churning torques, the thermal network on the slow time scale with temperature
+"""Oil and heat in the dynamics: churning torques, the thermal network on the slow time scale with temperature
 feedback, film thickness per contact, and the energy bookkeeping of the coupled model."""
 import math
 
@@ -23,7 +23,7 @@ def _model(rpm=3000.0, loads=(1000.0, 0.0, 3000.0, 0.0, 0.0), **kw):
 
 
 def test_churning_power_balance_and_kernel_matches_library():
-    """Churning enters the equations of motion as torques, so the energy balance (issue 5: drive power =
+    """Churning enters the equations of motion as torques, so the energy balance (drive power =
     total heat flux + rate of kinetic and elastic energy, within 1% over windows) still closes; the inner
     ring's churning power equals seed 001 Eq. 17 evaluated by bearing_core.churning at the same oil state
     (1e-9)."""
@@ -45,7 +45,7 @@ def test_churning_power_balance_and_kernel_matches_library():
 
 
 def test_thermal_equilibrium_heat_generated_equals_rejected():
-    """Issue 5 acceptance: at thermal steady state the heat generated equals the heat rejected (ambient
+    """At thermal steady state the heat generated equals the heat rejected (ambient
     + oil flow) within 1%. The check is not the network's own identity: the losses are recomputed by the
     dynamics over a fresh window at the converged temperatures (the coupled fixed point). The feedback
     works in the expected direction: hotter oil is thinner, so the inner-ring churning loss falls below its
