@@ -841,6 +841,52 @@ def _quad_point(quad, t, diag):
     quad[2 * NOUT + 1] = 1.0
 
 
+@hot
+def _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d):
+    """Store the channels d at the accepted point t when a record is due (not at t1: that is the first record
+    of the next call); returns (nrec, next_rec). A full buffer stops recording: a stale next_rec would cap
+    every later step at 1e-12 s (a stall)."""
+    if t >= next_rec - 1e-12 and t < t1 - 1e-12:
+        if nrec < nrec_max:
+            for k in range(NOUT):
+                rec[nrec, k] = d[k]
+            nrec += 1
+            next_rec += rec_dt
+        else:
+            next_rec = 1e300
+    return nrec, next_rec
+
+
+@hot
+def _step_cap(t, t1, next_rec, rec_dt):
+    """Largest step [s] from t: to the interval end t1 and to the next record time."""
+    hmax = t1 - t
+    if rec_dt > 0 and next_rec < t1 - 1e-12:
+        hmax = min(hmax, max(next_rec - t, 1e-12))
+    return hmax
+
+
+@hot
+def _pi_next_step(h, h_prop, err, err_prev, q, fac_max):
+    """Next step after an accepted step h with error norm err (<= 1): PI controller for an order-q error
+    estimate (Gustafsson; Hairer & Wanner II, IV.8), growth limited to fac_max; a step shortened to hit a
+    record or the interval end (h < h_prop) does not shrink the next one. Returns (h_next, err_prev)."""
+    fac = 0.9 * (max(err, 1e-10) ** (-0.7 / q)) * (max(err_prev, 1e-10) ** (0.4 / q))
+    fac = min(fac_max, max(0.2, fac))
+    hn = h * fac
+    if h_prop > hn and fac >= 1.0:
+        hn = h_prop
+    return hn, max(err, 1e-4)
+
+
+@hot
+def _rejected_step(h, ok, err, q):
+    """Step after a rejection: a quarter for a non-finite attempt, else 0.9 err^(-1/q), at least 0.2 h."""
+    if not ok:
+        return h * 0.25
+    return h * max(0.2, 0.9 * err ** (-1.0 / q))
+
+
 @hot(nogil=True)
 def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
               rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out):
@@ -873,14 +919,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
             _quad_point(quad, t, diag)     # zero-width at the start of a call; otherwise already stored
             _quad_stage(dq, 1.0 / 6.0, diag, True)
-            if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
-                if nrec < nrec_max:
-                    for k in range(NOUT):
-                        rec[nrec, k] = diag[k]
-                    nrec += 1
-                    next_rec += rec_dt
-                else:
-                    next_rec = 1e300      # record buffer full: stop recording (never stall on it)
+            nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, diag)
             for i in range(n):
                 yt[i] = y[i] + 0.5 * h * k1[i]
             rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
@@ -924,25 +963,10 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             d0[k] = diag[k]
         stats[2] += 1
         err_prev = 1e-4
-        fresh = True      # diag describes (t, y)
         while t < t1 - 1e-15:
-            if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
-                if nrec < nrec_max:
-                    if not fresh:
-                        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-                        stats[2] += 1
-                        fresh = True
-                    for k in range(NOUT):
-                        rec[nrec, k] = diag[k]
-                    nrec += 1
-                    next_rec += rec_dt
-                else:
-                    next_rec = 1e300
-            hmax = t1 - t
-            if rec_dt > 0 and next_rec < t1 - 1e-12:
-                hmax = min(hmax, max(next_rec - t, 1e-12))
+            nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
             h_prop = h
-            h = min(h, hmax)
+            h = min(h, _step_cap(t, t1, next_rec, rec_dt))
             _quad_stage(dq, 1.0 / 6.0, d0, True)
             for i in range(n):
                 yt[i] = y[i] + 0.5 * h * k1[i]
@@ -961,7 +985,6 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             # the last step's FSAL call also fills the per-ball details (outputs at t1)
             rhs(t + h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
             stats[2] += 4
-            fresh = False
             acc = 0.0
             ok = True
             for i in range(n):
@@ -982,23 +1005,14 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 for i in range(n):
                     y[i] = yt[i]
                     k1[i] = k5[i]
-                fresh = True
                 _quad_step(quad, h, dq, t, diag)
                 for k in range(NOUT):
                     d0[k] = diag[k]
                 stats[0] += 1
-                fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 4.0)) * (max(err_prev, 1e-10) ** (0.4 / 4.0))
-                fac = min(4.0, max(0.2, fac))
-                err_prev = max(err, 1e-4)
-                h = h * fac
-                if h_prop > h and fac >= 1.0:
-                    h = h_prop
+                h, err_prev = _pi_next_step(h, h_prop, err, err_prev, 4.0, 4.0)
             else:
                 stats[1] += 1
-                if not ok:
-                    h *= 0.25
-                else:
-                    h *= max(0.2, 0.9 * err ** (-0.25))
+                h = _rejected_step(h, ok, err, 4.0)
                 if h < 1e-12:
                     stats[4] = 2.0
                     return nrec
@@ -1014,27 +1028,10 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             d0[k] = diag[k]
         stats[2] += 1
         err_prev = 1e-4
-        fresh = True      # diag describes (t, y): the FSAL call of the last accepted step
         while t < t1 - 1e-15:
-            if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
-                if nrec < nrec_max:
-                    if not fresh:    # diag is stale after a rejected step
-                        rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-                        stats[2] += 1
-                        fresh = True
-                    for k in range(NOUT):
-                        rec[nrec, k] = diag[k]
-                    nrec += 1
-                    next_rec += rec_dt
-                else:
-                    # record buffer full: stop recording; a stale next_rec would cap every later step
-                    # at 1e-12 s (a stall)
-                    next_rec = 1e300
-            hmax = t1 - t
-            if rec_dt > 0 and next_rec < t1 - 1e-12:
-                hmax = min(hmax, max(next_rec - t, 1e-12))
+            nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
             h_prop = h
-            h = min(h, hmax)       # a step shortened to hit a record / the interval end ...
+            h = min(h, _step_cap(t, t1, next_rec, rec_dt))
             _quad_stage(dq, 35.0 / 384.0, d0, True)     # Dormand-Prince b = (35/384, 0, 500/1113, ...)
             for i in range(n):
                 yt[i] = y[i] + h * (0.2 * k1[i])
@@ -1062,7 +1059,6 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                                     - 2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i])
             rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
             stats[2] += 6
-            fresh = False
             acc = 0.0
             ok = True
             for i in range(n):
@@ -1084,23 +1080,14 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 for i in range(n):
                     y[i] = y5[i]
                     k1[i] = k7[i]
-                fresh = True
                 _quad_step(quad, h, dq, t, diag)      # diag of the FSAL call rhs(t + h, y5)
                 for k in range(NOUT):
                     d0[k] = diag[k]
                 stats[0] += 1
-                fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 5.0)) * (max(err_prev, 1e-10) ** (0.4 / 5.0))
-                fac = min(5.0, max(0.2, fac))
-                err_prev = max(err, 1e-4)
-                h = h * fac
-                if h_prop > h and fac >= 1.0:
-                    h = h_prop     # ... does not shrink the next one
+                h, err_prev = _pi_next_step(h, h_prop, err, err_prev, 5.0, 5.0)
             else:
                 stats[1] += 1
-                if not ok:
-                    h *= 0.25
-                else:
-                    h *= max(0.2, 0.9 * err ** (-0.2))
+                h = _rejected_step(h, ok, err, 5.0)
                 if h < 1e-12:
                     stats[4] = 2.0
                     return nrec
@@ -1440,17 +1427,8 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
                                   qwy, atol_scale, yt, ft, diag, bd, bd0)
             jac_age = 0
             h_lu = -1.0
-        if t >= next_rec - 1e-12 and t < t1 - 1e-12:   # t1: first record of the next call
-            if nrec < nrec_max:
-                for k in range(NOUT):
-                    rec[nrec, k] = d0[k]        # the channels of the last rhs(t, y) call (f0)
-                nrec += 1
-                next_rec += rec_dt
-            else:
-                next_rec = 1e300                # record buffer full: stop recording (never stall on it)
-        hmax = t1 - t
-        if rec_dt > 0 and next_rec < t1 - 1e-12:
-            hmax = min(hmax, max(next_rec - t, 1e-12))
+        nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
+        hmax = _step_cap(t, t1, next_rec, rec_dt)
         hs = min(h, hmax)
         if hs != h_lu:
             _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs)
