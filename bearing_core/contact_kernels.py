@@ -49,7 +49,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from .hertz import ROW_A_COEF, ROW_B_COEF, ROW_K_LOAD
+from .hertz import hertz_table_coefs
 
 from . import ehl_traction as EHL
 from .jit import hot
@@ -123,22 +123,8 @@ def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
     else:
         alpha = math.atan2(nz, nr)
     if delta > 0.0:
-        # hertz.hertz_lookup_alpha / hertz_lookup (same interpolation in |alpha|, clamped to the grid) with
-        # one index computation, and Q = K delta^1.5, Q^(1/3) = K^(1/3) delta^(1/2) without pow of delta
-        n = table.shape[1]
-        xa = (abs(alpha) - alpha0) / dalpha
-        if not xa > 0.0:
-            j = 0
-            wt = 0.0
-        elif xa >= n - 1:
-            j = n - 2
-            wt = 1.0
-        else:
-            j = int(xa)
-            wt = xa - j
-        K = (1.0 - wt) * table[ROW_K_LOAD, j] + wt * table[ROW_K_LOAD, j + 1]
-        ac = (1.0 - wt) * table[ROW_A_COEF, j] + wt * table[ROW_A_COEF, j + 1]
-        bc = (1.0 - wt) * table[ROW_B_COEF, j] + wt * table[ROW_B_COEF, j + 1]
+        # hertz table at |alpha|, and Q = K delta^1.5, Q^(1/3) = K^(1/3) delta^(1/2) without pow of delta
+        K, ac, bc = hertz_table_coefs(table, alpha0, dalpha, alpha)
         sd = math.sqrt(delta)
         Q = K * delta * sd
         q3 = K ** (1.0 / 3.0) * sd

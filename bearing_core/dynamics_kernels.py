@@ -867,6 +867,35 @@ def _step_cap(t, t1, next_rec, rec_dt):
 
 
 @hot
+def _error_norm(e, y, ynew, atol_scale, rtol):
+    """RMS error norm of the local error estimate e with per-state scales atol_scale[i] + rtol
+    max(|y_i|, |ynew_i|) (a negative atol_scale entry: absolute only, for the unbounded angles); 1e300 if
+    any component is not finite."""
+    n = e.size
+    acc = 0.0
+    for i in range(n):
+        at = atol_scale[i]
+        sc = -at if at < 0.0 else at + rtol * max(abs(y[i]), abs(ynew[i]))
+        q = e[i] / sc
+        if not math.isfinite(q):
+            return 1e300
+        acc += q * q
+    return math.sqrt(acc / n)
+
+
+@hot
+def _accept_fsal(y, ynew, k1, kf, quad, h, dq, t, diag, d0):
+    """Take an accepted explicit step ending at t: y <- ynew, first stage <- the FSAL derivative kf, its
+    integrals added and the end point's channels diag kept in d0."""
+    for i in range(y.size):
+        y[i] = ynew[i]
+        k1[i] = kf[i]
+    _quad_step(quad, h, dq, t, diag)
+    for k in range(NOUT):
+        d0[k] = diag[k]
+
+
+@hot
 def _pi_next_step(h, h_prop, err, err_prev, q, fac_max):
     """Next step after an accepted step h with error norm err (<= 1): PI controller for an order-q error
     estimate (Gustafsson; Hairer & Wanner II, IV.8), growth limited to fac_max; a step shortened to hit a
@@ -905,6 +934,7 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
     nb = int(P[P_NB])
     k1 = np.empty(n); k2 = np.empty(n); k3 = np.empty(n); k4 = np.empty(n)
     yt = np.empty(n)
+    ev = np.empty(n)          # local error estimate of the adaptive methods
     diag = np.empty(NOUT)
     d0 = np.empty(NOUT)       # channels at the accepted point (t, y)
     dq = np.empty(NOUT)       # sum of b_s * channels at the stages of the current step
@@ -985,29 +1015,13 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             # the last step's FSAL call also fills the per-ball details (outputs at t1)
             rhs(t + h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
             stats[2] += 4
-            acc = 0.0
-            ok = True
             for i in range(n):
-                e = h / 6.0 * (k4[i] - k5[i])
-                at = atol_scale[i]
-                if at < 0.0:
-                    sc = -at
-                else:
-                    sc = at + rtol * max(abs(y[i]), abs(yt[i]))
-                q = e / sc
-                if not math.isfinite(q):
-                    ok = False
-                    break
-                acc += q * q
-            err = math.sqrt(acc / n) if ok else 1e300
+                ev[i] = h / 6.0 * (k4[i] - k5[i])
+            err = _error_norm(ev, y, yt, atol_scale, rtol)
+            ok = err < 1e300
             if ok and err <= 1.0:
                 t += h
-                for i in range(n):
-                    y[i] = yt[i]
-                    k1[i] = k5[i]
-                _quad_step(quad, h, dq, t, diag)
-                for k in range(NOUT):
-                    d0[k] = diag[k]
+                _accept_fsal(y, yt, k1, k5, quad, h, dq, t, diag, d0)
                 stats[0] += 1
                 h, err_prev = _pi_next_step(h, h_prop, err, err_prev, 4.0, 4.0)
             else:
@@ -1059,30 +1073,14 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                                     - 2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i])
             rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
             stats[2] += 6
-            acc = 0.0
-            ok = True
             for i in range(n):
-                e = h * (71.0 / 57600.0 * k1[i] - 71.0 / 16695.0 * k3[i] + 71.0 / 1920.0 * k4[i]
-                         - 17253.0 / 339200.0 * k5[i] + 22.0 / 525.0 * k6[i] - 1.0 / 40.0 * k7[i])
-                at = atol_scale[i]
-                if at < 0.0:
-                    sc = -at
-                else:
-                    sc = at + rtol * max(abs(y[i]), abs(y5[i]))
-                q = e / sc
-                if not math.isfinite(q):
-                    ok = False
-                    break
-                acc += q * q
-            err = math.sqrt(acc / n) if ok else 1e300
+                ev[i] = h * (71.0 / 57600.0 * k1[i] - 71.0 / 16695.0 * k3[i] + 71.0 / 1920.0 * k4[i]
+                             - 17253.0 / 339200.0 * k5[i] + 22.0 / 525.0 * k6[i] - 1.0 / 40.0 * k7[i])
+            err = _error_norm(ev, y, y5, atol_scale, rtol)
+            ok = err < 1e300
             if ok and err <= 1.0:
                 t += h
-                for i in range(n):
-                    y[i] = y5[i]
-                    k1[i] = k7[i]
-                _quad_step(quad, h, dq, t, diag)      # diag of the FSAL call rhs(t + h, y5)
-                for k in range(NOUT):
-                    d0[k] = diag[k]
+                _accept_fsal(y, y5, k1, k7, quad, h, dq, t, diag, d0)   # diag of the FSAL call rhs(t + h, y5)
                 stats[0] += 1
                 h, err_prev = _pi_next_step(h, h_prop, err, err_prev, 5.0, 5.0)
             else:

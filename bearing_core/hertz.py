@@ -505,14 +505,11 @@ def hertz_lookup_alpha(table, alpha0, dalpha, alpha, row):
     return (1.0 - w) * table[row, j] + w * table[row, j + 1]
 
 
-@njit(cache=True)
-def hertz_lookup(table, alpha0, dalpha, alpha, Q):
-    """(K_load, a, b, delta, p_max) at contact angle alpha [rad] and load Q [N] from a (8, n) table.
-
-    table = HertzTable.inner or .outer; alpha0, dalpha = HertzTable.alpha0, .dalpha.  Linear
-    interpolation in |alpha|, clamped to [alpha0, alpha0 + (n-1) dalpha]; Q <= 0 gives
-    a = b = delta = p_max = 0.  delta = (Q/K_load)^(2/3), p_max = 3Q/(2 pi a b).
-    """
+@njit(cache=True, inline="always")
+def hertz_table_coefs(table, alpha0, dalpha, alpha):
+    """(K_load, a-coefficient, b-coefficient) at contact angle alpha [rad] from a (8, n) table: linear
+    interpolation in |alpha| with one index computation, clamped to [alpha0, alpha0 + (n-1) dalpha]
+    (NaN goes to the first node). a = a_coef Q^(1/3), b = b_coef Q^(1/3), Q = K_load delta^1.5."""
     n = table.shape[1]
     x = (abs(alpha) - alpha0) / dalpha
     if not x > 0.0:
@@ -527,4 +524,16 @@ def hertz_lookup(table, alpha0, dalpha, alpha, Q):
     KL = (1.0 - w) * table[ROW_K_LOAD, j] + w * table[ROW_K_LOAD, j + 1]
     ac = (1.0 - w) * table[ROW_A_COEF, j] + w * table[ROW_A_COEF, j + 1]
     bc = (1.0 - w) * table[ROW_B_COEF, j] + w * table[ROW_B_COEF, j + 1]
+    return KL, ac, bc
+
+
+@njit(cache=True)
+def hertz_lookup(table, alpha0, dalpha, alpha, Q):
+    """(K_load, a, b, delta, p_max) at contact angle alpha [rad] and load Q [N] from a (8, n) table.
+
+    table = HertzTable.inner or .outer; alpha0, dalpha = HertzTable.alpha0, .dalpha.  Linear
+    interpolation in |alpha|, clamped to [alpha0, alpha0 + (n-1) dalpha]; Q <= 0 gives
+    a = b = delta = p_max = 0.  delta = (Q/K_load)^(2/3), p_max = 3Q/(2 pi a b).
+    """
+    KL, ac, bc = hertz_table_coefs(table, alpha0, dalpha, alpha)
     return _contact_from_coefs_nb(KL, ac, bc, Q)
