@@ -569,3 +569,44 @@ def friction_torque_vs_skf(inputs):
                     out["ratio_skf_above_1000rpm"].append(M / skf)
                 out["case"].append(f"{oil} Fr {Fr:g} N Fa {Fa:g} N {rpm:g} rpm")
     return out
+
+
+@kind
+def power_loss_load_sensitivity(inputs):
+    """Steady power loss [W] of the oil-lubricated quasi-static tribological model (solve_tribo_quasistatic,
+    traction 'lubricated': EHL traction, mixed lubrication, EHL rolling resistance, ball drag; no cage) at
+    each speed under a base axial load Fa, with a radial load Fr added, and with the axial load raised by
+    dFa. Returns the power at the base load per speed, the relative effects of Fr and of dFa on it, their
+    ratio, and whether the operating points lie inside a stated range: N dm [mm rpm] and the largest load
+    over the ISO 76 static rating C0 (friction_models.iso76_static_rating)."""
+    from bearing_core.dynamics import DynamicsOptions
+    from bearing_core.friction_models import iso76_static_rating
+    from bearing_core.geometry import load_preset
+    from bearing_core.quasistatic_tribo import solve_tribo_quasistatic
+    g = load_preset(inputs["bearing"])
+    kw = {}
+    if inputs.get("oil"):
+        kw["oil"] = inputs["oil"]
+    if inputs.get("oil_temperature_C") is not None:
+        kw["oil_temperature"] = inputs["oil_temperature_C"] + 273.15
+    opt = DynamicsOptions(traction="lubricated", integrator="auto", **kw)
+    Fa, Fr, dFa = inputs["Fa_N"], inputs["Fr_N"], inputs["dFa_N"]
+    out = {"speed_rpm": [], "P_base_W": [], "P_radial_W": [], "P_axial_W": [], "radial_effect": [],
+           "axial_effect": [], "abs_radial_over_axial": []}
+    for rpm in inputs["speeds_rpm"]:
+        P = [solve_tribo_quasistatic(g, rpm * RPM, loads, opt).losses["P_drive"]
+             for loads in ((0.0, 0.0, Fa, 0.0, 0.0), (Fr, 0.0, Fa, 0.0, 0.0), (0.0, 0.0, Fa + dFa, 0.0, 0.0))]
+        out["speed_rpm"].append(rpm)
+        out["P_base_W"].append(P[0])
+        out["P_radial_W"].append(P[1])
+        out["P_axial_W"].append(P[2])
+        out["radial_effect"].append(P[1] / P[0] - 1.0)
+        out["axial_effect"].append(P[2] / P[0] - 1.0)
+        out["abs_radial_over_axial"].append(abs(P[1] - P[0]) / (P[2] - P[0]))
+    C0 = iso76_static_rating(g)
+    out["C0_N"] = C0
+    out["max_load_over_C0"] = max(math.hypot(Fr, Fa), Fa + dFa) / C0
+    out["max_ndm_mm_rpm"] = g.dm * 1e3 * max(inputs["speeds_rpm"])
+    out["inside_stated_range"] = bool(out["max_load_over_C0"] <= inputs["max_load_over_C0"]
+                                      and out["max_ndm_mm_rpm"] <= inputs["max_ndm_mm_rpm"])
+    return out
