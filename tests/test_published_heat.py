@@ -28,7 +28,7 @@ def test_radial_load_leaves_power_loss_unchanged_unlike_speed_and_axial_load():
     seed 002 geometry), default oil at 40 degC, Fa = 150 N, at 3000 / 6000 / 12,000 rpm (N dm up to 6.5e5;
     largest load 4.8 % of the ISO 76 C0). Criteria (the paper gives no number; the factor 1/4 is ours): power
     rises with speed and with axial load; the change from adding Fr = 150 N is below a quarter of the change
-    from raising Fa by 150 N. Measured: radial +0.5 / +1.1 / +3.2 %, axial +43 / +40 / +35 %."""
+    from raising Fa by 150 N. Ours: radial +0.5 / +1.1 / +3.2 %, axial +43 / +40 / +35 %."""
     case = _case("lubricants2024-power-loss-radial-load-7008")
     r = run_case(case)
     assert r.status == "PASS", r.judgement
