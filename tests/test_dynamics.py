@@ -75,12 +75,12 @@ def test_combined_load_reactions_and_cage(traction):
 
 def test_power_balance():
     """Energy conservation: drive power + external-load power = dissipated power
-    + d(kinetic + elastic energy)/dt over 0.05 s windows, within 1%. EHL traction (default), explicit
-    adaptive RK4 (measured 0.25 %; the Rosenbrock-W method that 'auto' picks at this low speed closes this
-    heavy combined-load case to ~2 % only, docs/speed.md). The energies are the integrator's own time
-    integrals of the power channels (the method's quadrature over its stages, DynamicModel.integrals), not
-    trapezoids over sampled records, which miss the short pocket-contact power peaks."""
-    m = DynamicModel(load_preset("7218B"), DynamicsOptions(reduced="full", integrator="adaptive-rk4"))
+    + d(kinetic + elastic energy)/dt over 0.05 s windows, within 1%. EHL traction (default), production
+    integrator 'auto' (the Rosenbrock-W method at this low speed; measured 0.5-0.6 %, the explicit adaptive
+    RK4 0.24 %). The energies are the integrator's own time integrals of the power channels (the method's
+    quadrature over its stages, DynamicModel.integrals), not trapezoids over sampled records, which miss the
+    short pocket-contact power peaks."""
+    m = DynamicModel(load_preset("7218B"), DynamicsOptions(reduced="full", integrator="auto"))
     m.initialize(1000.0 * RPM, (1000.0, 0.0, 5000.0, 0.0, 0.0))
     m.advance(0.05)
     diss_k = ("P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_damping", "P_churn_cage",
