@@ -5,6 +5,7 @@ number of points.
                                                  [--workers 1,2] [--json docs/figures/bench_sweep.json]
                                                  [--png docs/figures/bench_sweep.png]
     PYTHONPATH=$PWD python bench/bench_sweep.py --plot-only docs/figures/bench_sweep.json --png FILE
+    PYTHONPATH=$PWD python bench/bench_sweep.py --batch [--models dynamic] [--sizes 16] [--batch-json FILE]
 
 Per model and worker count: one LocalCluster of single-threaded processes (its start-up is timed apart), one
 warm-up sweep (workers import bearing_core and load the compiled kernels), then sweeps of N points (no cache),
@@ -12,6 +13,15 @@ each point solved from scratch. Points: 7008-ma2023, speeds evenly spaced over 3
 lubricated traction with ball drag (oil fraction 0.5). Reported: wall time, points per minute, the mean cost of
 one point inside the worker (eval_wall_s) and the per-point overhead (wall x workers / N - mean point cost). The
 load average is printed: on a shared machine other processes take cores from the workers.
+
+--batch: per-point tasks against batched tasks (sweep.run_sweep batch_size / threads_per_worker), points per wall
+second, in one run: 'per-point' (2 single-threaded workers, one task per point, as before batching), 'batched'
+(2 single-threaded workers, automatic batches), 'batched-threads' (1 worker whose batches advance their points
+on 2 threads with dynamics.advance_many). The 'dynamic' model on 7008-ma2023 at --sizes points (3000-12,000 rpm,
+Fz 300-900 N, lubricated; windows of 0.01 s, 0.03 s simulated, steadiness off so every point costs the same
+simulated time); 'quasistatic' and 'tribo' as in the scaling run. The results of all configurations are checked
+equal. Control (the machine may be shared): bench_batch.free_cores, a trivial nogil numba loop alone and in two
+threads at once, before and after; it gives the cores this run actually had.
 """
 from __future__ import annotations
 
@@ -34,10 +44,15 @@ def main():
     ap.add_argument("--json", default=None)
     ap.add_argument("--png", default=None, help="plot of wall time against points")
     ap.add_argument("--plot-only", default=None, metavar="JSON", help="only plot a previous run's JSON")
+    ap.add_argument("--batch", action="store_true", help="per-point against batched tasks (see above)")
+    ap.add_argument("--batch-json", default=None, help="--batch: write the rows here")
     a = ap.parse_args()
     if a.plot_only:
         plot(json.loads(Path(a.plot_only).read_text())["rows"], a.png)
         return
+    if a.batch:
+        return batch_compare(a.models if a.models != "quasistatic,tribo" else "dynamic",
+                             [int(s) for s in a.sizes.split(",")] if a.sizes != "8,16,32,64" else [16], a.batch_json)
     from distributed import Client, LocalCluster
     import numpy as np
     from bearing_core import sweep as S
@@ -73,6 +88,72 @@ def main():
         Path(a.json).write_text(json.dumps({"machine": f"{os.cpu_count()} CPUs", "rows": rows}, indent=1))
     if a.png:
         plot(rows, a.png)
+
+
+BATCH_CONFIGS = (("per-point", 2, 1, 1), ("batched", 2, 1, None), ("batched-threads", 1, 2, None))  # workers, threads, batch
+
+
+def batch_compare(models: str, sizes, json_path=None):
+    """Points per wall second of per-point and batched tasks (BATCH_CONFIGS), with the free-core control."""
+    from distributed import Client, LocalCluster
+    import numpy as np
+    import pandas as pd
+    from bearing_core import sweep as S
+    sys.path.insert(0, str(ROOT / "bench"))
+    from bench_batch import free_cores
+
+    def spec(model, n):
+        if model == "dynamic":
+            rpm = np.linspace(3000.0, 12000.0, n).tolist()
+            pts = [{"speed_rpm": r, "fz_N": 300.0 + 300.0 * (k % 3)} for k, r in enumerate(rpm)]
+            return S.SweepSpec(model=model, base={"bearing": "7008-ma2023"}, points_list=pts,
+                               options={"window_s": 0.01, "max_time_s": 0.03, "steady_tol": 1e-8,
+                                        "torque_tol": 1e-8})
+        base = {"bearing": "7008-ma2023", "preload_N": 100.0}
+        if model != "quasistatic":
+            base.update(traction="lubricated", oil_fraction=0.5)
+        return S.SweepSpec(model=model, base=base, grid={"speed_rpm": np.linspace(3000, 18000, n).tolist()})
+
+    c0 = free_cores(2)
+    print(f"control before: {c0:.2f} of 2 cores free (load {os.getloadavg()[0]:.1f})", flush=True)
+    rows, ref = [], {}
+    for model in models.split(","):
+        for name, nw, th, bs in BATCH_CONFIGS:
+            t0 = time.perf_counter()
+            with LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, dashboard_address=":0",
+                              host="127.0.0.1") as cl, Client(cl) as c:
+                t_start = time.perf_counter() - t0
+                S.run_sweep(spec(model, 2 * nw * th), client=c, progress=False, batch_size=bs,
+                            threads_per_worker=th)                    # warm-up: kernels loaded in every worker
+                for n in sizes:
+                    sp = spec(model, n)
+                    la = os.getloadavg()[0]
+                    t1 = time.perf_counter()
+                    df = S.run_sweep(sp, client=c, progress=False, batch_size=bs, threads_per_worker=th)
+                    wall = time.perf_counter() - t1
+                    vals = df.drop(columns=["eval_wall_s", "cached"])
+                    if (model, n) in ref:
+                        pd.testing.assert_frame_equal(ref[(model, n)], vals, check_exact=True)
+                    ref.setdefault((model, n), vals)
+                    r = {"model": model, "config": name, "workers": nw, "threads_per_worker": th,
+                         "batch_size": bs or S.auto_batch_size(n, nw, th), "points": n, "wall_s": wall,
+                         "points_per_s": n / wall, "failed": int((df["status"] != "ok").sum()),
+                         "cluster_start_s": t_start, "loadavg_1min": la}
+                    rows.append(r)
+                    print(f"{model:12s} {name:16s} workers {nw} x {th} threads, batch {r['batch_size']:3d}  N {n:4d}  "
+                          f"wall {wall:7.2f} s  {r['points_per_s']:7.2f} pt/s  (load {la:.1f})", flush=True)
+    c1 = free_cores(2)
+    print(f"control after: {c1:.2f} of 2 cores free (load {os.getloadavg()[0]:.1f})", flush=True)
+    for model in models.split(","):
+        for n in sizes:
+            rr = {r["config"]: r for r in rows if r["model"] == model and r["points"] == n}
+            base = rr["per-point"]["points_per_s"]
+            print(f"{model} N {n}: " + ", ".join(f"{k} {v['points_per_s'] / base:.2f}x" for k, v in rr.items()))
+    out = {"machine": f"{os.cpu_count()} CPUs", "control_free_cores_before": c0, "control_free_cores_after": c1,
+           "results_identical_across_configs": True, "rows": rows}
+    if json_path:
+        Path(json_path).write_text(json.dumps(out, indent=1))
+    return out
 
 
 def plot(rows, path):
