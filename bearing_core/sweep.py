@@ -386,6 +386,7 @@ class Evaluator:
     uses: tuple = ()
     min_speed_rpm = 0.0
     option_names: tuple = ()
+    threaded_batch = False      # True: run_batch advances its points on several threads (dynamics.advance_many)
 
     def validate_options(self, options: dict):
         pass
@@ -490,6 +491,11 @@ class DynamicWindow(Evaluator):
     min_speed_rpm = 10.0
     option_names = ("window_s", "max_time_s", "steady_tol", "torque_tol", "start", "integrator", "rtol")
 
+    @property
+    def threaded_batch(self) -> bool:
+        """True unless a subclass evaluates its points another way (its own __call__, e.g. the FMU)."""
+        return type(self).__call__ is DynamicWindow.__call__
+
     def validate_options(self, o):
         from .errors import check_range
         check_range("window_s", o.get("window_s", 0.02), 1e-3, 10.0, unit="s")
@@ -517,6 +523,8 @@ class DynamicWindow(Evaluator):
         with dynamics.advance_many (``threads`` threads; bit-identical to advancing one model at a time),
         so every point sees exactly the calls of __call__. A point whose start or integration raises is
         reported as that exception; the others go on."""
+        if not self.threaded_batch:
+            return super().run_batch(points, options, threads)
         from .dynamics import advance_many
         runs = []
         for p in points:
@@ -600,6 +608,11 @@ class ProfileEvaluator(Evaluator):
     uses = _COMMON + _TRIBO + _CAGE
     option_names = ("profile", "start", "integrator", "rtol", "record_dt")
 
+    @property
+    def threaded_batch(self) -> bool:
+        """True unless a subclass evaluates its points another way (its own __call__, e.g. the FMU)."""
+        return type(self).__call__ is ProfileEvaluator.__call__
+
     def validate_options(self, o):
         from .dynamics import read_profile
         t, n, loads = read_profile(o.get("profile", "seed000"))
@@ -624,6 +637,8 @@ class ProfileEvaluator(Evaluator):
         dynamics.advance_many (``threads`` threads) with the calls of dynamics.simulate_profile (the same end
         time and end speed of each segment, the ring growth updated after it), so the records are those of
         __call__. A point whose start or integration raises is reported as that exception."""
+        if not self.threaded_batch:
+            return super().run_batch(points, options, threads)
         from .dynamics import advance_many
         from . import dynamics_kernels as K
         models, errors, recs, prof = [], [None] * len(points), [[] for _ in points], None
@@ -901,7 +916,9 @@ def run_sweep(spec: SweepSpec, cache_dir=None, scheduler=None, workers=None, cli
     batch_size: points per Dask task (None: auto_batch_size; 1: one task per point, run_point). The
     dynamic and profile models advance the points of a batch together with dynamics.advance_many on
     threads_per_worker threads (the results are those of one point at a time, bit for bit); the new local
-    cluster then gets CPUs / threads_per_worker worker processes unless ``workers`` is given."""
+    cluster then gets CPUs / threads_per_worker worker processes unless ``workers`` is given. The other
+    models evaluate a batch point after point (threads_per_worker is ignored: their Python/SciPy solvers hold
+    the GIL), so for them batching only saves the per-task overhead."""
     import pandas as pd
     from .errors import check_range
     for nm, v, hi in (("batch_size", batch_size, 100000), ("threads_per_worker", threads_per_worker, 512)):
@@ -917,6 +934,8 @@ def run_sweep(spec: SweepSpec, cache_dir=None, scheduler=None, workers=None, cli
     opts = dict(spec.options)
     skid = (float(skid[0]), float(skid[1]))
     keys = [point_key(p, spec.model, dict(opts, skid=list(skid)), version) for p in pts]
+    if not get_evaluator(spec.model).threaded_batch:
+        threads_per_worker = 1      # its batches run point after point: the workers are the parallelism
     with _Cluster(scheduler, workers, client, threads_per_worker) as cl:
         if batch_size == 1:
             tasks = [(k, run_point, (spec.model, opts, p, skid)) for k, p in zip(keys, pts)]
