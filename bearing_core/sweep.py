@@ -505,10 +505,9 @@ class DynamicWindow(Evaluator):
         if o.get("start", "jones-harris") not in ("jones-harris", "tribological"):
             raise BearingInputError("start", o.get("start"), "jones-harris | tribological")
 
-    def _start(self, point, options):
-        """The point's initialised model and its window settings."""
-        from .dynamics import DynamicModel
-        m = DynamicModel(resolve_geometry(point), dynamics_options(point, options))
+    def _start(self, point, options, models=None):
+        """The point's initialised model and its window settings (models: see _new_model)."""
+        m = _new_model(point, options, models)
         m.initialize(point["speed_rpm"] * RPM, point_loads(point), start=options.get("start", "jones-harris"))
         return _WindowRun(m, options)
 
@@ -526,10 +525,10 @@ class DynamicWindow(Evaluator):
         if not self.threaded_batch:
             return super().run_batch(points, options, threads)
         from .dynamics import advance_many
-        runs = []
+        runs, models = [], {}
         for p in points:
             try:
-                runs.append(self._start(p, options))
+                runs.append(self._start(p, options, models))
             except Exception as e:
                 runs.append(e)
         active = [r for r in runs if isinstance(r, _WindowRun) and not r.done]
@@ -555,6 +554,25 @@ class DynamicWindow(Evaluator):
             except Exception as e:
                 out.append(e)
         return out
+
+
+_MODEL_KEYS = ("bearing", "pocket_clearance_mm", "land_clearance_mm") + _TRIBO + ("mu_cage",)
+
+
+def _new_model(point, options, models=None):
+    """A new (not initialised) DynamicModel of the point. models: a dict shared by the points of a batch:
+    the first point of each bearing and model options (the variables _MODEL_KEYS; the sweep options are
+    the batch's) constructs the model, the others get a copy of it (copy.deepcopy of the un-initialised
+    model: the same object as a new construction, without rebuilding its Hertz tables; the batch test holds
+    the results equal bit for bit)."""
+    import copy
+    from .dynamics import DynamicModel
+    if models is None:
+        return DynamicModel(resolve_geometry(point), dynamics_options(point, options))
+    key = tuple("nan" if isinstance(point[k], float) and math.isnan(point[k]) else point[k] for k in _MODEL_KEYS)
+    if key not in models:
+        models[key] = DynamicModel(resolve_geometry(point), dynamics_options(point, options))
+    return copy.deepcopy(models[key])
 
 
 class _WindowRun:
@@ -619,11 +637,12 @@ class ProfileEvaluator(Evaluator):
         if loads:
             raise BearingInputError("profile", o.get("profile"), "time_s, speed_rpm only (loads are sweep variables)")
 
-    def _start(self, point, options):
-        """The point's model initialised at the profile's first speed, and the profile (t [s], speed [rpm])."""
-        from .dynamics import DynamicModel, read_profile
+    def _start(self, point, options, models=None):
+        """The point's model initialised at the profile's first speed, and the profile (t [s], speed [rpm])
+        (models: see _new_model)."""
+        from .dynamics import read_profile
         t, n, _ = read_profile(options.get("profile", "seed000"))
-        m = DynamicModel(resolve_geometry(point), dynamics_options(point, options))
+        m = _new_model(point, options, models)
         m.initialize(n[0] * RPM, point_loads(point), t0=float(t[0]), start=options.get("start", "jones-harris"))
         return m, list(zip(t.tolist(), n.tolist()))
 
@@ -641,10 +660,10 @@ class ProfileEvaluator(Evaluator):
             return super().run_batch(points, options, threads)
         from .dynamics import advance_many
         from . import dynamics_kernels as K
-        models, errors, recs, prof = [], [None] * len(points), [[] for _ in points], None
+        models, errors, recs, prof, built = [], [None] * len(points), [[] for _ in points], None, {}
         for i, p in enumerate(points):
             try:
-                m, prof = self._start(p, options)
+                m, prof = self._start(p, options, built)
                 models.append(m)
             except Exception as e:
                 models.append(None)
@@ -854,8 +873,8 @@ def _run_tasks(tasks, cache_dir, client, retries, progress, desc):
 
 def _run_batches(keys, points, model, opts, skid, cache_dir, client, retries, progress, desc, batch_size,
                  threads):
-    """Like _run_tasks for the points of a sweep, but batch_size points per task (run_point_batch; None:
-    auto_batch_size from the points left and the cluster's task slots). Cached points are read first and
+    """Like _run_tasks for the points of a sweep, but batch_size points per task (at most; run_point_batch;
+    None: auto_batch_size from the points left and the cluster's task slots). Cached points are read first and
     only the rest is batched; each arriving batch is written to the cache point by point. A batch task that
     fails as a whole (e.g. its workers kept dying) marks its points failed. Returns (results in point
     order, number computed)."""
@@ -877,7 +896,10 @@ def _run_batches(keys, points, model, opts, skid, cache_dir, client, retries, pr
         if batch_size is None:
             slots = sum(w.get("nthreads", 1) for w in client.scheduler_info()["workers"].values()) or 1
             batch_size = auto_batch_size(len(todo), slots, threads)
-        groups = [todo[k:k + batch_size] for k in range(0, len(todo), batch_size)]
+        # strided: batch k holds points k, k + nb, ... so that neighbouring points of a grid, which usually
+        # cost alike (the same speed region), spread over the batches and the batches cost alike
+        nb = math.ceil(len(todo) / batch_size)
+        groups = [todo[k::nb] for k in range(nb)]
         futs = {}
         for g in groups:
             fut = client.submit(run_point_batch, model, opts, [points[i] for i in g], skid, threads,

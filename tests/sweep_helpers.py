@@ -35,10 +35,10 @@ class FailingDynamic(DynamicWindow):
     model's second advance raises) for fz_N = FAIL_ADVANCE_FZ_N."""
     name = "failing-dynamic"
 
-    def _start(self, point, options):
+    def _start(self, point, options, models=None):
         if point["fz_N"] == FAIL_FZ_N:
             raise RuntimeError(f"deliberate failure at fz_N = {FAIL_FZ_N}")
-        run = super()._start(point, options)
+        run = super()._start(point, options, models)
         if point["fz_N"] == FAIL_ADVANCE_FZ_N:
             m, advance = run.m, run.m.advance
 
