@@ -43,20 +43,24 @@ def _spin(n):
     return s
 
 
-def free_cores(threads: int, n: int = 60_000_000) -> float:
-    """Cores the process got: threads x (time of one loop alone) / (time of `threads` loops at once)."""
+def free_cores(threads: int, n: int = 30_000_000, repeats: int = 3) -> float:
+    """Cores the process got: threads x (time of one loop alone) / (time of `threads` loops at once), the
+    median of `repeats` alternations."""
+    import statistics
     _spin(1000)
-    t0 = time.perf_counter()
-    _spin(n)
-    t1 = time.perf_counter() - t0
-    ths = [threading.Thread(target=_spin, args=(n,)) for _ in range(threads)]
-    t0 = time.perf_counter()
-    for t in ths:
-        t.start()
-    for t in ths:
-        t.join()
-    tn = time.perf_counter() - t0
-    return threads * t1 / tn
+    out = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        _spin(n)
+        t1 = time.perf_counter() - t0
+        ths = [threading.Thread(target=_spin, args=(n,)) for _ in range(threads)]
+        t0 = time.perf_counter()
+        for t in ths:
+            t.start()
+        for t in ths:
+            t.join()
+        out.append(threads * t1 / (time.perf_counter() - t0))
+    return statistics.median(out)
 
 
 def _models(n):
