@@ -556,20 +556,20 @@ class DynamicWindow(Evaluator):
         return out
 
 
-_MODEL_KEYS = ("bearing", "pocket_clearance_mm", "land_clearance_mm") + _TRIBO + ("mu_cage",)
+_START_VARIABLES = ("speed_rpm",) + LOAD_VARIABLES     # enter DynamicModel.initialize only, not the model
 
 
 def _new_model(point, options, models=None):
     """A new (not initialised) DynamicModel of the point. models: a dict shared by the points of a batch:
-    the first point of each bearing and model options (the variables _MODEL_KEYS; the sweep options are
-    the batch's) constructs the model, the others get a copy of it (copy.deepcopy of the un-initialised
-    model: the same object as a new construction, without rebuilding its Hertz tables; the batch test holds
-    the results equal bit for bit)."""
+    the first point of each combination of the variables other than speed and loads (bearing, clearances,
+    oil, traction, friction; the sweep options are the batch's) constructs the model, the others get a copy
+    of it (copy.deepcopy of the un-initialised model: the same object as a new construction, without
+    rebuilding its Hertz tables; the batch test holds the results equal bit for bit)."""
     import copy
     from .dynamics import DynamicModel
     if models is None:
         return DynamicModel(resolve_geometry(point), dynamics_options(point, options))
-    key = tuple("nan" if isinstance(point[k], float) and math.isnan(point[k]) else point[k] for k in _MODEL_KEYS)
+    key = json.dumps(_canonical({k: v for k, v in point.items() if k not in _START_VARIABLES}), sort_keys=True)
     if key not in models:
         models[key] = DynamicModel(resolve_geometry(point), dynamics_options(point, options))
     return copy.deepcopy(models[key])

@@ -320,28 +320,31 @@ def test_profile_model_ends_where_the_dynamic_window_settles(client2, tmp_path):
 
 
 def test_batched_dynamic_and_profile_sweeps_equal_one_point_per_task(client2, tmp_path):
-    """The dynamic model (three 2 ms windows) over speed x Fz on 7008-ma2023, one point per task against batches
-    of 3 points advanced together on 2 threads (dynamics.advance_many) and the automatic batching: identical
-    tables (bit for bit). In the same batches one point fails at its start and one inside the integration: both
-    are reported for that point only, the others complete. The profile model likewise (two points, tiny
-    profile). Batched results go to the cache point by point, and a re-run computes nothing."""
+    """The dynamic model (three 2 ms windows) over speed x oil temperature x Fz on 7008-ma2023, one point per
+    task against batches of 3 points advanced together on 2 threads (dynamics.advance_many; a batch constructs
+    one model per oil temperature and copies it) and the automatic batching: identical tables (bit for bit). In
+    the same batches one point fails at its start and one inside the integration: both are reported for that
+    point only, the others complete. The profile model likewise (two points, tiny profile). Batched results go
+    to the cache point by point, and a re-run computes only the failed points."""
     from sweep_helpers import FAIL_ADVANCE_FZ_N, FAIL_FZ_N
     spec = S.SweepSpec(model="sweep_helpers:FailingDynamic", base={"bearing": BEARING},
-                       grid={"speed_rpm": [3000.0, 6000.0], "fz_N": [300.0, FAIL_FZ_N, FAIL_ADVANCE_FZ_N]},
+                       grid={"speed_rpm": [3000.0, 6000.0], "oil_temperature_C": [40.0, 80.0],
+                             "fz_N": [300.0, FAIL_FZ_N, FAIL_ADVANCE_FZ_N]},
                        options={"window_s": 0.002, "max_time_s": 0.006})
     one = S.run_sweep(spec, client=client2, progress=False, batch_size=1)
     cache = tmp_path / "cache"
     three = S.run_sweep(spec, client=client2, progress=False, batch_size=3, threads_per_worker=2, cache_dir=cache)
     auto = S.run_sweep(spec, client=client2, progress=False, threads_per_worker=2)
-    assert list(one["status"]) == ["ok", "failed", "failed"] * 2
+    assert list(one["status"]) == ["ok", "failed", "failed"] * 4
     assert all("deliberate failure at fz_N" in e for e in one["error"][1::3])
     assert all("FloatingPointError: deliberate failure in the integration" in e for e in one["error"][2::3])
     assert (one["cage_speed_rpm"][::3] > 0).all() and one["settle_time_s"][0] == pytest.approx(0.006)
+    assert one["friction_torque_Nm"][0] != one["friction_torque_Nm"][3]        # the oil temperature matters
     pd.testing.assert_frame_equal(_values(one), _values(three), check_exact=True)
     pd.testing.assert_frame_equal(_values(one), _values(auto), check_exact=True)
-    assert three.attrs["computed"] == 6 and len(list(cache.glob("*.json"))) == 2     # failed points not cached
+    assert three.attrs["computed"] == 12 and len(list(cache.glob("*.json"))) == 4    # failed points not cached
     again = S.run_sweep(spec, client=client2, progress=False, batch_size=3, threads_per_worker=2, cache_dir=cache)
-    assert again.attrs["computed"] == 4 and again["cached"].sum() == 2
+    assert again.attrs["computed"] == 8 and again["cached"].sum() == 4
     pd.testing.assert_frame_equal(_values(one), _values(again), check_exact=True)
 
     prof = tmp_path / "profile.csv"
