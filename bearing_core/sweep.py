@@ -37,7 +37,9 @@ import hashlib
 import itertools
 import json
 import math
+import threading
 import time
+import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -394,16 +396,19 @@ class Evaluator:
     def __call__(self, point: dict, options: dict) -> dict:
         raise NotImplementedError
 
-    def run_batch(self, points: list, options: dict, threads: int = 1) -> list:
+    def run_batch(self, points: list, options: dict, threads: int = 1, on_done=None) -> list:
         """Evaluate several points in this process; per point its outputs or the exception it raised (one
         failing point never stops the others). Default: one point after the other; the dynamic evaluators
-        advance their points together (dynamics.advance_many, ``threads`` threads)."""
+        advance their points together (dynamics.advance_many, ``threads`` threads). on_done(k), if given, is
+        called when point k is finished (progress)."""
         out = []
-        for p in points:
+        for k, p in enumerate(points):
             try:
                 out.append(self(p, options))
             except Exception as e:      # recorded for this point
                 out.append(e)
+            if on_done is not None:
+                on_done(k)
         return out
 
 
@@ -517,13 +522,13 @@ class DynamicWindow(Evaluator):
             r.take(r.m.advance(r.next_t(), record_dt=r.rdt))
         return r.outputs()
 
-    def run_batch(self, points, options, threads=1):
+    def run_batch(self, points, options, threads=1, on_done=None):
         """All points' windows advanced together: each round advances every unfinished model by one window
         with dynamics.advance_many (``threads`` threads; bit-identical to advancing one model at a time),
         so every point sees exactly the calls of __call__. A point whose start or integration raises is
-        reported as that exception; the others go on."""
+        reported as that exception; the others go on. on_done(k): point k finished (progress)."""
         if not self.threaded_batch:
-            return super().run_batch(points, options, threads)
+            return super().run_batch(points, options, threads, on_done)
         from .dynamics import advance_many
         runs, models = [], {}
         for p in points:
@@ -531,6 +536,16 @@ class DynamicWindow(Evaluator):
                 runs.append(self._start(p, options, models))
             except Exception as e:
                 runs.append(e)
+        pending = set(range(len(runs)))
+
+        def report():
+            for k in sorted(pending):
+                r = runs[k]
+                if isinstance(r, Exception) or r.error is not None or r.done:
+                    pending.discard(k)
+                    if on_done is not None:
+                        on_done(k)
+        report()
         active = [r for r in runs if isinstance(r, _WindowRun) and not r.done]
         while active:
             recs = advance_many([r.m for r in active], [r.next_t() for r in active], record_dt=active[0].rdt,
@@ -544,6 +559,7 @@ class DynamicWindow(Evaluator):
                     except Exception as e:
                         r.error = e
             active = [r for r in active if r.error is None and not r.done]
+            report()
         out = []
         for r in runs:
             if isinstance(r, Exception) or r.error is not None:
@@ -651,13 +667,14 @@ class ProfileEvaluator(Evaluator):
         m, prof = self._start(point, options)
         return self._outputs(simulate_profile(m, prof, record_dt=options.get("record_dt", 1e-3)))
 
-    def run_batch(self, points, options, threads=1):
+    def run_batch(self, points, options, threads=1, on_done=None):
         """All points driven through the profile together: segment by segment, every model advanced with
         dynamics.advance_many (``threads`` threads) with the calls of dynamics.simulate_profile (the same end
         time and end speed of each segment, the ring growth updated after it), so the records are those of
-        __call__. A point whose start or integration raises is reported as that exception."""
+        __call__. A point whose start or integration raises is reported as that exception. (on_done is not
+        called: the points finish together, with the batch.)"""
         if not self.threaded_batch:
-            return super().run_batch(points, options, threads)
+            return super().run_batch(points, options, threads, on_done)
         from .dynamics import advance_many
         from . import dynamics_kernels as K
         models, errors, recs, prof, built = [], [None] * len(points), [[] for _ in points], None, {}
@@ -756,13 +773,24 @@ def run_point(model: str, options: dict, point: dict, skid: tuple = (0.05, 0.05)
     return out
 
 
-def run_point_batch(model: str, options: dict, points: list, skid: tuple = (0.05, 0.05), threads: int = 1) -> list:
+def run_point_batch(model: str, options: dict, points: list, skid: tuple = (0.05, 0.05), threads: int = 1,
+                    progress=None) -> list:
     """Evaluate a batch of points in one task (Evaluator.run_batch: the dynamic models advance them together
     on ``threads`` threads); never raises for a model error: per point the dict of run_point. eval_wall_s
-    of each point is the batch's wall time divided by its number of points (the points share the time)."""
+    of each point is the batch's wall time divided by its number of points (the points share the time).
+    progress: (topic, tag): on a Dask worker, each finished point is logged as the event (tag, k) on topic
+    (the client's progress bar follows the points inside the batch)."""
+    on_done = None
+    if progress is not None:
+        try:
+            from distributed import get_worker
+            worker, (topic, tag) = get_worker(), progress
+            on_done = lambda k: worker.log_event(topic, (tag, k))  # noqa: E731
+        except Exception:       # not on a worker: no events (the batch's result reports its points)
+            on_done = None
     t0 = time.perf_counter()
     try:
-        res = get_evaluator(model).run_batch(list(points), options, threads=max(1, int(threads)))
+        res = get_evaluator(model).run_batch(list(points), options, threads=max(1, int(threads)), on_done=on_done)
     except Exception as e:      # the evaluator itself failed: every point of the batch
         res = [e] * len(points)
     share = (time.perf_counter() - t0) / max(len(points), 1)
@@ -892,6 +920,22 @@ def _run_batches(keys, points, model, opts, skid, cache_dir, client, retries, pr
         todo.append(i)
     bar = _progress(len(points), len(points) - len(todo), progress, desc)
     failed = 0
+    lock, seen, closed = threading.Lock(), {}, set()       # per batch tag: points reported by events
+    topic = f"bearing-sweep-progress-{uuid.uuid4().hex}" if progress else None
+
+    def on_event(event):        # (time, (tag, k)) from run_point_batch, on the client's event-loop thread
+        tag = event[1][0]
+        with lock:
+            if tag in closed or seen.get(tag, 0) >= sizes.get(tag, 0):
+                return
+            seen[tag] = seen.get(tag, 0) + 1
+            bar.update(1)
+    sizes = {}
+    if todo and topic:
+        try:
+            client.subscribe_topic(topic, on_event)
+        except Exception:       # a scheduler without events: the bar advances per batch
+            topic = None
     if todo:
         if batch_size is None:
             slots = sum(w.get("nthreads", 1) for w in client.scheduler_info()["workers"].values()) or 1
@@ -902,27 +946,38 @@ def _run_batches(keys, points, model, opts, skid, cache_dir, client, retries, pr
         groups = [todo[k::nb] for k in range(nb)]
         futs = {}
         for g in groups:
+            sizes[g[0]] = len(g)
             fut = client.submit(run_point_batch, model, opts, [points[i] for i in g], skid, threads,
+                                (topic, g[0]) if topic else None,
                                 key=f"bearing-sweep-batch-{keys[g[0]][:24]}-{g[0]}-{len(g)}", retries=retries,
                                 pure=False)
             futs[fut] = g
-        for fut in as_completed(list(futs)):
-            g = futs[fut]
-            try:
-                rs = fut.result()
-            except Exception as e:   # the task itself failed: recorded for each of its points
-                rs = [{"status": "failed", "error": f"{type(e).__name__}: {e}"}] * len(g)
-            for i, r in zip(g, rs):
-                r = dict(r, cached=False)
-                results[i] = r
-                if r.get("status") == "ok" and cache_dir:
-                    tmp = cache_dir / f".{keys[i]}.tmp"
-                    tmp.write_text(json.dumps({k: v for k, v in r.items() if k != "cached"}))
-                    tmp.replace(cache_dir / f"{keys[i]}.json")
-                failed += r.get("status") == "failed"
-            bar.set_postfix(failed=failed, refresh=False)
-            bar.update(len(g))
-            fut.release()
+        try:
+            for fut in as_completed(list(futs)):
+                g = futs[fut]
+                try:
+                    rs = fut.result()
+                except Exception as e:   # the task itself failed: recorded for each of its points
+                    rs = [{"status": "failed", "error": f"{type(e).__name__}: {e}"}] * len(g)
+                for i, r in zip(g, rs):
+                    r = dict(r, cached=False)
+                    results[i] = r
+                    if r.get("status") == "ok" and cache_dir:
+                        tmp = cache_dir / f".{keys[i]}.tmp"
+                        tmp.write_text(json.dumps({k: v for k, v in r.items() if k != "cached"}))
+                        tmp.replace(cache_dir / f"{keys[i]}.json")
+                    failed += r.get("status") == "failed"
+                with lock:
+                    closed.add(g[0])
+                    bar.set_postfix(failed=failed, refresh=False)
+                    bar.update(len(g) - min(seen.get(g[0], 0), len(g)))
+                fut.release()
+        finally:
+            if topic:
+                try:
+                    client.unsubscribe_topic(topic)
+                except Exception:
+                    pass
     bar.close()
     return results, len(todo)
 

@@ -357,6 +357,32 @@ def test_batched_dynamic_and_profile_sweeps_equal_one_point_per_task(client2, tm
     pd.testing.assert_frame_equal(_values(p1), _values(p2), check_exact=True)
 
 
+def test_batch_progress_reports_each_point_when_it_finishes(client2, capsys):
+    """Inside a batch of the dynamic model each point is reported when it finishes: the point failing at its start
+    first, the one failing in its second window next, the two that run all three windows last; the sweep's progress
+    bar follows these events and ends at the number of points."""
+    from sweep_helpers import FAIL_ADVANCE_FZ_N, FAIL_FZ_N
+    spec = S.SweepSpec(model="sweep_helpers:FailingDynamic", base={"bearing": BEARING, "speed_rpm": 4000.0},
+                       grid={"fz_N": [300.0, FAIL_ADVANCE_FZ_N, FAIL_FZ_N, 600.0]},
+                       options={"window_s": 0.002, "max_time_s": 0.006})
+    events = []
+    client2.subscribe_topic("test-batch-progress", lambda ev: events.append(ev[1]))
+    try:
+        res = client2.submit(S.run_point_batch, spec.model, spec.options, spec.points(), (0.05, 0.05), 2,
+                             ("test-batch-progress", 7), pure=False).result()
+        t0 = time.time()
+        while len(events) < 4 and time.time() - t0 < 10:
+            time.sleep(0.05)
+    finally:
+        client2.unsubscribe_topic("test-batch-progress")
+    assert [r["status"] for r in res] == ["ok", "failed", "failed", "ok"]
+    assert [e[0] for e in events] == [7] * 4
+    assert [e[1] for e in events[:2]] == [2, 1] and sorted(e[1] for e in events[2:]) == [0, 3]
+    df = S.run_sweep(spec, client=client2, progress=True, batch_size=4, threads_per_worker=2)
+    assert list(df["status"]) == ["ok", "failed", "failed", "ok"]
+    assert "4/4" in capsys.readouterr().err
+
+
 def test_automatic_batch_size():
     """About four tasks per task slot, at least one point per advance_many thread, at most MAX_AUTO_BATCH, never
     more points than there are; a bad batch size or thread count is refused before any work."""
