@@ -139,7 +139,8 @@ def main(argv=None):
     if a.json:
         print(json.dumps(out, indent=1))
     else:
-        print(f"control: {c0:.2f} / {c1:.2f} of {a.workers} cores free (before / after); load {out['loadavg_1min']:.1f}")
+        print(f"control: {c0:.2f} / {c1:.2f} of {a.workers} cores free (before / after); "
+              f"load {out['loadavg_1min']:.1f}")
         print(f"advance_many: {a.points} points x {a.t_sim:g} s: one after the other {w_seq:.2f} s, "
               f"{a.workers} threads {w_par:.2f} s: {w_seq / w_par:.2f}x (identical: {same})")
         print(f"sweep batch (dynamic): one at a time {w_one:.2f} s, batch {w_bat:.2f} s: {w_one / w_bat:.2f}x "

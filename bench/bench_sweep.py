@@ -9,20 +9,22 @@ number of points.
 
 Per model and worker count: one LocalCluster of single-threaded processes (its start-up is timed apart), one
 warm-up sweep (workers import bearing_core and load the compiled kernels), then sweeps of N points (no cache),
-one task per point (batch_size=1; --batch compares batched tasks), each point solved from scratch. Points: 7008-ma2023, speeds evenly spaced over 3000-18,000 rpm, preload 100 N,
-lubricated traction with ball drag (oil fraction 0.5). Reported: wall time, points per minute, the mean cost of
-one point inside the worker (eval_wall_s) and the per-point overhead (wall x workers / N - mean point cost). The
-load average is printed: on a shared machine other processes take cores from the workers.
+one task per point (batch_size=1; --batch compares batched tasks), each point solved from scratch. Points:
+7008-ma2023, speeds evenly spaced over 3000-18,000 rpm, preload 100 N, lubricated traction with ball drag (oil
+fraction 0.5). Reported: wall time, points per minute, the mean cost of one point inside the worker
+(eval_wall_s) and the per-point overhead (wall x workers / N - mean point cost). The load average is printed: on
+a shared machine other processes take cores from the workers.
 
 --batch: per-point tasks against batched tasks (sweep.run_sweep batch_size / threads_per_worker), points per wall
-second, in one run: 'per-point' (2 single-threaded workers, one task per point, as before batching), 'batched'
-(2 single-threaded workers, automatic batches), 'batched-threads' (1 worker whose batches advance their points
-on 2 threads with dynamics.advance_many; dynamic and profile models only). The clusters of all three stay up
-and the configurations take turns for --repeats rounds; medians are compared. The 'dynamic' model on 7008-ma2023 at --sizes points (3000-12,000 rpm,
-Fz 300-900 N, lubricated; windows of 0.01 s, 0.03 s simulated, steadiness off so every point costs the same
-simulated time); 'quasistatic' and 'tribo' as in the scaling run. The results of all configurations are checked
-equal. Control (the machine may be shared): bench_batch.free_cores, a trivial nogil numba loop alone and in two
-threads at once, before and after; it gives the cores this run actually had.
+second, in one run: 'per-point' (2 single-threaded workers, one task per point), 'batched' (2 single-threaded
+workers, automatic batches), 'batched-threads' (1 worker whose batches advance their points on 2 threads with
+dynamics.advance_many; dynamic and profile models only). The clusters of all configurations stay up and the
+configurations take turns for --repeats rounds; medians are compared. The 'dynamic' model on 7008-ma2023 at
+--sizes points (3000-12,000 rpm, Fz 300-900 N, lubricated; windows of 0.01 s, 0.03 s simulated, steadiness off
+so every point costs the same simulated time); 'quasistatic' and 'tribo' as in the scaling run. The results of
+all configurations are checked equal. Control (the machine may be shared): bench_batch.free_cores, a trivial
+nogil numba loop alone and in two threads at once, before the run and after each model; it gives the cores this
+run actually had.
 """
 from __future__ import annotations
 
@@ -93,7 +95,8 @@ def main():
         plot(rows, a.png)
 
 
-BATCH_CONFIGS = (("per-point", 2, 1, 1), ("batched", 2, 1, None), ("batched-threads", 1, 2, None))  # workers, threads, batch
+# name, workers, threads per worker, batch size (None: automatic)
+BATCH_CONFIGS = (("per-point", 2, 1, 1), ("batched", 2, 1, None), ("batched-threads", 1, 2, None))
 THREADED = ("dynamic", "profile")     # the models whose batches advance their points on several threads
 
 
