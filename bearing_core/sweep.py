@@ -938,7 +938,7 @@ def _run_batches(keys, points, model, opts, skid, cache_dir, client, retries, pr
             topic = None
     if todo:
         if batch_size is None:
-            slots = sum(w.get("nthreads", 1) for w in client.scheduler_info()["workers"].values()) or 1
+            slots = sum(client.nthreads().values()) or 1
             batch_size = auto_batch_size(len(todo), slots, threads)
         # strided: batch k holds points k, k + nb, ... so that neighbouring points of a grid, which usually
         # cost alike (the same speed region), spread over the batches and the batches cost alike
