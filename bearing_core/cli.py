@@ -343,6 +343,8 @@ execution:
   --scheduler ADDRESS of an existing cluster. A point that raises is recorded (status 'failed', error) and the
   others go on; a task whose worker dies is retried (--retries). Finished points are cached in --cache (default
   OUT/sweep_cache) under the hash of the point, model, options and code version: re-running resumes.
+  Each task carries a batch of points (--batch-size); the dynamic and profile models advance a batch's points
+  together on --threads-per-worker threads, with the same results as one point at a time.
 outputs (OUT/): sweep.csv, sweep.parquet, sweep.nc (grids), sweep_skid_map.png, sweep_torque_map.png,
   sweep_heat_map.png (grids over speed_rpm and a load), min_preload.csv/.png."""
 
@@ -396,6 +398,12 @@ def _add_sweep_parser(sub):
     sw.add_argument("--scheduler", default=None, metavar="ADDRESS", help="existing dask scheduler (tcp://host:port)")
     sw.add_argument("--workers", type=int, default=None, help="local cluster size (default: CPUs)")
     sw.add_argument("--retries", type=int, default=2, help="re-runs of a task whose worker failed")
+    sw.add_argument("--batch-size", type=int, default=None,
+                    help="points per Dask task (default: about 4 tasks per worker, at most 32 points; 1: one "
+                         "task per point)")
+    sw.add_argument("--threads-per-worker", type=int, default=1,
+                    help="dynamic/profile: threads advancing a batch's points together in a worker (the local "
+                         "cluster then starts CPUs / this many workers unless --workers is given)")
     sw.add_argument("--cache", default=None, help="cache folder (default OUT/sweep_cache)")
     sw.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
     sw.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -470,6 +478,10 @@ def cmd_sweep(a) -> int:
         raise _BadArg(f"--workers = {a.workers} is invalid; allowed: 1 <= workers <= 512")
     if not 0 <= a.retries <= 20:
         raise _BadArg(f"--retries = {a.retries} is invalid; allowed: 0 <= retries <= 20")
+    if a.batch_size is not None and not 1 <= a.batch_size <= 100000:
+        raise _BadArg(f"--batch-size = {a.batch_size} is invalid; allowed: 1 <= batch size <= 100000")
+    if not 1 <= a.threads_per_worker <= 512:
+        raise _BadArg(f"--threads-per-worker = {a.threads_per_worker} is invalid; allowed: 1 <= threads <= 512")
     skid = (a.skid_threshold, a.overskid_threshold)
     out = Path(a.out)
     cache = None if a.no_cache else (Path(a.cache) if a.cache else out / "sweep_cache")
@@ -489,7 +501,7 @@ def cmd_sweep(a) -> int:
         print(f"wrote {out / 'min_preload.csv'} and {png}; {df.attrs['computed']} speeds computed, "
               f"{int((df['status'] != 'ok').sum())} not bracketed or failed")
         return 0
-    df = run_sweep(spec, **run)
+    df = run_sweep(spec, batch_size=a.batch_size, threads_per_worker=a.threads_per_worker, **run)
     paths = write_results(df, spec, out)
     paths += plot_maps(df, spec, out, skid=skid)
     nfail = int((df["status"] != "ok").sum())

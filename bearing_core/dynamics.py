@@ -1113,13 +1113,15 @@ def simulate_profile(model: DynamicModel, profile, record_dt: float | None = Non
     return np.concatenate(out) if out else np.zeros((0, K.NOUT))
 
 
-def advance_many(models, t_end, omega_end=None, record_dt: float | None = None, workers: int | None = None) -> list:
+def advance_many(models, t_end, omega_end=None, record_dt: float | None = None, workers: int | None = None,
+                 return_exceptions: bool = False) -> list:
     """Advance independent initialised models (e.g. the operating points of a sweep) to t_end [s] (a scalar
     or one per model) concurrently in one process: each model runs in a thread of a pool of ``workers``
     (default: one per CPU); the integration kernels release the GIL (numba nogil), so the threads run in
     parallel for all but the little Python around each kernel call. omega_end: None, a scalar or one per
     model [rad/s]. Returns the records of each model (as DynamicModel.advance), in order; the first error
-    of any model is raised after all have finished."""
+    of any model is raised after all have finished, or with return_exceptions=True a model's exception
+    takes its place in the list (the other models' results are kept)."""
     import os
     from concurrent.futures import ThreadPoolExecutor
     models = list(models)
@@ -1129,11 +1131,21 @@ def advance_many(models, t_end, omega_end=None, record_dt: float | None = None, 
     if len(t_end) != n or len(omega_end) != n:
         raise BearingInputError("t_end / omega_end", (len(t_end), len(omega_end)), f"scalars or {n} values")
     workers = max(1, min(n, workers or os.cpu_count() or 1))
-    if workers == 1:
+    if workers == 1 and not return_exceptions:
         return [m.advance(t, omega_end=w, record_dt=record_dt) for m, t, w in zip(models, t_end, omega_end)]
+    if workers == 1:
+        out = []
+        for m, t, w in zip(models, t_end, omega_end):
+            try:
+                out.append(m.advance(t, omega_end=w, record_dt=record_dt))
+            except Exception as e:       # this model's error, in its place
+                out.append(e)
+        return out
     with ThreadPoolExecutor(max_workers=workers) as ex:
         futs = [ex.submit(m.advance, t, w, record_dt) for m, t, w in zip(models, t_end, omega_end)]
-        return [f.result() for f in futs]
+        if not return_exceptions:
+            return [f.result() for f in futs]
+        return [f.exception() or f.result() for f in futs]
 
 
 def records_to_dict(rec: np.ndarray) -> dict:

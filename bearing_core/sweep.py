@@ -37,7 +37,9 @@ import hashlib
 import itertools
 import json
 import math
+import threading
 import time
+import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -386,12 +388,28 @@ class Evaluator:
     uses: tuple = ()
     min_speed_rpm = 0.0
     option_names: tuple = ()
+    threaded_batch = False      # True: run_batch advances its points on several threads (dynamics.advance_many)
 
     def validate_options(self, options: dict):
         pass
 
     def __call__(self, point: dict, options: dict) -> dict:
         raise NotImplementedError
+
+    def run_batch(self, points: list, options: dict, threads: int = 1, on_done=None) -> list:
+        """Evaluate several points in this process; per point its outputs or the exception it raised (one
+        failing point never stops the others). Default: one point after the other; the dynamic evaluators
+        advance their points together (dynamics.advance_many, ``threads`` threads). on_done(k), if given, is
+        called when point k is finished (progress)."""
+        out = []
+        for k, p in enumerate(points):
+            try:
+                out.append(self(p, options))
+            except Exception as e:      # recorded for this point
+                out.append(e)
+            if on_done is not None:
+                on_done(k)
+        return out
 
 
 class QuasiStaticEvaluator(Evaluator):
@@ -478,6 +496,11 @@ class DynamicWindow(Evaluator):
     min_speed_rpm = 10.0
     option_names = ("window_s", "max_time_s", "steady_tol", "torque_tol", "start", "integrator", "rtol")
 
+    @property
+    def threaded_batch(self) -> bool:
+        """True unless a subclass evaluates its points another way (its own __call__, e.g. the FMU)."""
+        return type(self).__call__ is DynamicWindow.__call__
+
     def validate_options(self, o):
         from .errors import check_range
         check_range("window_s", o.get("window_s", 0.02), 1e-3, 10.0, unit="s")
@@ -487,32 +510,126 @@ class DynamicWindow(Evaluator):
         if o.get("start", "jones-harris") not in ("jones-harris", "tribological"):
             raise BearingInputError("start", o.get("start"), "jones-harris | tribological")
 
+    def _start(self, point, options, models=None):
+        """The point's initialised model and its window settings (models: see _new_model)."""
+        m = _new_model(point, options, models)
+        m.initialize(point["speed_rpm"] * RPM, point_loads(point), start=options.get("start", "jones-harris"))
+        return _WindowRun(m, options)
+
     def __call__(self, point, options):
-        from .dynamics import DynamicModel
-        g = resolve_geometry(point)
-        w = point["speed_rpm"] * RPM
-        win = float(options.get("window_s", 0.02))
-        t_max = float(options.get("max_time_s", 1.0))
-        tol = float(options.get("steady_tol", 2e-3))
-        ttol = float(options.get("torque_tol", 0.05))
-        m = DynamicModel(g, dynamics_options(point, options))
-        m.initialize(w, point_loads(point), start=options.get("start", "jones-harris"))
-        prev, steady = None, False
-        rdt = min(win / 20.0, 1e-3)
-        while m.t < t_max - 1e-12:
-            s = _window_summary(m.advance(min(m.t + win, t_max), record_dt=rdt))
-            if prev is not None:
-                dc = abs(s["cage"] - prev["cage"]) <= tol * abs(s["cage"])
-                dt = abs(s["torque"] - prev["torque"]) <= ttol * abs(s["torque"]) + 1e-6
-                if dc and dt:
-                    steady = True
-                    break
-            prev = s
+        r = self._start(point, options)
+        while not r.done:
+            r.take(r.m.advance(r.next_t(), record_dt=r.rdt))
+        return r.outputs()
+
+    def run_batch(self, points, options, threads=1, on_done=None):
+        """All points' windows advanced together: each round advances every unfinished model by one window
+        with dynamics.advance_many (``threads`` threads; bit-identical to advancing one model at a time),
+        so every point sees exactly the calls of __call__. A point whose start or integration raises is
+        reported as that exception; the others go on. on_done(k): point k finished (progress)."""
+        if not self.threaded_batch:
+            return super().run_batch(points, options, threads, on_done)
+        from .dynamics import advance_many
+        runs, models = [], {}
+        for p in points:
+            try:
+                runs.append(self._start(p, options, models))
+            except Exception as e:
+                runs.append(e)
+        pending = set(range(len(runs)))
+
+        def report():
+            for k in sorted(pending):
+                r = runs[k]
+                if isinstance(r, Exception) or r.error is not None or r.done:
+                    pending.discard(k)
+                    if on_done is not None:
+                        on_done(k)
+        report()
+        active = [r for r in runs if isinstance(r, _WindowRun) and not r.done]
+        while active:
+            recs = advance_many([r.m for r in active], [r.next_t() for r in active], record_dt=active[0].rdt,
+                                workers=threads, return_exceptions=True)
+            for r, rec in zip(active, recs):
+                if isinstance(rec, Exception):
+                    r.error = rec
+                else:
+                    try:
+                        r.take(rec)
+                    except Exception as e:
+                        r.error = e
+            active = [r for r in active if r.error is None and not r.done]
+            report()
+        out = []
+        for r in runs:
+            if isinstance(r, Exception) or r.error is not None:
+                out.append(r if isinstance(r, Exception) else r.error)
+                continue
+            try:
+                out.append(r.outputs())
+            except Exception as e:
+                out.append(e)
+        return out
+
+
+_START_VARIABLES = ("speed_rpm",) + LOAD_VARIABLES     # enter DynamicModel.initialize only, not the model
+
+
+def _new_model(point, options, models=None):
+    """A new (not initialised) DynamicModel of the point. models: a dict shared by the points of a batch:
+    the first point of each combination of the variables other than speed and loads (bearing, clearances,
+    oil, traction, friction; the sweep options are the batch's) constructs the model, the others get a copy
+    of it (copy.deepcopy of the un-initialised model: the same object as a new construction, without
+    rebuilding its Hertz tables; the batch test holds the results equal bit for bit)."""
+    import copy
+    from .dynamics import DynamicModel
+    if models is None:
+        return DynamicModel(resolve_geometry(point), dynamics_options(point, options))
+    key = json.dumps(_canonical({k: v for k, v in point.items() if k not in _START_VARIABLES}), sort_keys=True)
+    if key not in models:
+        models[key] = DynamicModel(resolve_geometry(point), dynamics_options(point, options))
+    return copy.deepcopy(models[key])
+
+
+class _WindowRun:
+    """One point of DynamicWindow: its model, the window loop's state and the steadiness test."""
+
+    def __init__(self, m, options):
+        self.m = m
+        self.win = float(options.get("window_s", 0.02))
+        self.t_max = float(options.get("max_time_s", 1.0))
+        self.tol = float(options.get("steady_tol", 2e-3))
+        self.ttol = float(options.get("torque_tol", 0.05))
+        self.rdt = min(self.win / 20.0, 1e-3)
+        self.prev = self.s = None
+        self.steady = False
+        self.error = None
+
+    @property
+    def done(self) -> bool:
+        return self.steady or not self.m.t < self.t_max - 1e-12
+
+    def next_t(self) -> float:
+        return min(self.m.t + self.win, self.t_max)
+
+    def take(self, rec):
+        """Summarise the window just advanced; steady when the window means moved less than the tolerances."""
+        s = self.s = _window_summary(rec)
+        if self.prev is not None:
+            dc = abs(s["cage"] - self.prev["cage"]) <= self.tol * abs(s["cage"])
+            dt = abs(s["torque"] - self.prev["torque"]) <= self.ttol * abs(s["torque"]) + 1e-6
+            if dc and dt:
+                self.steady = True
+                return
+        self.prev = s
+
+    def outputs(self) -> dict:
+        s = self.s
         return {"cage_speed_rpm": s["cage"] / RPM, "pure_rolling_cage_speed_rpm": s["pure"] / RPM,
                 "cage_speed_ratio": _ratio(s["cage"], s["pure"]), "friction_torque_Nm": s["torque"],
                 "heat_W": s["heat"], "P_race_W": s["P_race"], "P_pocket_W": s["P_pocket"], "P_land_W": s["P_land"],
                 "alpha_i_deg": math.degrees(s["alpha_i"]), "alpha_o_deg": math.degrees(s["alpha_o"]),
-                "Q_i_N": s["Q_i_max"], "p_max_Pa": s["p_max"], "steady": steady, "settle_time_s": m.t}
+                "Q_i_N": s["Q_i_max"], "p_max_Pa": s["p_max"], "steady": self.steady, "settle_time_s": self.m.t}
 
 
 class ProfileEvaluator(Evaluator):
@@ -525,19 +642,81 @@ class ProfileEvaluator(Evaluator):
     uses = _COMMON + _TRIBO + _CAGE
     option_names = ("profile", "start", "integrator", "rtol", "record_dt")
 
+    @property
+    def threaded_batch(self) -> bool:
+        """True unless a subclass evaluates its points another way (its own __call__, e.g. the FMU)."""
+        return type(self).__call__ is ProfileEvaluator.__call__
+
     def validate_options(self, o):
         from .dynamics import read_profile
         t, n, loads = read_profile(o.get("profile", "seed000"))
         if loads:
             raise BearingInputError("profile", o.get("profile"), "time_s, speed_rpm only (loads are sweep variables)")
 
-    def __call__(self, point, options):
-        from .dynamics import DynamicModel, read_profile, records_to_dict, simulate_profile
+    def _start(self, point, options, models=None):
+        """The point's model initialised at the profile's first speed, and the profile (t [s], speed [rpm])
+        (models: see _new_model)."""
+        from .dynamics import read_profile
         t, n, _ = read_profile(options.get("profile", "seed000"))
-        m = DynamicModel(resolve_geometry(point), dynamics_options(point, options))
+        m = _new_model(point, options, models)
         m.initialize(n[0] * RPM, point_loads(point), t0=float(t[0]), start=options.get("start", "jones-harris"))
-        d = records_to_dict(simulate_profile(m, list(zip(t.tolist(), n.tolist())),
-                                             record_dt=options.get("record_dt", 1e-3)))
+        return m, list(zip(t.tolist(), n.tolist()))
+
+    def __call__(self, point, options):
+        from .dynamics import simulate_profile
+        m, prof = self._start(point, options)
+        return self._outputs(simulate_profile(m, prof, record_dt=options.get("record_dt", 1e-3)))
+
+    def run_batch(self, points, options, threads=1, on_done=None):
+        """All points driven through the profile together: segment by segment, every model advanced with
+        dynamics.advance_many (``threads`` threads) with the calls of dynamics.simulate_profile (the same end
+        time and end speed of each segment, the ring growth updated after it), so the records are those of
+        __call__. A point whose start or integration raises is reported as that exception. (on_done is not
+        called: the points finish together, with the batch.)"""
+        if not self.threaded_batch:
+            return super().run_batch(points, options, threads, on_done)
+        from .dynamics import advance_many
+        from . import dynamics_kernels as K
+        models, errors, recs, prof, built = [], [None] * len(points), [[] for _ in points], None, {}
+        for i, p in enumerate(points):
+            try:
+                m, prof = self._start(p, options, built)
+                models.append(m)
+            except Exception as e:
+                models.append(None)
+                errors[i] = e
+        rdt = options.get("record_dt", 1e-3)
+        for (t0, n0), (t1, n1) in zip(prof or [], (prof or [])[1:]):
+            idx = [i for i, m in enumerate(models) if m is not None and errors[i] is None and t1 > m.t + 1e-12]
+            if not idx:
+                continue
+            w = (n0 + (n1 - n0) * (t1 - t0) / (t1 - t0)) * math.pi / 30.0     # as simulate_profile
+            res = advance_many([models[i] for i in idx], t1, omega_end=w, record_dt=rdt, workers=threads,
+                               return_exceptions=True)
+            for i, r in zip(idx, res):
+                if isinstance(r, Exception):
+                    errors[i] = r
+                    continue
+                recs[i].append(r)
+                try:
+                    models[i].update_operating_geometry()
+                except Exception as e:
+                    errors[i] = e
+        out = []
+        for i in range(len(points)):
+            if errors[i] is not None:
+                out.append(errors[i])
+                continue
+            try:
+                out.append(self._outputs(np.concatenate(recs[i]) if recs[i] else np.zeros((0, K.NOUT))))
+            except Exception as e:
+                out.append(e)
+        return out
+
+    @staticmethod
+    def _outputs(rec) -> dict:
+        from .dynamics import records_to_dict
+        d = records_to_dict(rec)
         tail = d["t"] >= d["t"][-1] - 0.1
         ok = (d["t"] >= d["t"][0] + 0.05) & (d["cage_speed_pure_rolling_outer"] > 0)
         r = d["cage_speed"][ok] / d["cage_speed_pure_rolling_outer"][ok]
@@ -594,13 +773,61 @@ def run_point(model: str, options: dict, point: dict, skid: tuple = (0.05, 0.05)
     return out
 
 
+def run_point_batch(model: str, options: dict, points: list, skid: tuple = (0.05, 0.05), threads: int = 1,
+                    progress=None) -> list:
+    """Evaluate a batch of points in one task (Evaluator.run_batch: the dynamic models advance them together
+    on ``threads`` threads); never raises for a model error: per point the dict of run_point. eval_wall_s
+    of each point is the batch's wall time divided by its number of points (the points share the time).
+    progress: (topic, tag): on a Dask worker, each finished point is logged as the event (tag, k) on topic
+    (the client's progress bar follows the points inside the batch)."""
+    on_done = None
+    if progress is not None:
+        try:
+            from distributed import get_worker
+            worker, (topic, tag) = get_worker(), progress
+            on_done = lambda k: worker.log_event(topic, (tag, k))  # noqa: E731
+        except Exception:       # not on a worker: no events (the batch's result reports its points)
+            on_done = None
+    t0 = time.perf_counter()
+    try:
+        res = get_evaluator(model).run_batch(list(points), options, threads=max(1, int(threads)), on_done=on_done)
+    except Exception as e:      # the evaluator itself failed: every point of the batch
+        res = [e] * len(points)
+    share = (time.perf_counter() - t0) / max(len(points), 1)
+    out = []
+    for r in res:
+        if isinstance(r, Exception):
+            r = {"status": "failed", "error": f"{type(r).__name__}: {r}"}
+        else:
+            r = dict(r)
+            r["skid_state"] = skid_state(r.get("cage_speed_ratio", float("nan")), *skid)
+            r.update(status="ok", error="")
+        r["eval_wall_s"] = share
+        out.append(r)
+    return out
+
+
+MAX_AUTO_BATCH = 32     # largest batch chosen automatically (progress and the cache advance per batch)
+BATCHES_PER_SLOT = 4    # automatic batches per task slot of the cluster (load balance, progress)
+
+
+def auto_batch_size(n_points: int, slots: int, threads: int = 1) -> int:
+    """Points per task: about BATCHES_PER_SLOT tasks for each task slot of the cluster (so that the slots stay
+    balanced when points differ in cost and the progress bar and cache advance often), at least ``threads``
+    points (each thread of advance_many gets a model), at most MAX_AUTO_BATCH."""
+    b = math.ceil(n_points / max(1, slots * BATCHES_PER_SLOT))
+    return int(max(1, min(max(b, threads), MAX_AUTO_BATCH, max(n_points, 1))))
+
+
 # ---- running on Dask ------------------------------------------------------------------------------
 class _Cluster:
     """Context: a distributed Client on `scheduler` (address) or on a new LocalCluster of `workers`
-    single-threaded processes (default: one per CPU)."""
+    single-threaded processes (default: one per CPU divided by ``threads``, the threads each batch task
+    runs its models on)."""
 
-    def __init__(self, scheduler=None, workers=None, client=None):
+    def __init__(self, scheduler=None, workers=None, client=None, threads=1):
         self.scheduler, self.workers, self.client, self._own = scheduler, workers, client, False
+        self.threads = max(1, int(threads or 1))
 
     def __enter__(self):
         if self.client is not None:
@@ -610,7 +837,7 @@ class _Cluster:
             self.client = Client(self.scheduler, timeout="30s")
         else:
             import os
-            n = self.workers or os.cpu_count() or 1
+            n = self.workers or max(1, (os.cpu_count() or 1) // self.threads)
             self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                                         dashboard_address=":0", host="127.0.0.1")
             self.client = Client(self.cluster)
@@ -672,13 +899,110 @@ def _run_tasks(tasks, cache_dir, client, retries, progress, desc):
     return results, len(todo)
 
 
+def _run_batches(keys, points, model, opts, skid, cache_dir, client, retries, progress, desc, batch_size,
+                 threads):
+    """Like _run_tasks for the points of a sweep, but batch_size points per task (at most; run_point_batch;
+    None: auto_batch_size from the points left and the cluster's task slots). Cached points are read first and
+    only the rest is batched; each arriving batch is written to the cache point by point. A batch task that
+    fails as a whole (e.g. its workers kept dying) marks its points failed. Returns (results in point
+    order, number computed)."""
+    from distributed import as_completed
+    results = [None] * len(points)
+    todo = []
+    for i, key in enumerate(keys):
+        f = cache_dir / f"{key}.json" if cache_dir else None
+        if f is not None and f.is_file():
+            try:
+                results[i] = dict(json.loads(f.read_text()), cached=True)
+                continue
+            except (json.JSONDecodeError, OSError):
+                pass
+        todo.append(i)
+    bar = _progress(len(points), len(points) - len(todo), progress, desc)
+    failed = 0
+    lock, seen, closed = threading.Lock(), {}, set()       # per batch tag: points reported by events
+    topic = f"bearing-sweep-progress-{uuid.uuid4().hex}" if progress else None
+
+    def on_event(event):        # (time, (tag, k)) from run_point_batch, on the client's event-loop thread
+        tag = event[1][0]
+        with lock:
+            if tag in closed or seen.get(tag, 0) >= sizes.get(tag, 0):
+                return
+            seen[tag] = seen.get(tag, 0) + 1
+            bar.update(1)
+    sizes = {}
+    if todo and topic:
+        try:
+            client.subscribe_topic(topic, on_event)
+        except Exception:       # a scheduler without events: the bar advances per batch
+            topic = None
+    if todo:
+        if batch_size is None:
+            slots = sum(client.nthreads().values()) or 1
+            batch_size = auto_batch_size(len(todo), slots, threads)
+        # strided: batch k holds points k, k + nb, ... so that neighbouring points of a grid, which usually
+        # cost alike (the same speed region), spread over the batches and the batches cost alike
+        nb = math.ceil(len(todo) / batch_size)
+        groups = [todo[k::nb] for k in range(nb)]
+        futs = {}
+        for g in groups:
+            sizes[g[0]] = len(g)
+            fut = client.submit(run_point_batch, model, opts, [points[i] for i in g], skid, threads,
+                                (topic, g[0]) if topic else None,
+                                key=f"bearing-sweep-batch-{keys[g[0]][:24]}-{g[0]}-{len(g)}", retries=retries,
+                                pure=False)
+            futs[fut] = g
+        try:
+            for fut in as_completed(list(futs)):
+                g = futs[fut]
+                try:
+                    rs = fut.result()
+                except Exception as e:   # the task itself failed: recorded for each of its points
+                    rs = [{"status": "failed", "error": f"{type(e).__name__}: {e}"}] * len(g)
+                for i, r in zip(g, rs):
+                    r = dict(r, cached=False)
+                    results[i] = r
+                    if r.get("status") == "ok" and cache_dir:
+                        tmp = cache_dir / f".{keys[i]}.tmp"
+                        tmp.write_text(json.dumps({k: v for k, v in r.items() if k != "cached"}))
+                        tmp.replace(cache_dir / f"{keys[i]}.json")
+                    failed += r.get("status") == "failed"
+                with lock:
+                    closed.add(g[0])
+                    bar.set_postfix(failed=failed, refresh=False)
+                    bar.update(len(g) - min(seen.get(g[0], 0), len(g)))
+                fut.release()
+        finally:
+            if topic:
+                try:
+                    client.unsubscribe_topic(topic)
+                except Exception:
+                    pass
+    bar.close()
+    return results, len(todo)
+
+
 def run_sweep(spec: SweepSpec, cache_dir=None, scheduler=None, workers=None, client=None, retries: int = 2,
-              progress: bool = True, skid=(0.05, 0.05)):
+              progress: bool = True, skid=(0.05, 0.05), batch_size: int | None = None,
+              threads_per_worker: int = 1):
     """Validate, then evaluate every point of spec on Dask; returns a pandas DataFrame ordered by
     point_index: the point's variables that the model uses, status, error, the model outputs, skid_state, eval_wall_s and
     cached (True where the result came from the cache). Attribute df.attrs['computed']: points evaluated
-    in this run."""
+    in this run.
+
+    batch_size: points per Dask task (None: auto_batch_size; 1: one task per point, run_point). The
+    dynamic and profile models advance the points of a batch together with dynamics.advance_many on
+    threads_per_worker threads (the results are those of one point at a time, bit for bit); the new local
+    cluster then gets CPUs / threads_per_worker worker processes unless ``workers`` is given. The other
+    models evaluate a batch point after point (threads_per_worker is ignored: their Python/SciPy solvers hold
+    the GIL), so for them batching only saves the per-task overhead."""
     import pandas as pd
+    from .errors import check_range
+    for nm, v, hi in (("batch_size", batch_size, 100000), ("threads_per_worker", threads_per_worker, 512)):
+        if v is not None and (check_range(nm, v, 1, hi) != int(v)):
+            raise BearingInputError(nm, v, f"an integer in [1, {hi}]")
+    batch_size = None if batch_size is None else int(batch_size)
+    threads_per_worker = int(threads_per_worker)
     pts = spec.validate()
     version = code_version()
     cache = Path(cache_dir) if cache_dir else None
@@ -686,10 +1010,16 @@ def run_sweep(spec: SweepSpec, cache_dir=None, scheduler=None, workers=None, cli
         cache.mkdir(parents=True, exist_ok=True)
     opts = dict(spec.options)
     skid = (float(skid[0]), float(skid[1]))
-    tasks = [(point_key(p, spec.model, dict(opts, skid=list(skid)), version), run_point,
-              (spec.model, opts, p, skid)) for p in pts]
-    with _Cluster(scheduler, workers, client) as cl:
-        res, computed = _run_tasks(tasks, cache, cl, retries, progress, f"sweep ({spec.model})")
+    keys = [point_key(p, spec.model, dict(opts, skid=list(skid)), version) for p in pts]
+    if not get_evaluator(spec.model).threaded_batch:
+        threads_per_worker = 1      # its batches run point after point: the workers are the parallelism
+    with _Cluster(scheduler, workers, client, threads_per_worker) as cl:
+        if batch_size == 1:
+            tasks = [(k, run_point, (spec.model, opts, p, skid)) for k, p in zip(keys, pts)]
+            res, computed = _run_tasks(tasks, cache, cl, retries, progress, f"sweep ({spec.model})")
+        else:
+            res, computed = _run_batches(keys, pts, spec.model, opts, skid, cache, cl, retries, progress,
+                                         f"sweep ({spec.model})", batch_size, threads_per_worker)
     uses = set(get_evaluator(spec.model).uses)
     rows = []
     for i, (p, r) in enumerate(zip(pts, res)):   # the variables the model uses, then its outputs

@@ -213,6 +213,8 @@ def test_pure_rolling_cage_speed_equal_angles_is_the_textbook_formula():
     (["--grid", "speed_rpm=1000,2000", "--grid", "mu=0.1,0.2"], ["mu", "quasistatic"]),  # no effect on the model
     (["--set", "bearing=nope", "--grid", "fz_N=100,200"], ["bearing", "nope"]),        # unknown preset
     (["--min-preload", "1000,2000", "--preload-range", "50:10", "--model", "tribo"], ["preload"]),
+    (["--grid", "fz_N=100,200", "--batch-size", "0"], ["--batch-size", "0"]),
+    (["--grid", "fz_N=100,200", "--threads-per-worker", "0"], ["--threads-per-worker", "0"]),
 ])
 def test_bad_specs_fail_before_any_work(args, words, tmp_path, capsys):
     out = tmp_path / "o"
@@ -315,6 +317,81 @@ def test_profile_model_ends_where_the_dynamic_window_settles(client2, tmp_path):
                                 options={"window_s": 0.02, "max_time_s": 0.2}), client=client2, progress=False).iloc[0]
     assert d["status"] == "ok" and d["steady"]
     assert p["cage_speed_rpm"] == pytest.approx(d["cage_speed_rpm"], rel=5e-3)
+
+
+def test_batched_dynamic_and_profile_sweeps_equal_one_point_per_task(client2, tmp_path):
+    """The dynamic model (three 2 ms windows) over speed x oil temperature x Fz on 7008-ma2023, one point per
+    task against batches of 3 points advanced together on 2 threads (dynamics.advance_many; a batch constructs
+    one model per oil temperature and copies it) and the automatic batching: identical tables (bit for bit). In
+    the same batches one point fails at its start and one inside the integration: both are reported for that
+    point only, the others complete. The profile model likewise (two points, tiny profile). Batched results go
+    to the cache point by point, and a re-run computes only the failed points."""
+    from sweep_helpers import FAIL_ADVANCE_FZ_N, FAIL_FZ_N
+    spec = S.SweepSpec(model="sweep_helpers:FailingDynamic", base={"bearing": BEARING},
+                       grid={"speed_rpm": [3000.0, 6000.0], "oil_temperature_C": [40.0, 80.0],
+                             "fz_N": [300.0, FAIL_FZ_N, FAIL_ADVANCE_FZ_N]},
+                       options={"window_s": 0.002, "max_time_s": 0.006})
+    one = S.run_sweep(spec, client=client2, progress=False, batch_size=1)
+    cache = tmp_path / "cache"
+    three = S.run_sweep(spec, client=client2, progress=False, batch_size=3, threads_per_worker=2, cache_dir=cache)
+    auto = S.run_sweep(spec, client=client2, progress=False, threads_per_worker=2)
+    assert list(one["status"]) == ["ok", "failed", "failed"] * 4
+    assert all("deliberate failure at fz_N" in e for e in one["error"][1::3])
+    assert all("FloatingPointError: deliberate failure in the integration" in e for e in one["error"][2::3])
+    assert (one["cage_speed_rpm"][::3] > 0).all() and one["settle_time_s"][0] == pytest.approx(0.006)
+    assert one["friction_torque_Nm"][0] != one["friction_torque_Nm"][3]        # the oil temperature matters
+    pd.testing.assert_frame_equal(_values(one), _values(three), check_exact=True)
+    pd.testing.assert_frame_equal(_values(one), _values(auto), check_exact=True)
+    assert three.attrs["computed"] == 12 and len(list(cache.glob("*.json"))) == 4    # failed points not cached
+    again = S.run_sweep(spec, client=client2, progress=False, batch_size=3, threads_per_worker=2, cache_dir=cache)
+    assert again.attrs["computed"] == 8 and again["cached"].sum() == 4
+    pd.testing.assert_frame_equal(_values(one), _values(again), check_exact=True)
+
+    prof = tmp_path / "profile.csv"
+    prof.write_text("time_s,speed_rpm\n0,1000\n0.004,1000\n0.008,3000\n0.012,3000\n")
+    pspec = S.SweepSpec(model="profile", base={"bearing": BEARING}, grid={"fz_N": [300.0, 900.0]},
+                        options={"profile": str(prof)})
+    p1 = S.run_sweep(pspec, client=client2, progress=False, batch_size=1)
+    p2 = S.run_sweep(pspec, client=client2, progress=False, batch_size=2, threads_per_worker=2)
+    assert (p1["status"] == "ok").all(), p1["error"].tolist()
+    pd.testing.assert_frame_equal(_values(p1), _values(p2), check_exact=True)
+
+
+def test_batch_progress_reports_each_point_when_it_finishes(client2, capsys):
+    """Inside a batch of the dynamic model each point is reported when it finishes: the point failing at its start
+    first, the one failing in its second window next, the two that run all three windows last; the sweep's progress
+    bar follows these events and ends at the number of points."""
+    from sweep_helpers import FAIL_ADVANCE_FZ_N, FAIL_FZ_N
+    spec = S.SweepSpec(model="sweep_helpers:FailingDynamic", base={"bearing": BEARING, "speed_rpm": 4000.0},
+                       grid={"fz_N": [300.0, FAIL_ADVANCE_FZ_N, FAIL_FZ_N, 600.0]},
+                       options={"window_s": 0.002, "max_time_s": 0.006})
+    events = []
+    client2.subscribe_topic("test-batch-progress", lambda ev: events.append(ev[1]))
+    try:
+        res = client2.submit(S.run_point_batch, spec.model, spec.options, spec.points(), (0.05, 0.05), 2,
+                             ("test-batch-progress", 7), pure=False).result()
+        t0 = time.time()
+        while len(events) < 4 and time.time() - t0 < 10:
+            time.sleep(0.05)
+    finally:
+        client2.unsubscribe_topic("test-batch-progress")
+    assert [r["status"] for r in res] == ["ok", "failed", "failed", "ok"]
+    assert [e[0] for e in events] == [7] * 4
+    assert [e[1] for e in events[:2]] == [2, 1] and sorted(e[1] for e in events[2:]) == [0, 3]
+    df = S.run_sweep(spec, client=client2, progress=True, batch_size=4, threads_per_worker=2)
+    assert list(df["status"]) == ["ok", "failed", "failed", "ok"]
+    assert "4/4" in capsys.readouterr().err
+
+
+def test_automatic_batch_size():
+    """About four tasks per task slot, at least one point per advance_many thread, at most MAX_AUTO_BATCH, never
+    more points than there are; a bad batch size or thread count is refused before any work."""
+    assert S.auto_batch_size(8, 2) == 1 and S.auto_batch_size(64, 2) == 8 and S.auto_batch_size(10, 2) == 2
+    assert S.auto_batch_size(8, 2, threads=2) == 2 and S.auto_batch_size(1, 4, threads=2) == 1
+    assert S.auto_batch_size(100000, 2) == S.MAX_AUTO_BATCH
+    for kw in ({"batch_size": 0}, {"batch_size": 2.5}, {"threads_per_worker": 0}):
+        with pytest.raises(BearingInputError, match=list(kw)[0]):
+            S.run_sweep(_grid_spec(), client=object(), progress=False, **kw)
 
 
 def test_cache_key_follows_content_of_a_bearing_file(tmp_path):
