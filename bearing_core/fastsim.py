@@ -198,6 +198,48 @@ def _table_coefficient(r, nu, k):
     return 1.0 / inv
 
 
+@hot(inline="always")
+def _table_coefficients(r, nu):
+    """(C11, C22, C23) from Kalker's table at r in [0.1, 10] (clipped): the arithmetic of
+    _table_coefficient for the three coefficients at once (one row index, one set of Catmull-Rom and
+    Lagrange weights; called per contact evaluation in the dynamics)."""
+    rc = min(max(r, 0.1), 10.0)
+    z = rc if rc <= 1.0 else 2.0 - 1.0 / rc
+    n = 19
+    sz = min(max((z - 0.1) / 0.1, 0.0), n - 1.0)
+    i = min(int(sz), n - 2)
+    t = sz - i
+    t2 = t * t
+    t3 = t2 * t
+    h1 = 2.0 * t3 - 3.0 * t2 + 1.0       # Hermite basis on p1, m1, p2, m2
+    h2 = t3 - 2.0 * t2 + t
+    h3 = -2.0 * t3 + 3.0 * t2
+    h4 = t3 - t2
+    w0 = (nu - 0.25) * (nu - 0.5) * 8.0  # Lagrange weights on 1/C at nu = 0, 0.25, 0.5
+    w1 = -nu * (nu - 0.5) * 16.0
+    w2 = nu * (nu - 0.25) * 8.0
+    out0 = 0.0
+    out1 = 0.0
+    out2 = 0.0
+    for k in range(3):
+        inv = 0.0
+        for inu in range(3):
+            p1 = CREEP_TABLE[k, i, inu]
+            p2 = CREEP_TABLE[k, i + 1, inu]
+            p0 = CREEP_TABLE[k, i - 1, inu] if i > 0 else 2.0 * p1 - p2
+            p3 = CREEP_TABLE[k, i + 2, inu] if i + 2 < n else 2.0 * p2 - p1
+            c = h1 * p1 + h2 * 0.5 * (p2 - p0) + h3 * p2 + h4 * 0.5 * (p3 - p1)
+            w = w0 if inu == 0 else (w1 if inu == 1 else w2)
+            inv += w / c
+        if k == 0:
+            out0 = 1.0 / inv
+        elif k == 1:
+            out1 = 1.0 / inv
+        else:
+            out2 = 1.0 / inv
+    return out0, out1, out2
+
+
 @hot
 def kalker_coefficients(r, nu):
     """Kalker's creep coefficients (C11, C22, C23) [-] of the linear theory [K90 Table E.3].
@@ -218,9 +260,7 @@ def kalker_coefficients(r, nu):
         nu = 0.0
     if nu > 0.5:
         nu = 0.5
-    t0 = _table_coefficient(r, nu, 0)
-    t1 = _table_coefficient(r, nu, 1)
-    t2 = _table_coefficient(r, nu, 2)
+    t0, t1, t2 = _table_coefficients(r, nu)
     if 0.1 <= r <= 10.0:
         return t0, t1, t2
     g = r if r < 0.1 else 1.0 / r
