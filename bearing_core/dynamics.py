@@ -977,17 +977,13 @@ class DynamicModel:
         7218B, Fx 1000 N, Fz 3000 N, mu 0.1: estimate 3.5-3.7M at 1000 rpm and 0.39-0.40M at 10,000 rpm,
         measured 1.0-1.2M and 0.27-0.29M per simulated s. It only steers the choice until the explicit
         method's own cost has been measured (its first probe)."""
-        from .fastsim import kalker_coefficients
-        bd = self.ball_details()
+        from .fastsim import max_creep_damping
+        _, bd = self.evaluate_point()
         G, nu = self.P[K.P_GCOMB], self.P[K.P_NUCOMB]
+        k = max(max_creep_damping(bd[:, K.BD_AI_SEMI], bd[:, K.BD_BI], bd[:, K.BD_QI], bd[:, K.BD_UI], G, nu),
+                max_creep_damping(bd[:, K.BD_AO_SEMI], bd[:, K.BD_BO], bd[:, K.BD_QO], bd[:, K.BD_UO], G, nu))
         D = self.P[K.P_D]
-        mob = 1.0 / self.P[K.P_MB] + 0.25 * D * D / self.P[K.P_JB]
-        lam = 0.0
-        for s in ("i", "o"):
-            for a, b, Q, u in zip(bd["a_" + s], bd["b_" + s], bd["Q_" + s], bd["u_" + s]):
-                if Q > 0.0 and a > 0.0 and b > 0.0 and abs(u) > 0.0:
-                    lam = max(lam, G * a * b * kalker_coefficients(b / a, nu)[0] / abs(u) * mob)
-        return 4.0 * lam / 2.785
+        return 4.0 * k * (1.0 / self.P[K.P_MB] + 0.25 * D * D / self.P[K.P_JB]) / 2.785
 
     def integrals(self) -> dict:
         """Time integrals [channel unit x s] of every output channel (dynamics_kernels.OUT_NAMES) since the

@@ -1,6 +1,7 @@
 """Dry / solid-lubricated rolling-contact traction by Kalker's simplified theory (FASTSIM).
 
-SI units (m, s, rad, N, Pa, W). Numba kernels; the hot path allocates nothing.
+SI units (m, s, rad, N, Pa, W). Numba kernels; the hot path (fastsim_traction_fast) allocates one work
+array of 10 x 16 doubles per grid evaluation (the strip data, _strip_arrays).
 
 Contents
 --------
@@ -10,7 +11,7 @@ Contents
 * fastsim_map(...): the same, plus the adhesion / slip map and local tractions (for plots).
 * fastsim_kalker(...): the solver in Kalker's own frame and creepages.
 * fastsim_traction_fast(...): fastsim_traction with shortcuts (closed-form linear solution at small
-  creepage, full-slip integral when every cell slips, square roots hoisted out of the grid march);
+  creepage, full-slip integral when every cell slips, the grid march vectorised across the strips);
   creepage_level, slip_level: the dimensionless levels that select them (docs/kalker.md).
 
 Frames and signs (same as contact_kernels)
@@ -270,6 +271,19 @@ def kalker_coefficients(r, nu):
     s = g / 0.1
     return (ax * (1.0 + (t0 / ex - 1.0) * s), ay * (1.0 + (t1 / ey - 1.0) * s),
             az * (1.0 + (t2 / ez - 1.0) * s))
+
+
+@hot
+def max_creep_damping(a, b, Q, u, G, nu):
+    """Largest linear-theory longitudinal creep damping G c^2 C11 / |u_roll| [N s/m] over the contacts with
+    Q > 0 and u_roll != 0: Kalker's F_t = -G c^2 C11 xi with xi = vs_t / |u_roll| [K90], c^2 = a b.
+    Arrays a, b [m] (semi-axes, contact_kernels frame: b along the rolling direction), Q [N], u [m/s];
+    G [Pa], nu [-] combined (combined_elastic). 0 if no contact qualifies."""
+    k = 0.0
+    for i in range(a.shape[0]):
+        if Q[i] > 0.0 and a[i] > 0.0 and b[i] > 0.0 and u[i] != 0.0:
+            k = max(k, G * a[i] * b[i] * kalker_coefficients(b[i] / a[i], nu)[0] / abs(u[i]))
+    return k
 
 
 def combined_elastic(E1, nu1, E2, nu2):

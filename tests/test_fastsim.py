@@ -500,3 +500,18 @@ def test_strip_simd_full_slip_equals_midpoint_rule(pressure):
                 got = np.array(fs._full_slip_fastsim(ap, bp, Q7, MU, G, *C, xi, eta, phi, nx, ny, pressure))
                 scale = np.array([MU * Q7, MU * Q7, MU * Q7 * ap])
                 assert np.all(np.abs(got - ref) <= 1e-12 * scale), (a, b, nx, ny, xi, eta, phi)
+
+
+def test_max_creep_damping_is_the_linear_creep_slope():
+    """max_creep_damping (the stiffness estimate of integrator 'auto' under Kalker traction) is the slope
+    -dF_t/dvs_t of the traction at vanishing creepage: Kalker's linear theory F_t = -G c^2 C11 xi,
+    xi = vs_t / |u_roll| [K90], taken from fastsim_traction_fast (linear branch) at xi = 1e-6, within 1e-9;
+    the largest over the contacts; unloaded or non-rolling contacts are left out."""
+    a = np.array([A7, 1.0e-3, 0.5e-3, A7])
+    b = np.array([B7, 0.15e-3, 0.5e-3, B7])
+    q = np.array([Q7, 500.0, 200.0, 0.0])
+    u = np.array([4.0, -2.5, 0.0, 0.1])
+    slopes = [-fs.fastsim_traction_fast(a[k], b[k], q[k], MU, G, NU, 1e-6 * abs(u[k]), 0.0, 0.0, u[k], 12, 12,
+                                        HZ)[0] / (1e-6 * abs(u[k])) for k in range(2)]
+    assert fs.max_creep_damping(a, b, q, u, G, NU) == pytest.approx(max(slopes), rel=1e-9)
+    assert fs.max_creep_damping(a[2:], b[2:], q[2:], u[2:], G, NU) == 0.0
