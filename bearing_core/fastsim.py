@@ -1,6 +1,7 @@
 """Dry / solid-lubricated rolling-contact traction by Kalker's simplified theory (FASTSIM).
 
-SI units (m, s, rad, N, Pa, W). Numba kernels; the hot path allocates nothing.
+SI units (m, s, rad, N, Pa, W). Numba kernels; the hot path (fastsim_traction_fast) allocates one work
+array of 10 x 16 doubles per grid evaluation (the strip data, _strip_arrays).
 
 Contents
 --------
@@ -10,7 +11,7 @@ Contents
 * fastsim_map(...): the same, plus the adhesion / slip map and local tractions (for plots).
 * fastsim_kalker(...): the solver in Kalker's own frame and creepages.
 * fastsim_traction_fast(...): fastsim_traction with shortcuts (closed-form linear solution at small
-  creepage, full-slip integral when every cell slips, square roots hoisted out of the grid march);
+  creepage, full-slip integral when every cell slips, the grid march vectorised across the strips);
   creepage_level, slip_level: the dimensionless levels that select them (docs/kalker.md).
 
 Frames and signs (same as contact_kernels)
@@ -66,6 +67,8 @@ import math
 import numpy as np
 from numba import njit
 
+from .jit import hot
+
 PRESSURE_PARABOLIC = 0   # Kalker's FASTSIM traction bound [K82]
 PRESSURE_HERTZ = 1       # elliptic Hertz pressure 3Q/(2 pi a b) sqrt(1 - x^2/a^2 - y^2/b^2)
 
@@ -110,7 +113,7 @@ CREEP_TABLE = _build_table()
 NU_NODES = np.array([0.0, 0.25, 0.5])
 
 
-@njit(cache=True)
+@hot
 def _asymptotes(r, nu):
     """Kalker's asymptotic creep coefficients [K90] (as coded in CONTACT linrol): r = a'/b' -> 0
     (case A) or r -> infinity (case B)."""
@@ -129,7 +132,7 @@ def _asymptotes(r, nu):
     return cx, cy, cz
 
 
-@njit(cache=True)
+@hot
 def _table_at_nu_node(z, inu, k):
     """Catmull-Rom (C1, exact for quadratics) interpolation of coefficient k at nu node inu on the
     uniform z grid 0.1 ... 1.9 (z clipped to that range)."""
@@ -155,7 +158,7 @@ def _table_at_nu_node(z, inu, k):
             + (-2.0 * t3 + 3.0 * t2) * p2 + (t3 - t2) * m2)
 
 
-@njit(cache=True)
+@hot
 def _table_at_nu_node_r(r, inu, k):
     """Coefficient k at nu node inu, table range 0.1 <= r <= 10 (r clipped to it)."""
     if r < 0.1:
@@ -183,7 +186,7 @@ def inverse_lagrange_nu(nu, nus, cs):
     return 1.0 / acc
 
 
-@njit(cache=True)
+@hot
 def _table_coefficient(r, nu, k):
     """Coefficient k from Kalker's table at r in [0.1, 10] (clipped): Catmull-Rom in z at each of the
     three nu nodes, then quadratic in 1/C over nu (CONTACT linrol)."""
@@ -196,7 +199,49 @@ def _table_coefficient(r, nu, k):
     return 1.0 / inv
 
 
-@njit(cache=True)
+@hot(inline="always")
+def _table_coefficients(r, nu):
+    """(C11, C22, C23) from Kalker's table at r in [0.1, 10] (clipped): the arithmetic of
+    _table_coefficient for the three coefficients at once (one row index, one set of Catmull-Rom and
+    Lagrange weights; called per contact evaluation in the dynamics)."""
+    rc = min(max(r, 0.1), 10.0)
+    z = rc if rc <= 1.0 else 2.0 - 1.0 / rc
+    n = 19
+    sz = min(max((z - 0.1) / 0.1, 0.0), n - 1.0)
+    i = min(int(sz), n - 2)
+    t = sz - i
+    t2 = t * t
+    t3 = t2 * t
+    h1 = 2.0 * t3 - 3.0 * t2 + 1.0       # Hermite basis on p1, m1, p2, m2
+    h2 = t3 - 2.0 * t2 + t
+    h3 = -2.0 * t3 + 3.0 * t2
+    h4 = t3 - t2
+    w0 = (nu - 0.25) * (nu - 0.5) * 8.0  # Lagrange weights on 1/C at nu = 0, 0.25, 0.5
+    w1 = -nu * (nu - 0.5) * 16.0
+    w2 = nu * (nu - 0.25) * 8.0
+    out0 = 0.0
+    out1 = 0.0
+    out2 = 0.0
+    for k in range(3):
+        inv = 0.0
+        for inu in range(3):
+            p1 = CREEP_TABLE[k, i, inu]
+            p2 = CREEP_TABLE[k, i + 1, inu]
+            p0 = CREEP_TABLE[k, i - 1, inu] if i > 0 else 2.0 * p1 - p2
+            p3 = CREEP_TABLE[k, i + 2, inu] if i + 2 < n else 2.0 * p2 - p1
+            c = h1 * p1 + h2 * 0.5 * (p2 - p0) + h3 * p2 + h4 * 0.5 * (p3 - p1)
+            w = w0 if inu == 0 else (w1 if inu == 1 else w2)
+            inv += w / c
+        if k == 0:
+            out0 = 1.0 / inv
+        elif k == 1:
+            out1 = 1.0 / inv
+        else:
+            out2 = 1.0 / inv
+    return out0, out1, out2
+
+
+@hot
 def kalker_coefficients(r, nu):
     """Kalker's creep coefficients (C11, C22, C23) [-] of the linear theory [K90 Table E.3].
 
@@ -216,9 +261,7 @@ def kalker_coefficients(r, nu):
         nu = 0.0
     if nu > 0.5:
         nu = 0.5
-    t0 = _table_coefficient(r, nu, 0)
-    t1 = _table_coefficient(r, nu, 1)
-    t2 = _table_coefficient(r, nu, 2)
+    t0, t1, t2 = _table_coefficients(r, nu)
     if 0.1 <= r <= 10.0:
         return t0, t1, t2
     g = r if r < 0.1 else 1.0 / r
@@ -228,6 +271,19 @@ def kalker_coefficients(r, nu):
     s = g / 0.1
     return (ax * (1.0 + (t0 / ex - 1.0) * s), ay * (1.0 + (t1 / ey - 1.0) * s),
             az * (1.0 + (t2 / ez - 1.0) * s))
+
+
+@hot
+def max_creep_damping(a, b, Q, u, G, nu):
+    """Largest linear-theory longitudinal creep damping G c^2 C11 / |u_roll| [N s/m] over the contacts with
+    Q > 0 and u_roll != 0: Kalker's F_t = -G c^2 C11 xi with xi = vs_t / |u_roll| [K90], c^2 = a b.
+    Arrays a, b [m] (semi-axes, contact_kernels frame: b along the rolling direction), Q [N], u [m/s];
+    G [Pa], nu [-] combined (combined_elastic). 0 if no contact qualifies."""
+    k = 0.0
+    for i in range(a.shape[0]):
+        if Q[i] > 0.0 and a[i] > 0.0 and b[i] > 0.0 and u[i] != 0.0:
+            k = max(k, G * a[i] * b[i] * kalker_coefficients(b[i] / a[i], nu)[0] / abs(u[i]))
+    return k
 
 
 def combined_elastic(E1, nu1, E2, nu2):
@@ -242,7 +298,7 @@ def combined_elastic(E1, nu1, E2, nu2):
 
 # --------------------------------------------------------------------------------------------------
 # 2. FASTSIM [K82]
-@njit(cache=True)
+@hot
 def _peak_pressure(Q, ap, bp, pressure):
     """Peak of the traction-bound pressure [Pa]: Hertz 3Q/(2 pi a b) or FASTSIM's parabolic 2Q/(pi a b)."""
     if pressure == PRESSURE_HERTZ:
@@ -472,7 +528,7 @@ SHORTCUT_LIN = 0.03      # default creepage level f below which the closed-form 
 SHORTCUT_SLIP = 3.0      # default creepage level f above which the full-slip integral is used
 
 
-@njit(cache=True)
+@hot
 def creepage_level(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi):
     """Dimensionless creepage f = sqrt(xi*^2 + eta*^2 + phi*^2) (Kalker frame), each creepage scaled by the
     value at which its linear force alone reaches 3 mu Q (the Vermeulen-Johnson / simplified-theory
@@ -490,7 +546,7 @@ def creepage_level(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi):
     return math.sqrt(x * x + y * y + z * z)
 
 
-@njit(cache=True)
+@hot
 def slip_level(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi):
     """Lower bound over the patch of the FASTSIM increment |g| = |(xi/L1 - phi y/L3, eta/L2 + phi x/L3)|,
     scaled by the rate 2 mu p0 / a' (parabolic p0 = 2Q/(pi a' b')) at which a strip saturates from its
@@ -513,7 +569,7 @@ def slip_level(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi):
     return gmin * math.pi * ap * ap * bp / (4.0 * mu * Q)
 
 
-@njit(cache=True)
+@hot
 def _linear_closed_form(ap, bp, G, C11, C22, C23, xi, eta, phi):
     """FASTSIM's stick solution integrated exactly over the ellipse (no traction bound): the limit of the
     grid result at small creepage (Kalker frame). Stick traction at distance s = a(y) - x from the
@@ -527,116 +583,152 @@ def _linear_closed_form(ap, bp, G, C11, C22, C23, xi, eta, phi):
     return Fx, Fy, Mz
 
 
-@njit(cache=True)
+# strips per SIMD block of _fastsim_strips and _full_slip_fastsim: the strip count is padded to a multiple of
+# it (AVX-512: two vectors of 8 doubles; LLVM runs its vectorised loop body only for trip counts of 16 and
+# more)
+LANES = 16
+# floor of the squared magnitudes under the square roots of the strip kernels [Pa^2]: a padded strip
+# (zero bound, zero traction) gives 0 / sqrt(1e-300) = 0 instead of 0 / 0
+_TINY2 = 1e-300
+
+
+@hot(inline="always")
+def _strip_arrays(ap, bp, mup0, xi, phi, iL1, iL3, n_x, n_y, hertz):
+    """Structure-of-arrays strip data of the FASTSIM grid (n_y strips across y, padded to a multiple of
+    LANES with empty strips beyond y = b': e_y clamped to 0 gives zero length, area and bound). Rows:
+    0 y, 1 a'(y), 2 cell length dx, 3 x increment rate xi/L1 - phi y/L3 (constant along the strip),
+    4 strip bound without the cell factor, 5-9 work rows (zeroed)."""
+    npad = (n_y + LANES - 1) // LANES * LANES
+    buf = np.empty((10, npad))
+    dy = 2.0 * bp / n_y
+    ibp = 1.0 / bp
+    dxa = 2.0 * ap / n_x
+    for j in range(npad):
+        y = -bp + (j + 0.5) * dy
+        yb = y * ibp
+        ey = max(1.0 - yb * yb, 0.0)
+        sey = math.sqrt(ey)
+        buf[0, j] = y
+        buf[1, j] = ap * sey
+        buf[2, j] = dxa * sey
+        buf[3, j] = xi * iL1 - phi * y * iL3
+        buf[4, j] = mup0 * (sey if hertz else ey)
+    buf[5:] = 0.0
+    return buf
+
+
+@hot(inline="always")
+def _cell_shape(i, n_x, hertz):
+    """Bound of cell i of any strip relative to the strip's bound: the cell centres lie at the same
+    fractions of every strip, e_i / e_y = (4/n_x^2) (i + 1/2)(n_x - i - 1/2) (its square root for Hertz)."""
+    q = 4.0 / (n_x * n_x) * (i + 0.5) * (n_x - i - 0.5)
+    return math.sqrt(q) if hertz else q
+
+
+@hot(inline="always")
+def _strip_sums(buf, dy):
+    """(Fx, Fy, Mz) from the per-strip sums of px, py, x py (rows 7-9 of _strip_arrays) times the cell areas."""
+    Fx = 0.0
+    Fy = 0.0
+    Mz = 0.0
+    for j in range(buf.shape[1]):
+        dA = buf[2, j] * dy
+        Fx += buf[7, j] * dA
+        Fy += buf[8, j] * dA
+        Mz += (buf[9, j] - buf[0, j] * buf[7, j]) * dA
+    return Fx, Fy, Mz
+
+
+@hot
 def _full_slip_fastsim(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure):
     """Large-creepage limit of FASTSIM: every cell carries the bound mu p along the direction of the
     FASTSIM increment -(xi/L1 - phi y/L3, eta/L2 + phi x/L3) (not exactly the rigid-slip direction when
     L1 != L2: the same tilt as the grid result, see the module docstring). Midpoint rule on the same
-    strips as _fastsim_core, no march."""
-    Fx = 0.0
-    Fy = 0.0
-    Mz = 0.0
+    strips as _fastsim_core, no march; SIMD across the strips as _fastsim_strips."""
     c = math.sqrt(ap * bp)
     iL1 = 3.0 * G * C11 / (8.0 * ap)
     iL2 = 3.0 * G * C22 / (8.0 * ap)
     iL3 = 4.0 * G * c * C23 / (math.pi * ap * ap)
-    p0 = _peak_pressure(Q, ap, bp, pressure)
-    mup0 = mu * p0
-    dy = 2.0 * bp / n_y
     hertz = pressure == PRESSURE_HERTZ
-    sh = np.empty(n_x)
+    buf = _strip_arrays(ap, bp, mu * _peak_pressure(Q, ap, bp, pressure), xi, phi, iL1, iL3, n_x, n_y, hertz)
+    npad = buf.shape[1]
+    aj = buf[1]
+    dx = buf[2]
+    gx = buf[3]
+    gbj = buf[4]
+    sfx = buf[7]
+    sfy = buf[8]
+    sxfy = buf[9]
+    gy0 = eta * iL2
+    gy1 = phi * iL3
     for i in range(n_x):
-        q = 4.0 * (i + 0.5) * (n_x - i - 0.5) / (n_x * n_x)
-        sh[i] = math.sqrt(q) if hertz else q
-    for j in range(n_y):
-        y = -bp + (j + 0.5) * dy
-        ey = 1.0 - (y / bp) ** 2
-        sey = math.sqrt(ey)
-        aj = ap * sey
-        dx = 2.0 * aj / n_x
-        dA = dx * dy
-        gbj = mup0 * (sey if hertz else ey) * dA
-        gx = xi * iL1 - phi * y * iL3
-        for i in range(n_x):
-            xc = aj - (i + 0.5) * dx
-            gy = eta * iL2 + phi * xc * iL3
-            g = math.sqrt(gx * gx + gy * gy)
-            if g == 0.0:
-                continue
-            gb = gbj * sh[i] / g
-            fx = -gb * gx
-            fy = -gb * gy
-            Fx += fx
-            Fy += fy
-            Mz += xc * fy - y * fx
-    return Fx, Fy, Mz
+        sh = _cell_shape(i, n_x, hertz)
+        fc = i + 0.5
+        for j in range(npad):
+            xc = aj[j] - fc * dx[j]
+            gxj = gx[j]
+            gy = gy0 + gy1 * xc
+            r = gbj[j] * sh / math.sqrt(max(gxj * gxj + gy * gy, _TINY2))
+            fy = -r * gy
+            sfx[j] -= r * gxj
+            sfy[j] += fy
+            sxfy[j] += xc * fy
+    return _strip_sums(buf, 2.0 * bp / n_y)
 
 
-@njit(cache=True)
-def _fastsim_core_lean(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure):
-    """_fastsim_core without the map output, with the same arithmetic reorganised: the Hertz bound of
-    cell i on any strip is mu p0 sqrt(e_y) (2/n_x) sqrt((i + 1/2)(n_x - i - 1/2)) (cell centres at the
-    same fractions of every strip), so its square roots are taken once per call, not once per cell;
-    and the stick test compares squares (one square root per slipping cell only). Same grid, same
-    result to rounding (not bitwise)."""
-    Fx = 0.0
-    Fy = 0.0
-    Mz = 0.0
+@hot
+def _fastsim_strips(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure):
+    """The grid march of _fastsim_core without the map output, vectorised ACROSS the strips: the strips
+    are independent (each marches from its own leading edge), so cell i of every strip is one SIMD
+    operation on structure-of-arrays strip data (_strip_arrays, padded to a multiple of LANES). The
+    stick / slip choice is branch-free: the traction is scaled by gb / sqrt(max(|p|^2, gb^2)), exactly 1
+    where the cell sticks (sqrt(gb^2) = gb in IEEE arithmetic). The bound of cell i is the strip's bound
+    times a factor of i alone (_cell_shape): one square root per cell index, none per cell. Same grid and
+    arithmetic as _fastsim_core, equal to rounding (tests/test_fastsim.py)."""
     c = math.sqrt(ap * bp)
     iL1 = 3.0 * G * C11 / (8.0 * ap)
     iL2 = 3.0 * G * C22 / (8.0 * ap)
     iL3 = 4.0 * G * c * C23 / (math.pi * ap * ap)
-    p0 = _peak_pressure(Q, ap, bp, pressure)
-    mup0 = mu * p0
-    dy = 2.0 * bp / n_y
     hertz = pressure == PRESSURE_HERTZ
-    # bound shape of cell i relative to the strip's centre bound: e_i / e_y = 4 (i+1/2)(n-i-1/2) / n^2
-    sh = np.empty(n_x)
+    buf = _strip_arrays(ap, bp, mu * _peak_pressure(Q, ap, bp, pressure), xi, phi, iL1, iL3, n_x, n_y, hertz)
+    npad = buf.shape[1]
+    aj = buf[1]
+    dx = buf[2]
+    gx = buf[3]
+    gbj = buf[4]
+    px = buf[5]        # traction of the current cell [Pa]
+    py = buf[6]
+    sfx = buf[7]       # sums over the strip's cells of px, py, x py [Pa, Pa, Pa m]
+    sfy = buf[8]
+    sxfy = buf[9]
+    gy0 = eta * iL2
+    gy1 = phi * iL3
     for i in range(n_x):
-        q = 4.0 * (i + 0.5) * (n_x - i - 0.5) / (n_x * n_x)
-        sh[i] = math.sqrt(q) if hertz else q
-    for j in range(n_y):
-        y = -bp + (j + 0.5) * dy
-        ey = 1.0 - (y / bp) ** 2
-        sey = math.sqrt(ey)
-        aj = ap * sey
-        dx = 2.0 * aj / n_x
-        dA = dx * dy
-        gbj = mup0 * (sey if hertz else ey)
-        gx = xi * iL1 - phi * y * iL3
-        gy0 = eta * iL2
-        gy1 = phi * iL3
-        px = 0.0
-        py = 0.0
-        sfx = 0.0
-        sfy = 0.0
-        sxfy = 0.0
-        for i in range(n_x):
-            xc = aj - (i + 0.5) * dx
-            if i == 0:
-                ds = 0.5 * dx
-                xm = aj - 0.25 * dx
-            else:
-                ds = dx
-                xm = xc + 0.5 * dx
-            px -= gx * ds
-            py -= (gy0 + gy1 * xm) * ds
-            gb = gbj * sh[i]
-            pm2 = px * px + py * py
-            if pm2 > gb * gb:
-                f = gb / math.sqrt(pm2)
-                px *= f
-                py *= f
-            sfx += px
-            sfy += py
-            sxfy += xc * py
-        Fx += sfx * dA
-        Fy += sfy * dA
-        Mz += (sxfy - y * sfx) * dA
-    return Fx, Fy, Mz
+        sh = _cell_shape(i, n_x, hertz)
+        # travelled distance fs dx from the previous slip point, slip rate taken at x = a' - fm dx (the
+        # first cell: half a cell from the leading edge, rate midway), cell centre a' - fc dx
+        fs = 0.5 if i == 0 else 1.0
+        fm = 0.25 if i == 0 else float(i)
+        fc = i + 0.5
+        for j in range(npad):
+            d = dx[j]
+            a = aj[j]
+            ds = fs * d
+            pxj = px[j] - gx[j] * ds
+            pyj = py[j] - (gy0 + gy1 * (a - fm * d)) * ds
+            gb = gbj[j] * sh
+            f = gb / math.sqrt(max(pxj * pxj + pyj * pyj, gb * gb, _TINY2))
+            pxj *= f
+            pyj *= f
+            px[j] = pxj
+            py[j] = pyj
+            sfx[j] += pxj
+            sfy[j] += pyj
+            sxfy[j] += (a - fc * d) * pyj
+    return _strip_sums(buf, 2.0 * bp / n_y)
 
 
-@njit(cache=True)
+@hot
 def fastsim_traction_fast(a, b, Q, mu, G, nu, vs_t, vs_m, w_spin, u_roll, n_x=12, n_y=12,
                           pressure=PRESSURE_PARABOLIC, f_lin=SHORTCUT_LIN, f_slip=SHORTCUT_SLIP):
     """fastsim_traction (same arguments, frame, signs and outputs) with shortcuts around the grid:
@@ -644,7 +736,7 @@ def fastsim_traction_fast(a, b, Q, mu, G, nu, vs_t, vs_m, w_spin, u_roll, n_x=12
     f >= f_slip and slip_level >= f_slip (the increment exceeds f_slip times the saturation rate
     everywhere, spin pole outside the patch): the full-slip limit (bound times the FASTSIM increment
     direction, no march);
-    otherwise the grid march of fastsim_traction with the square roots hoisted (_fastsim_core_lean).
+    otherwise the grid march of fastsim_traction, SIMD across the strips (_fastsim_strips).
     f_lin = 0 and f_slip = inf give the grid everywhere. u_roll == 0: exact full sliding as
     fastsim_traction. Accuracy and cost of each branch: docs/kalker.md, bench/bench_fastsim.py."""
     if not (Q > 0.0 and a > 0.0 and b > 0.0):
@@ -668,7 +760,7 @@ def fastsim_traction_fast(a, b, Q, mu, G, nu, vs_t, vs_m, w_spin, u_roll, n_x=12
     elif f >= f_slip and slip_level(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi) >= f_slip:
         Fx, Fy, Mz = _full_slip_fastsim(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure)
     else:
-        Fx, Fy, Mz = _fastsim_core_lean(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure)
+        Fx, Fy, Mz = _fastsim_strips(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure)
     Ft = sg * Fx
     Fm = sg * Fy
     P = -(Ft * vs_t + Fm * vs_m + Mz * w_spin)

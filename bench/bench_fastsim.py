@@ -7,11 +7,17 @@ b = 0.17 mm, Q = 300 N, steel, mu = 0.1).
      ellipse_traction (Coulomb, 6 x 2 Gauss points);
   2. accuracy against a 200 x 200 grid of the same FASTSIM, over random creepage directions binned by the
      creepage level f (fastsim.creepage_level): max error of F_t, F_m over mu Q and of M_n over mu Q a;
-  3. grid shape at equal cell count (n_x cells along the rolling direction x n_y strips).
+  3. grid shape at equal cell count (n_x cells along the rolling direction x n_y strips);
+  4. --dynamics: the 32 ball-race contacts of the 7218B Kalker model (dynamics traction 'kalker', 12 x 12,
+     Hertz bound, mu = 0.1, Fx 1000 N, Fz 3000 N) 20 ms after its quasi-static start at 1000 rpm: branch
+     taken per contact, cost per contact of fastsim_traction_fast (as the right-hand side calls it: strip-SIMD
+     grid march) against the scalar march of fastsim_traction on the same grid, and of kalker_coefficients.
+Costs are CPU time of the calling thread (best of several loops), so that time the thread spends
+descheduled on a shared machine is not counted.
   --seed000: also the real-time factor (wall / simulated time) of the seed 000 case with Kalker traction
      (7218B, SEED000_PROFILE to 2 s, mu = 0.1, Fx 1000 N, Fz 3000 N; about 100 s).
 
-    python bench/bench_fastsim.py [--json] [--seed000]
+    python bench/bench_fastsim.py [--json] [--seed000] [--dynamics]
 """
 import argparse
 import json
@@ -55,14 +61,79 @@ def _loop_ellipse(n, a, b, p, D, R, tp, qx, qwx, qy, qwy):
     return s
 
 
-def _time(f, *args, n=20000):
+def _time(f, *args, n=20000, repeats=5):
     f(10, *args)
     best = 1e9
-    for _ in range(3):
-        t0 = time.perf_counter()
+    for _ in range(repeats):
+        t0 = time.thread_time()
         f(n, *args)
-        best = min(best, (time.perf_counter() - t0) / n * 1e6)
+        best = min(best, (time.thread_time() - t0) / n * 1e6)
     return best
+
+
+@njit(cache=True)
+def _loop_contacts(n, C, mu, G, nu, n_xy, fast):
+    """n sweeps over the contacts C (rows a, b, Q, vs_t, vs_m, w_spin, u_roll), Hertz bound."""
+    s = 0.0
+    for k in range(n):
+        for c in range(C.shape[0]):
+            if fast:
+                r = fastsim_traction_fast(C[c, 0], C[c, 1], C[c, 2], mu, G, nu, C[c, 3] + 1e-15 * k, C[c, 4], C[c, 5],
+                                          C[c, 6], n_xy, n_xy, PRESSURE_HERTZ)
+            else:
+                r = fastsim_traction(C[c, 0], C[c, 1], C[c, 2], mu, G, nu, C[c, 3] + 1e-15 * k, C[c, 4], C[c, 5],
+                                     C[c, 6], n_xy, n_xy, PRESSURE_HERTZ)
+            s += r[0]
+    return s
+
+
+@njit(cache=True)
+def _loop_coefficients(n, r, nu):
+    s = 0.0
+    for k in range(n):
+        for c in range(r.shape[0]):
+            s += kalker_coefficients(r[c] + 1e-12 * k, nu)[2]
+    return s
+
+
+def dynamics_contacts(settle=0.02):
+    """The race contacts of the Kalker dynamics model after `settle` s from the quasi-static start at 1000 rpm:
+    branch per contact, cost per contact of fastsim_traction_fast and of the scalar march (fastsim_traction)."""
+    import sys
+    from pathlib import Path
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from bench_traction import LOADS, RPM, race_contacts
+    from bearing_core import dynamics_kernels as K
+    from bearing_core.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.fastsim import SHORTCUT_LIN, SHORTCUT_SLIP, slip_level
+    from bearing_core.geometry import load_preset
+    m = DynamicModel(load_preset("7218B"), DynamicsOptions(integrator="auto", reduced="full", traction="kalker",
+                                                           mu=MU))
+    m.initialize(1000.0 * RPM, LOADS)
+    m.advance(settle)
+    R = race_contacts(m)
+    Gc, nuc, n_xy = m.P[K.P_GCOMB], m.P[K.P_NUCOMB], int(m.P[K.P_FS_NX])
+    Q = 2.0 / 3.0 * math.pi * R[:, 0] * R[:, 1] * R[:, 2]
+    C = np.column_stack([R[:, 0], R[:, 1], Q, R[:, 7], R[:, 8], R[:, 9], R[:, 12]])
+    branches = {"linear": 0, "grid": 0, "fullslip": 0}
+    for a, b, q, vt, vm, w, u in C:
+        ap, bp = b, a
+        cf = kalker_coefficients(ap / bp, nuc)
+        sg = -1.0 if u > 0 else 1.0
+        cr = (sg * vt / abs(u), sg * vm / abs(u), w / abs(u))
+        f = creepage_level(ap, bp, q, MU, Gc, *cf, *cr)
+        if f <= SHORTCUT_LIN:
+            branches["linear"] += 1
+        elif f >= SHORTCUT_SLIP and slip_level(ap, bp, q, MU, Gc, *cf, *cr) >= SHORTCUT_SLIP:
+            branches["fullslip"] += 1
+        else:
+            branches["grid"] += 1
+    n = 300
+    fast = _time(_loop_contacts, C, MU, Gc, nuc, n_xy, True, n=n, repeats=15) / len(C)
+    scalar = _time(_loop_contacts, C, MU, Gc, nuc, n_xy, False, n=n, repeats=15) / len(C)
+    coef = _time(_loop_coefficients, C[:, 1] / C[:, 0], nuc, n=3000, repeats=15) / len(C)
+    return {"contacts": len(C), "grid": n_xy, "branches": branches, "fast_us_per_contact": fast,
+            "scalar_march_us_per_contact": scalar, "kalker_coefficients_us": coef}
 
 
 # a ball-race state from the dynamics (7218B outer contact, 3000 rpm): partial slip, spin dominated
@@ -152,8 +223,12 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--json", action="store_true")
     ap.add_argument("--seed000", action="store_true", help="also time the seed 000 Kalker case (about 100 s)")
+    ap.add_argument("--dynamics", action="store_true",
+                    help="also the contacts of the Kalker dynamics model at 1000 rpm (about 20 s)")
     a = ap.parse_args()
     out = {"cost_us": costs()}
+    if a.dynamics:
+        out["dynamics"] = dynamics_contacts()
     for pr, name in ((PRESSURE_HERTZ, "hertz"), (PRESSURE_PARABOLIC, "parabolic")):
         out[f"accuracy_{name}"] = accuracy(pr)
         out[f"shapes_{name}"] = shapes(pr)
@@ -173,6 +248,11 @@ def main():
                   f"{r['linear_pct']:10.3f}  {r['fast_default_12_pct']:9.3f}")
         print(f"  grid shape at ~144 cells ({name}):", ", ".join(f"{r['n_x']}x{r['n_y']}: {r['max_err_pct']:.2f}%"
                                                              for r in out[f"shapes_{name}"]))
+    if a.dynamics:
+        d = out["dynamics"]
+        print(f"\ndynamics state (7218B, Kalker {d['grid']}x{d['grid']} Hertz, 1000 rpm, 20 ms): branches {d['branches']}; "
+              f"per contact: fastsim_traction_fast {d['fast_us_per_contact']:.3f} us, scalar march "
+              f"{d['scalar_march_us_per_contact']:.3f} us, kalker_coefficients {d['kalker_coefficients_us']:.4f} us")
     if a.seed000:
         print("\n" + "\n".join(f"{k}: {v:.2f}" for k, v in out["seed000"].items()))
 

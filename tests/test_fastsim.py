@@ -431,3 +431,87 @@ def test_fast_power_and_special_cases():
     args = (A7, B7, Q7, MU, G, NU, 0.01, -0.003, 20.0, 0.0, 12, 12, HZ)
     assert fs.fastsim_traction_fast(*args) == fs.fastsim_traction(*args)
     assert fs.fastsim_traction_fast(A7, B7, 0.0, MU, G, NU, 0.01, 0.0, 0.0, 3.0, 12, 12, HZ) == (0.0, 0.0, 0.0, 0.0)
+
+
+# --------------------------------------------------------------------------------------------------
+# strip-vectorised kernels (SIMD across the strips) against the scalar march
+SHAPES = [(0.17e-3, 1.15e-3), (1.0e-3, 0.15e-3), (0.5e-3, 0.5e-3), (0.3e-3, 0.6e-3), (0.06e-3, 1.2e-3)]
+GRIDS = [(12, 12), (8, 5), (20, 17), (7, 33)]
+
+
+@pytest.mark.parametrize("pressure", [PAR, HZ], ids=["parabolic", "hertz"])
+def test_strip_simd_march_equals_scalar_march(pressure):
+    """The grid branch of fastsim_traction_fast (_fastsim_strips: the march vectorised across the strips,
+    branch-free stick/slip, padded strips) against the scalar cell-by-cell march of fastsim_traction
+    (_fastsim_core, Kalker's FASTSIM [K82]) on the same grid: equal to rounding, |difference| <= 1e-12 of
+    mu Q (forces) and of mu Q max(a, b) (moment), over b/a = 0.05 ... 6.7 (ball-race ellipses, circle,
+    rolling along the major axis), grids with strip counts below, at and above the SIMD block of 16,
+    creepage levels from the linear range (0.02) to full slip (30) and five creepage directions incl. pure
+    spin, both rolling directions. (A reorganised formula, not an independent physics check: the physics of
+    the march is held by the Kalker-table tests above.)"""
+    for a, b in SHAPES:
+        scale = np.array([MU * Q7, MU * Q7, MU * Q7 * max(a, b)])
+        for nx, ny in GRIDS:
+            for d in DIRS:
+                for f in (0.02, 0.3, 3.0, 30.0):
+                    vt, vm, w, u = _state(f, d, a=a, b=b)
+                    for sgn in (1.0, -1.0):
+                        s = (vt, vm, w, sgn * u)
+                        ref = np.array(fs.fastsim_traction(a, b, Q7, MU, G, NU, *s, nx, ny, pressure)[:3])
+                        got = np.array(fs.fastsim_traction_fast(a, b, Q7, MU, G, NU, *s, nx, ny, pressure,
+                                                                0.0, 1e300)[:3])
+                        assert np.all(np.abs(got - ref) <= 1e-12 * scale), (a, b, nx, ny, d, f, sgn)
+
+
+def _full_slip_midpoint(ap, bp, q, xi, eta, phi, nx, ny, pressure):
+    """The full-slip limit of FASTSIM written out with numpy (Kalker frame): bound mu p at every cell centre
+    of the strip grid along minus the FASTSIM increment (xi/L1 - phi y/L3, eta/L2 + phi x/L3) [K82]."""
+    C11, C22, C23 = fs.kalker_coefficients(ap / bp, NU)
+    c = math.sqrt(ap * bp)
+    iL1, iL2, iL3 = 3 * G * C11 / (8 * ap), 3 * G * C22 / (8 * ap), 4 * G * c * C23 / (math.pi * ap * ap)
+    p0 = (1.5 if pressure == HZ else 2.0) * q / (math.pi * ap * bp)
+    dy = 2 * bp / ny
+    y = -bp + (np.arange(ny) + 0.5) * dy
+    aj = ap * np.sqrt(1 - (y / bp) ** 2)
+    dx = 2 * aj / nx
+    xc = aj[:, None] - (np.arange(nx)[None, :] + 0.5) * dx[:, None]
+    e = 1 - (y[:, None] / bp) ** 2 - (xc / ap) ** 2
+    bound = MU * p0 * (np.sqrt(e) if pressure == HZ else e)
+    gx = xi * iL1 - phi * y[:, None] * iL3 + 0 * xc
+    gy = eta * iL2 + phi * xc * iL3
+    g = np.hypot(gx, gy)
+    fx = -bound * gx / g * (dx * dy)[:, None]
+    fy = -bound * gy / g * (dx * dy)[:, None]
+    return np.array([fx.sum(), fy.sum(), (xc * fy - y[:, None] * fx).sum()])
+
+
+@pytest.mark.parametrize("pressure", [PAR, HZ], ids=["parabolic", "hertz"])
+def test_strip_simd_full_slip_equals_midpoint_rule(pressure):
+    """The full-slip branch of fastsim_traction_fast (_full_slip_fastsim, SIMD across the strips) against the
+    same midpoint rule written out with numpy (_full_slip_midpoint): equal to rounding, 1e-12 of mu Q and of
+    mu Q a', for the 7218B-like ellipse and a circle, grids with 5 ... 33 strips, creepage directions with the
+    spin pole outside the patch."""
+    for a, b in SHAPES[:3]:
+        ap, bp = b, a
+        for nx, ny in GRIDS:
+            for xi, eta, phi in ((0.02, 0.0, 0.0), (0.01, -0.02, 5.0), (-0.05, 0.01, -20.0)):
+                ref = _full_slip_midpoint(ap, bp, Q7, xi, eta, phi, nx, ny, pressure)
+                C = fs.kalker_coefficients(ap / bp, NU)
+                got = np.array(fs._full_slip_fastsim(ap, bp, Q7, MU, G, *C, xi, eta, phi, nx, ny, pressure))
+                scale = np.array([MU * Q7, MU * Q7, MU * Q7 * ap])
+                assert np.all(np.abs(got - ref) <= 1e-12 * scale), (a, b, nx, ny, xi, eta, phi)
+
+
+def test_max_creep_damping_is_the_linear_creep_slope():
+    """max_creep_damping (the stiffness estimate of integrator 'auto' under Kalker traction) is the slope
+    -dF_t/dvs_t of the traction at vanishing creepage: Kalker's linear theory F_t = -G c^2 C11 xi,
+    xi = vs_t / |u_roll| [K90], taken from fastsim_traction_fast (linear branch) at xi = 1e-6, within 1e-9;
+    the largest over the contacts; unloaded or non-rolling contacts are left out."""
+    a = np.array([A7, 1.0e-3, 0.5e-3, A7])
+    b = np.array([B7, 0.15e-3, 0.5e-3, B7])
+    q = np.array([Q7, 500.0, 200.0, 0.0])
+    u = np.array([4.0, -2.5, 0.0, 0.1])
+    slopes = [-fs.fastsim_traction_fast(a[k], b[k], q[k], MU, G, NU, 1e-6 * abs(u[k]), 0.0, 0.0, u[k], 12, 12,
+                                        HZ)[0] / (1e-6 * abs(u[k])) for k in range(2)]
+    assert fs.max_creep_damping(a, b, q, u, G, NU) == pytest.approx(max(slopes), rel=1e-9)
+    assert fs.max_creep_damping(a[2:], b[2:], q[2:], u[2:], G, NU) == 0.0
