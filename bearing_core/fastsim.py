@@ -639,18 +639,27 @@ def _strip_sums(buf, dy):
     return Fx, Fy, Mz
 
 
-@hot
-def _full_slip_fastsim(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure):
-    """Large-creepage limit of FASTSIM: every cell carries the bound mu p along the direction of the
-    FASTSIM increment -(xi/L1 - phi y/L3, eta/L2 + phi x/L3) (not exactly the rigid-slip direction when
-    L1 != L2: the same tilt as the grid result, see the module docstring). Midpoint rule on the same
-    strips as _fastsim_core, no march; SIMD across the strips as _fastsim_strips."""
+@hot(inline="always")
+def _strip_setup(ap, bp, Q, mu, G, C11, C22, C23, xi, phi, n_x, n_y, pressure):
+    """Flexibility inverses 1/L1, 1/L2, 1/L3 (Kalker's simplified theory: L1 = 8a/(3 G C11),
+    L2 = 8a/(3 G C22), L3 = pi a sqrt(a/b)/(4 G C23) with c = sqrt(ab)), the Hertz-pressure flag and the
+    structure-of-arrays strip data (_strip_arrays) of the vectorised marches."""
     c = math.sqrt(ap * bp)
     iL1 = 3.0 * G * C11 / (8.0 * ap)
     iL2 = 3.0 * G * C22 / (8.0 * ap)
     iL3 = 4.0 * G * c * C23 / (math.pi * ap * ap)
     hertz = pressure == PRESSURE_HERTZ
     buf = _strip_arrays(ap, bp, mu * _peak_pressure(Q, ap, bp, pressure), xi, phi, iL1, iL3, n_x, n_y, hertz)
+    return iL1, iL2, iL3, hertz, buf
+
+
+@hot
+def _full_slip_fastsim(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pressure):
+    """Large-creepage limit of FASTSIM: every cell carries the bound mu p along the direction of the
+    FASTSIM increment -(xi/L1 - phi y/L3, eta/L2 + phi x/L3) (not exactly the rigid-slip direction when
+    L1 != L2: the same tilt as the grid result, see the module docstring). Midpoint rule on the same
+    strips as _fastsim_core, no march; SIMD across the strips as _fastsim_strips."""
+    iL1, iL2, iL3, hertz, buf = _strip_setup(ap, bp, Q, mu, G, C11, C22, C23, xi, phi, n_x, n_y, pressure)
     npad = buf.shape[1]
     aj = buf[1]
     dx = buf[2]
@@ -685,12 +694,7 @@ def _fastsim_strips(ap, bp, Q, mu, G, C11, C22, C23, xi, eta, phi, n_x, n_y, pre
     where the cell sticks (sqrt(gb^2) = gb in IEEE arithmetic). The bound of cell i is the strip's bound
     times a factor of i alone (_cell_shape): one square root per cell index, none per cell. Same grid and
     arithmetic as _fastsim_core, equal to rounding (tests/test_fastsim.py)."""
-    c = math.sqrt(ap * bp)
-    iL1 = 3.0 * G * C11 / (8.0 * ap)
-    iL2 = 3.0 * G * C22 / (8.0 * ap)
-    iL3 = 4.0 * G * c * C23 / (math.pi * ap * ap)
-    hertz = pressure == PRESSURE_HERTZ
-    buf = _strip_arrays(ap, bp, mu * _peak_pressure(Q, ap, bp, pressure), xi, phi, iL1, iL3, n_x, n_y, hertz)
+    iL1, iL2, iL3, hertz, buf = _strip_setup(ap, bp, Q, mu, G, C11, C22, C23, xi, phi, n_x, n_y, pressure)
     npad = buf.shape[1]
     aj = buf[1]
     dx = buf[2]

@@ -856,13 +856,12 @@ def _progress(total, initial, enabled, desc):
     return tqdm(total=total, initial=initial, disable=not enabled, desc=desc, unit="pt", dynamic_ncols=True)
 
 
-def _run_tasks(tasks, cache_dir, client, retries, progress, desc):
-    """tasks: list of (key, callable, args). Cached results are read from cache_dir/<key>.json; the rest is
-    submitted to the client. Returns (results in task order, number computed)."""
-    from distributed import as_completed
-    results = [None] * len(tasks)
+def _cached_results(keys, cache_dir):
+    """Results read from cache_dir/<key>.json (marked cached=True; None where missing or unreadable) and
+    the indices of the keys still to compute."""
+    results = [None] * len(keys)
     todo = []
-    for i, (key, fn, args) in enumerate(tasks):
+    for i, key in enumerate(keys):
         f = cache_dir / f"{key}.json" if cache_dir else None
         if f is not None and f.is_file():
             try:
@@ -871,6 +870,14 @@ def _run_tasks(tasks, cache_dir, client, retries, progress, desc):
             except (json.JSONDecodeError, OSError):
                 pass
         todo.append(i)
+    return results, todo
+
+
+def _run_tasks(tasks, cache_dir, client, retries, progress, desc):
+    """tasks: list of (key, callable, args). Cached results are read from cache_dir/<key>.json; the rest is
+    submitted to the client. Returns (results in task order, number computed)."""
+    from distributed import as_completed
+    results, todo = _cached_results([t[0] for t in tasks], cache_dir)
     bar = _progress(len(tasks), len(tasks) - len(todo), progress, desc)
     failed = sum(1 for r in results if r is not None and r.get("status") == "failed")
     if todo:
@@ -907,17 +914,7 @@ def _run_batches(keys, points, model, opts, skid, cache_dir, client, retries, pr
     fails as a whole (e.g. its workers kept dying) marks its points failed. Returns (results in point
     order, number computed)."""
     from distributed import as_completed
-    results = [None] * len(points)
-    todo = []
-    for i, key in enumerate(keys):
-        f = cache_dir / f"{key}.json" if cache_dir else None
-        if f is not None and f.is_file():
-            try:
-                results[i] = dict(json.loads(f.read_text()), cached=True)
-                continue
-            except (json.JSONDecodeError, OSError):
-                pass
-        todo.append(i)
+    results, todo = _cached_results(keys, cache_dir)
     bar = _progress(len(points), len(points) - len(todo), progress, desc)
     failed = 0
     lock, seen, closed = threading.Lock(), {}, set()       # per batch tag: points reported by events
