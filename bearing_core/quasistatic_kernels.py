@@ -319,6 +319,56 @@ def residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
 
 
 @hot
+def lstsq_svd(A, b, rcond):
+    """Minimum-norm least-squares solution of A x = b (A n x n) through the singular value decomposition,
+    singular values below rcond * s_max treated as zero: numpy.linalg.lstsq's definition, computed by
+    one-sided Jacobi rotations (Demmel & Veselic 1992; Golub & Van Loan, Matrix Computations, 4th ed.,
+    Sec. 8.6.3), which for a 5 x 5 matrix costs far less to compile than LAPACK's gelsd."""
+    n = A.shape[1]
+    U = A.copy()
+    V = np.eye(n)
+    for sweep in range(60):
+        rotated = False
+        for p in range(n - 1):
+            for q in range(p + 1, n):
+                al = 0.0
+                be = 0.0
+                ga = 0.0
+                for i in range(A.shape[0]):
+                    al += U[i, p] * U[i, p]
+                    be += U[i, q] * U[i, q]
+                    ga += U[i, p] * U[i, q]
+                if abs(ga) <= 1e-15 * math.sqrt(al * be) or ga == 0.0:
+                    continue
+                rotated = True
+                zeta = (be - al) / (2.0 * ga)
+                t = (1.0 if zeta >= 0.0 else -1.0) / (abs(zeta) + math.sqrt(1.0 + zeta * zeta))
+                c = 1.0 / math.sqrt(1.0 + t * t)
+                sn = c * t
+                for i in range(A.shape[0]):
+                    up = U[i, p]
+                    U[i, p] = c * up - sn * U[i, q]
+                    U[i, q] = sn * up + c * U[i, q]
+                for i in range(n):
+                    vp = V[i, p]
+                    V[i, p] = c * vp - sn * V[i, q]
+                    V[i, q] = sn * vp + c * V[i, q]
+        if not rotated:
+            break
+    sv = np.empty(n)
+    for k in range(n):
+        sv[k] = math.sqrt(np.sum(U[:, k] * U[:, k]))
+    cut = rcond * np.max(sv)
+    x = np.zeros(n)
+    for k in range(n):
+        if sv[k] > cut:
+            coef = np.sum(U[:, k] * b) / (sv[k] * sv[k])     # (u_k . b) / s_k with u_k = U[:, k] / s_k
+            for i in range(n):
+                x[i] += coef * V[i, k]
+    return x
+
+
+@hot
 def _scaled(loads, F, fs, uu, us, fixed_tilt, r):
     """Scaled ring residual r = (loads + F) / fs; with a fixed tilt the tilt rows pin tx = ty = 0."""
     for k in range(5):
@@ -417,8 +467,8 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             for i in range(5):
                 J[i, k] = (rp[i] - r[i]) / 1e-2
         if not (np.all(np.isfinite(J)) and rfin):
-            break                   # no least-squares step (numpy's lstsq raises LinAlgError)
-        step = -np.linalg.lstsq(J, r, rcond=1e-12)[0]
+            break                   # no least-squares step
+        step = -lstsq_svd(J, r, 1e-12)
         smax = 0.0
         for k in range(5):
             smax = max(smax, abs(step[k]) / smax_div[k])
