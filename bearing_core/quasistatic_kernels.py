@@ -52,16 +52,18 @@ def _coulomb(F, Fmax):
 @hot
 def _ball(Xr, Xz, Cr, Cz, omega, oc_in, control, geo, tab_i, tab_o, dal):
     """State of one ball with centre (Xr, Xz) [m] relative to the outer groove centre and inner groove
-    centre (Cr, Cz) [m]. Returns (Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, beta, wm, wR, Fc, Mg, lam_i, oc, Fi,
-    Fo) as in QuasiStaticModel._ball_state (loads include the separated-contact spring; oc as 1.0 / 0.0)."""
+    centre (Cr, Cz) [m]. Returns (Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, bx, wm, wR, Fc, Mg, lam_i, oc, Fi, Fo,
+    by): the quantities of QuasiStaticModel._ball_state (loads include the separated-contact spring; oc as
+    1.0 / 0.0), the attitude angle as beta = atan2(by, bx) (ball_states; the Newton iterations do not
+    need it)."""
     D = geo[G_D]
     dm = geo[G_DM]
-    lo = math.hypot(Xr, Xz)
+    lo = math.sqrt(Xr * Xr + Xz * Xz)
     nor = Xr / lo
     noz = Xz / lo
     dvr = Xr - Cr
     dvz = Xz - Cz
-    li = math.hypot(dvr, dvz)
+    li = math.sqrt(dvr * dvr + dvz * dvz)
     nir = dvr / li
     niz = dvz / li
     d_o = lo - (geo[G_FO] - 0.5) * D
@@ -92,10 +94,9 @@ def _ball(Xr, Xz, Cr, Cz, omega, oc_in, control, geo, tab_i, tab_o, dal):
     else:
         bx = cai - gam
         by = sai
-    hb = math.hypot(bx, by)
-    cb = bx / hb                           # cos(beta), sin(beta); beta = atan2(by, bx)
+    hb = math.sqrt(bx * bx + by * by)
+    cb = bx / hb                           # cos(beta), sin(beta); beta = atan2(by, bx) (ball_states)
     sb = by / hb
-    beta = math.atan2(by, bx)
     gi = D * cai / dm
     go = D * cao / dm
     ci = cai * cb + sai * sb               # cos(ai - beta)
@@ -111,7 +112,7 @@ def _ball(Xr, Xz, Cr, Cz, omega, oc_in, control, geo, tab_i, tab_o, dal):
     Fo = _coulomb(lam_o * Mg / D, geo[G_MU] * max(Qo, 0.0))
     Rr = -Qi * nir - Qo * nor + Fi * niz + Fo * noz + Fc
     Rz = -Qi * niz - Qo * noz - Fi * nir - Fo * nor
-    return Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, beta, wm, wR, Fc, Mg, lam_i, 1.0 if oc else 0.0, Fi, Fo
+    return Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, bx, wm, wR, Fc, Mg, lam_i, 1.0 if oc else 0.0, Fi, Fo, by
 
 
 @hot(inline="always")
@@ -144,6 +145,7 @@ def ball_states(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S):
         r = _ball(X[j, 0], X[j, 1], Cr[j], Cz[j], omega, oc[j], control, geo, tab_i, tab_o, dal)
         for k in range(NS):
             S[k, j] = r[k]
+        S[S_BETA, j] = math.atan2(r[NS], r[S_BETA])      # attitude angle from (bx, by)
 
 
 @hot(inline="always")
