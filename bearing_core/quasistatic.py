@@ -22,6 +22,10 @@ Separated contacts carry a tiny linear tension spring (k_reg = 1e-3 N/m) so that
 a defined position; its force is < 1e-8 N for any real clearance and enters both balances consistently.
 Hybrid control follows Harris's criterion: the outer race controls a ball when
 Q_o a_o E(k_o) cos(alpha_i - alpha_o) > Q_i a_i E(k_i) (Harris & Kotzalas Vol. 2 Ch. 3).
+
+The two-point model's ball states, ball Newton solves, ring forces, 5-DOF Newton solve and stiffness
+matrix run as numba kernels (bearing_core.quasistatic_kernels); the four-point model runs the same
+algorithm with numpy (FourPointQuasiStaticModel).
 """
 from __future__ import annotations
 
