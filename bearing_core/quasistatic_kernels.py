@@ -201,6 +201,9 @@ def _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, max
     Qi = np.empty(Z)
     Qo = np.empty(Z)
     known = np.zeros(Z, dtype=np.bool_)
+    # a ball whose Newton update leaves X bit for bit unchanged is at a fixed point of the iteration (the
+    # same X gives the same residual, Jacobian and step): it is skipped from then on, which changes nothing
+    frozen = np.zeros(Z, dtype=np.bool_)
     for it in range(maxit):
         rmax = 0.0
         qmax = 0.0
@@ -221,6 +224,8 @@ def _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, max
             ball_states(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S)
             return True
         for j in range(Z):
+            if frozen[j]:
+                continue
             x0 = X[j, 0]
             x1 = X[j, 1]
             R0 = Rr[j]
@@ -265,6 +270,8 @@ def _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, max
                 xn1 = x1 + lam * d1
             X[j, 0] = xn0
             X[j, 1] = xn1
+            if xn0 == x0 and xn1 == x1:
+                frozen[j] = True
     ball_states(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S)
     return False
 
