@@ -39,6 +39,45 @@ OK, LINE_SEARCH_FAILED, NOT_CONVERGED = 0, 1, 2
 
 
 @hot(inline="always")
+def _copy1(a, out):
+    """out[:] = a (1-D), without numpy's shape-mismatch error path."""
+    for i in range(a.shape[0]):
+        out[i] = a[i]
+
+
+@hot(inline="always")
+def _copy2(a, out):
+    """out[:, :] = a (2-D)."""
+    for i in range(a.shape[0]):
+        for k in range(a.shape[1]):
+            out[i, k] = a[i, k]
+
+
+@hot(inline="always")
+def _sign(x):
+    """sign of x (0 for 0 and NaN)."""
+    return 1.0 if x > 0.0 else (-1.0 if x < 0.0 else 0.0)
+
+
+@hot(inline="always")
+def _norm5(r):
+    """Euclidean norm of a 5-vector."""
+    s = 0.0
+    for k in range(5):
+        s += r[k] * r[k]
+    return math.sqrt(s)
+
+
+@hot(inline="always")
+def _dot_col(A, i, B, k):
+    """Dot product of column i of A and column k of B."""
+    s = 0.0
+    for j in range(A.shape[0]):
+        s += A[j, i] * B[j, k]
+    return s
+
+
+@hot(inline="always")
 def _coulomb(F, Fmax):
     """Smooth |F| <= Fmax: F / (1 + (|F|/Fmax)^8)^(1/8); 0 where Fmax <= 0."""
     if Fmax > 0.0:
@@ -243,8 +282,8 @@ def _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, max
             d1 = -(-J10 * R0 + J00 * R1) / det
             if not (math.isfinite(d0) and math.isfinite(d1)):
                 # singular 2x2 (e.g. degenerate kinematics): small steepest-descent step
-                d0 = -1e-4 * D * (0.0 if math.isnan(R0) else np.sign(R0))
-                d1 = -1e-4 * D * (0.0 if math.isnan(R1) else np.sign(R1))
+                d0 = -1e-4 * D * _sign(R0)
+                d1 = -1e-4 * D * _sign(R1)
             mag = max(abs(d0), abs(d1))
             if mag > lim:
                 f = lim / max(mag, 1e-300)
@@ -282,7 +321,8 @@ def ring_forces(cpsi, spsi, ai, Qi, Fi, Ri, rig, F):
     force Qi (incl. regularisation) along the inner contact normal at angle ai, applied at the inner
     groove-centre locus of radius Ri, plus the gyroscopic friction force Fi with its moment arm rig about
     the groove centre (seed 003 Eqs. 18-19)."""
-    F[:] = 0.0
+    for k in range(5):
+        F[k] = 0.0
     for j in range(cpsi.shape[0]):
         nir = -math.cos(ai[j])
         niz = -math.sin(ai[j])
@@ -302,11 +342,13 @@ def _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, 
     """Ring force F of the balls at displacement u, balls re-equilibrated from X0 (retried from the
     geometric start with 200 iterations if that fails); X, S: final ball positions and states."""
     _centres(u, cpsi, spsi, geo, Cr, Cz)
-    X[:, :] = X0
-    ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, 60, S, Rr, Rz)
+    _copy2(X0, X)
+    n_it = max(60, Cr.shape[0] // 1000)          # 60 (typed int64, not a literal: one compilation)
+    ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, n_it, S, Rr, Rz)
     if not ok:
         _x_start(Cr, Cz, omega, geo, tab_o, dal, X)
-        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, 200, S, Rr, Rz)
+        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, n_it + 140, S, Rr,
+                          Rz)
     ring_forces(cpsi, spsi, S[S_AI], S[S_QI], S[S_FI], geo[G_RI], geo[G_RIG], F)
     return ok
 
@@ -335,7 +377,9 @@ def lstsq_svd(A, b, rcond):
     Sec. 8.6.3), which for a 5 x 5 matrix costs far less to compile than LAPACK's gelsd."""
     n = A.shape[1]
     U = A.copy()
-    V = np.eye(n)
+    V = np.zeros((n, n))
+    for i in range(n):
+        V[i, i] = 1.0
     for sweep in range(60):
         rotated = False
         for p in range(n - 1):
@@ -366,12 +410,17 @@ def lstsq_svd(A, b, rcond):
             break
     sv = np.empty(n)
     for k in range(n):
-        sv[k] = math.sqrt(np.sum(U[:, k] * U[:, k]))
-    cut = rcond * np.max(sv)
+        sv[k] = math.sqrt(_dot_col(U, k, U, k))
+    cut = 0.0
+    for k in range(n):
+        cut = max(cut, rcond * sv[k])
     x = np.zeros(n)
     for k in range(n):
         if sv[k] > cut:
-            coef = np.sum(U[:, k] * b) / (sv[k] * sv[k])     # (u_k . b) / s_k with u_k = U[:, k] / s_k
+            coef = 0.0
+            for i in range(A.shape[0]):
+                coef += U[i, k] * b[i]
+            coef /= sv[k] * sv[k]                 # (u_k . b) / s_k with u_k = U[:, k] / s_k
             for i in range(n):
                 x[i] += coef * V[i, k]
     return x
@@ -413,12 +462,17 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     Kmat the 5x5 stiffness by central differences (steps 1e-8 m, 1e-7 rad). Returns (status, iterations);
     info[0] = |residual| at a failed line search, info[1] = max scaled residual."""
     Z = cpsi.shape[0]
-    us = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5])
-    smax_div = np.array([20.0, 20.0, 20.0, 100.0, 100.0])
+    us = np.empty(5)
+    smax_div = np.empty(5)
+    for k in range(5):
+        us[k] = 1e-6 if k < 3 else 1e-5
+        smax_div[k] = 20.0 if k < 3 else 100.0
     n3 = math.sqrt(loads[0] ** 2 + loads[1] ** 2 + loads[2] ** 2)
     nm = math.sqrt(loads[3] ** 2 + loads[4] ** 2)
     Fscale = max(n3, nm / (0.5 * geo[G_DM]), 1.0)
-    fs = np.array([Fscale, Fscale, Fscale, Fscale * 0.5 * geo[G_DM], Fscale * 0.5 * geo[G_DM]])
+    fs = np.empty(5)
+    for k in range(5):
+        fs[k] = Fscale if k < 3 else Fscale * 0.5 * geo[G_DM]
     if fixed_tilt:
         u[3] = 0.0
         u[4] = 0.0
@@ -454,8 +508,8 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
                 if new_oc[j] != oc[j]:
                     changed = True
             if changed:
-                oc[:] = new_oc
-                X0[:, :] = X
+                _copy1(new_oc, oc)
+                _copy2(X, X0)
                 ok = _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz,
                                Rr, Rz, F)
                 _scaled(loads, F, fs, u, us, fixed_tilt, r)
@@ -469,13 +523,18 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             converged = True
             break
         for k in range(5):
-            up[:] = u
+            _copy1(u, up)
             up[k] += 1e-2 * us[k]
             _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, F)
             _scaled(loads, F, fs, up, us, fixed_tilt, rp)
             for i in range(5):
                 J[i, k] = (rp[i] - r[i]) / 1e-2
-        if not (np.all(np.isfinite(J)) and rfin):
+        jfin = True
+        for i in range(5):
+            for k in range(5):
+                if not math.isfinite(J[i, k]):
+                    jfin = False
+        if not (jfin and rfin):
             break                   # no least-squares step
         step = -lstsq_svd(J, r, 1e-12)
         smax = 0.0
@@ -484,7 +543,7 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         if smax > 1.0:
             step /= smax
         lam = 1.0
-        n0 = math.sqrt(np.sum(r * r))
+        n0 = _norm5(r)
         accepted = False
         okn = False
         for _ in range(16):
@@ -493,26 +552,28 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             okn = _residual(un, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xn, Sn, Cr, Cz, Rr,
                             Rz, F)
             _scaled(loads, F, fs, un, us, fixed_tilt, rn)
-            if okn and math.sqrt(np.sum(rn * rn)) < (1.0 - 1e-4 * lam) * n0:
+            if okn and _norm5(rn) < (1.0 - 1e-4 * lam) * n0:
                 accepted = True
                 break
             lam *= 0.5
         if not accepted:
             info[0] = n0
             return LINE_SEARCH_FAILED, it
-        u[:] = un
-        r[:] = rn
-        X[:, :] = Xn
-        S[:, :] = Sn
+        _copy1(un, u)
+        _copy1(rn, r)
+        _copy2(Xn, X)
+        _copy2(Sn, S)
         ok = okn
     if not converged:
-        info[1] = np.max(np.abs(r)) if np.all(np.isfinite(r)) else np.nan
+        info[1] = 0.0
+        for k in range(5):
+            info[1] = max(info[1], abs(r[k])) if math.isfinite(r[k]) and math.isfinite(info[1]) else np.nan
         return NOT_CONVERGED, it
     if want_K:
         ocs = np.empty(Z, dtype=np.bool_)
         for j in range(Z):
             ocs[j] = S[S_OC, j] != 0.0
-        Kmat[:, :] = stiffness(u, omega, X, ocs, control, geo, cpsi, spsi, tab_i, tab_o, dal)
+        _copy2(stiffness(u, omega, X, ocs, control, geo, cpsi, spsi, tab_i, tab_o, dal), Kmat)
     return OK, it
 
 
@@ -522,7 +583,9 @@ def stiffness(u, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
     with balls X (Z, 2) and raceway control oc: central differences (steps 1e-8 m, 1e-7 rad) of the ring
     force, every ball re-equilibrated from X."""
     Z = cpsi.shape[0]
-    h = np.array([1e-8, 1e-8, 1e-8, 1e-7, 1e-7])
+    h = np.empty(5)
+    for k in range(5):
+        h[k] = 1e-8 if k < 3 else 1e-7
     Kmat = np.empty((5, 5))
     up = np.empty(5)
     Fp = np.empty(5)
@@ -534,10 +597,10 @@ def stiffness(u, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
     Rr = np.empty(Z)
     Rz = np.empty(Z)
     for k in range(5):
-        up[:] = u
+        _copy1(u, up)
         up[k] += h[k]
         _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fp)
-        up[:] = u
+        _copy1(u, up)
         up[k] -= h[k]
         _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fm)
         for i in range(5):
