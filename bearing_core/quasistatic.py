@@ -22,6 +22,10 @@ Separated contacts carry a tiny linear tension spring (k_reg = 1e-3 N/m) so that
 a defined position; its force is < 1e-8 N for any real clearance and enters both balances consistently.
 Hybrid control follows Harris's criterion: the outer race controls a ball when
 Q_o a_o E(k_o) cos(alpha_i - alpha_o) > Q_i a_i E(k_i) (Harris & Kotzalas Vol. 2 Ch. 3).
+
+The two-point model's ball states, ball Newton solves, ring forces, 5-DOF Newton solve and stiffness
+matrix run as numba kernels (bearing_core.quasistatic_kernels); the four-point model runs the same
+algorithm with numpy (FourPointQuasiStaticModel).
 """
 from __future__ import annotations
 
@@ -31,12 +35,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import kinematics as kin
+from . import quasistatic_kernels as qsk
 from .errors import BearingInputError, ConvergenceError, check_range
 from .geometry import BearingGeometry
 from .hertz_tables import HertzInterp
 from .ring_fits import operating_geometry
 
-K_REG = 1e-3  # N/m, tension spring of separated contacts (see module docstring)
+K_REG = qsk.K_REG  # N/m, tension spring of separated contacts (see module docstring)
+_CTRL_CODE = {"outer": qsk.CTRL_OUTER, "inner": qsk.CTRL_INNER, "hybrid": qsk.CTRL_HYBRID}
 LOAD_NAMES = ("Fx", "Fy", "Fz", "Mx", "My")
 DOF_NAMES = ("dx", "dy", "dz", "tx", "ty")
 
@@ -114,20 +120,19 @@ def _coulomb_bound(F, Fmax):
 
 def _ring_forces(g, psi, alpha_i, Q_i_eff, Fi):
     """Force and moment of the balls on the inner ring; Q_i_eff includes the regularisation, Fi is the
-    inner-contact gyroscopic friction force [N]."""
-    nir, niz = -np.cos(alpha_i), -np.sin(alpha_i)
-    eir, eiz = niz, -nir
-    fr = Q_i_eff * nir - Fi * eir
-    fz = Q_i_eff * niz - Fi * eiz
-    c, s = np.cos(psi), np.sin(psi)
-    Ri = g.Ri
-    Fx = np.sum(fr * c)
-    Fy = np.sum(fr * s)
-    Fz = np.sum(fz)
-    # moment of fz at radius Ri, plus friction force moment about the groove centre (arm fi D) about t
-    Mx = np.sum(Ri * s * fz + g.ri * Fi * s)
-    My = np.sum(-Ri * c * fz - g.ri * Fi * c)
-    return np.array([Fx, Fy, Fz, Mx, My])
+    inner-contact gyroscopic friction force [N] (qsk.ring_forces)."""
+    F = np.empty(5)
+    qsk.ring_forces(np.cos(psi), np.sin(psi), np.ascontiguousarray(alpha_i, dtype=float),
+                    np.ascontiguousarray(Q_i_eff, dtype=float), np.ascontiguousarray(Fi, dtype=float),
+                    float(g.Ri), float(g.ri), F)
+    return F
+
+
+def _state_dict(S):
+    """Ball-state dict of a (qsk.NS, Z) kernel state array (outer_ctrl as bool)."""
+    st = {k: S[i].copy() for i, k in enumerate(qsk.STATE_NAMES)}
+    st["outer_ctrl"] = st["outer_ctrl"] != 0.0
+    return st
 
 
 class QuasiStaticModel:
@@ -151,6 +156,7 @@ class QuasiStaticModel:
         self.hz = HertzInterp(geometry, n_table)
         Z = geometry.Z
         self.psi = 2.0 * np.pi * np.arange(Z) / Z
+        self._cpsi, self._spsi = np.cos(self.psi), np.sin(self.psi)
         self._omega = 0.0
         # outer-ring speed [rad/s] about +z: the problem is solved in the frame turning with the outer ring
         # (omega is then the inner ring's speed relative to it); the centrifugal force and the gyroscopic
@@ -158,138 +164,51 @@ class QuasiStaticModel:
         # frame-invariant). Harris & Kotzalas Vol. 2 Ch. 3 with both rings rotating.
         self.omega_outer = 0.0
 
-    # ---- per-ball geometry and forces --------------------------------------------------------
+    # ---- per-ball geometry and forces (numba kernels: bearing_core.quasistatic_kernels) ---------
+    def _kargs(self):
+        """Geometry / parameter array, cos / sin of the azimuths, control code and Hertz tables of the
+        kernels (built per call: omega_outer may be set after construction)."""
+        g = self.g
+        geo = np.empty(qsk.N_GEO)
+        geo[qsk.G_D], geo[qsk.G_DM], geo[qsk.G_FO], geo[qsk.G_FI] = g.D, g.dm, g.fo, g.fi
+        geo[qsk.G_A], geo[qsk.G_ALPHA0], geo[qsk.G_RI], geo[qsk.G_RIG] = g.A, g.alpha0, g.Ri, g.ri
+        geo[qsk.G_MASS], geo[qsk.G_INERTIA] = g.ball_mass, g.ball_inertia
+        geo[qsk.G_MU], geo[qsk.G_WOUT] = self.mu_gyro, self.omega_outer
+        return geo, self._cpsi, self._spsi, _CTRL_CODE[self.control], self.hz.table.inner, self.hz.table.outer, \
+            self.hz.table.dalpha
+
     def _centres(self, u):
-        g = self.g
-        c, s = np.cos(self.psi), np.sin(self.psi)
-        dr = u[0] * c + u[1] * s
-        da = u[2] + g.Ri * (u[3] * s - u[4] * c)
-        Cr = g.A * math.cos(g.alpha0) + dr
-        Cz = g.A * math.sin(g.alpha0) + da
-        return Cr, Cz
+        geo, c, s, *_ = self._kargs()
+        return qsk.centres(np.asarray(u, dtype=float), c, s, geo)
 
-    def _ball_state(self, X, Cr, Cz, omega, outer_ctrl, kin_frozen=None):
-        g = self.g
-        Xr, Xz = X[:, 0], X[:, 1]
-        lo = np.hypot(Xr, Xz)
-        nor, noz = Xr / lo, Xz / lo
-        dvr, dvz = Xr - Cr, Xz - Cz
-        li = np.hypot(dvr, dvz)
-        nir, niz = dvr / li, dvz / li
-        d_o = lo - (g.fo - 0.5) * g.D
-        d_i = li - (g.fi - 0.5) * g.D
-        ao = np.arctan2(noz, nor)
-        ai = np.arctan2(-niz, -nir)
-        # hybrid: balls without inner contact roll on the outer race only (outer control for them)
-        if self.control == "inner":
-            outer_ctrl = np.zeros(d_i.shape, dtype=bool)
-        elif self.control == "hybrid":
-            outer_ctrl = outer_ctrl | (d_i <= 0)
-        Ki = self.hz.K(ai, inner=True)
-        Ko = self.hz.K(ao, inner=False)
-        Qi = np.where(d_i > 0, Ki * np.abs(d_i) ** 1.5, K_REG * d_i)
-        Qo = np.where(d_o > 0, Ko * np.abs(d_o) ** 1.5, K_REG * d_o)
-        if kin_frozen is None:
-            beta, wm, wR = kin.kinematics(omega, ai, ao, g.D, g.dm, self.control, outer_ctrl)
-        else:  # Jacobians: ball speeds held (fixed point on the weak kinematic coupling)
-            beta, wm, wR = kin_frozen
-        wma = wm + self.omega_outer          # absolute orbital speed
-        Fc = 0.5 * g.ball_mass * g.dm * wma ** 2
-        Mg = g.ball_inertia * wma * wR * np.sin(beta) * -1.0  # J omega_m Omega_r, Omega_r = -omega_R sin(beta)
-        lam_i = _lambda_i(self.control, outer_ctrl)
-        lam_o = 2.0 - lam_i
-        # Jones-Harris friction forces resisting the gyroscopic moment, bounded by the Coulomb limit
-        # mu_gyro Q of each contact (beyond it the ball pivots: gyroscopic slip); a smooth bound
-        # F = F_req / (1 + (F_req / mu Q)^8)^(1/8), exact to 1e-5 below 25% of the limit.
-        Fi = _coulomb_bound(lam_i * Mg / g.D, self.mu_gyro * np.maximum(Qi, 0.0))
-        Fo = _coulomb_bound(lam_o * Mg / g.D, self.mu_gyro * np.maximum(Qo, 0.0))
-        # ball equilibrium residual (r, z)
-        Rr = -Qi * nir - Qo * nor + Fi * niz + Fo * noz + Fc
-        Rz = -Qi * niz - Qo * noz - Fi * nir - Fo * nor
-        return dict(Rr=Rr, Rz=Rz, Qi=Qi, Qo=Qo, d_i=d_i, d_o=d_o, ai=ai, ao=ao, beta=beta, wm=wm,
-                    wR=wR, Fc=Fc, Mg=Mg, lam_i=lam_i, outer_ctrl=outer_ctrl, Fi=Fi, Fo=Fo)
-
-    def _solve_balls(self, u, omega, X0, outer_ctrl, tol=1e-10, maxit=60):
-        """Newton per ball (vectorised, 2x2 finite-difference Jacobians) for the ball equilibrium."""
-        g = self.g
-        Cr, Cz = self._centres(u)
-        X = X0.copy()
-        scale = max(1.0, 0.5 * g.ball_mass * g.dm * omega ** 2)
-        h = 1e-10 * g.D
-        for it in range(maxit):
-            st = self._ball_state(X, Cr, Cz, omega, outer_ctrl)
-            R = np.stack([st["Rr"], st["Rz"]], axis=1)
-            if np.max(np.abs(R)) < tol * (scale + max(st["Qi"].max(), st["Qo"].max(), 0.0)):
-                return X, st, True
-            J = np.empty((g.Z, 2, 2))
-            for k in range(2):
-                Xp = X.copy()
-                Xp[:, k] += h
-                sp = self._ball_state(Xp, Cr, Cz, omega, outer_ctrl)
-                J[:, 0, k] = (sp["Rr"] - st["Rr"]) / h
-                J[:, 1, k] = (sp["Rz"] - st["Rz"]) / h
-            det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
-            det = np.where(np.abs(det) > 0, det, 1e-300)
-            dX0 = -(J[:, 1, 1] * R[:, 0] - J[:, 0, 1] * R[:, 1]) / det
-            dX1 = -(-J[:, 1, 0] * R[:, 0] + J[:, 0, 0] * R[:, 1]) / det
-            dX = np.stack([dX0, dX1], axis=1)
-            bad = ~np.all(np.isfinite(dX), axis=1)
-            if bad.any():  # singular 2x2 (e.g. degenerate kinematics): small steepest-descent step
-                dX[bad] = -1e-4 * g.D * np.sign(np.nan_to_num(R[bad]))
-            # limit a step to 1e-3 D (~ contact deflections) and backtrack per ball on |R|
-            lim = 1e-3 * g.D
-            mag = np.max(np.abs(dX), axis=1, keepdims=True)
-            dX = np.where(mag > lim, dX * lim / np.maximum(mag, 1e-300), dX)
-            n0 = np.hypot(R[:, 0], R[:, 1])
-            lam = np.ones(g.Z)
-            Xn = X + dX
-            for _ in range(12):
-                sn = self._ball_state(Xn, Cr, Cz, omega, outer_ctrl)
-                nn = np.hypot(sn["Rr"], sn["Rz"])
-                worse = ~(nn <= n0 * (1.0 + 1e-9)) & (lam > 1e-3)
-                if not worse.any():
-                    break
-                lam = np.where(worse, 0.5 * lam, lam)
-                Xn = X + lam[:, None] * dX
-            X = Xn
-        st = self._ball_state(X, Cr, Cz, omega, outer_ctrl)
-        return X, st, False
+    def _ball_state(self, X, Cr, Cz, omega, outer_ctrl):
+        """Per-ball state dict (keys qsk.STATE_NAMES) at ball centres X (Z, 2) [m]."""
+        geo, _, _, ctrl, ti, to, dal = self._kargs()
+        S = np.empty((qsk.NS, self.g.Z))
+        qsk.ball_states(np.ascontiguousarray(X, dtype=float), np.asarray(Cr, dtype=float),
+                        np.asarray(Cz, dtype=float), float(omega), np.asarray(outer_ctrl, dtype=bool), ctrl,
+                        geo, ti, to, dal, S)
+        return _state_dict(S)
 
     def _x_start(self, u):
-        """Initial ball positions: on the line of centres, with equal deflections."""
-        g = self.g
-        Cr, Cz = self._centres(u)
-        L = np.hypot(Cr, Cz)
-        ro, ri = (g.fo - 0.5) * g.D, (g.fi - 0.5) * g.D
-        d = 0.5 * (L - (ro + ri))           # equal share of the interference (may be negative)
-        t = (ro + d) / np.maximum(L, 1e-300)
-        X = np.stack([Cr * t, Cz * t], axis=1)
-        if self._omega > 0:
-            # a ball in the clearance is thrown onto the outer race: start it there, pressed by Fc
-            # (the pure-rolling estimate omega_m ~ omega/2 (1 - D/dm))
-            wm = 0.5 * self._omega * (1.0 - g.D / g.dm)
-            Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
-            K0 = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
-            free = d < 0
-            if free.any():
-                ao = np.arctan2(Cz[free], Cr[free])
-                lo = ro + (Fc / K0) ** (2.0 / 3.0)
-                X[free, 0] = lo * np.cos(ao)
-                X[free, 1] = lo * np.sin(ao)
-        return X
+        """Initial ball positions: on the line of centres, with equal deflections; at speed a ball in the
+        clearance starts on the outer race, pressed by the pure-rolling centrifugal force."""
+        geo, c, s, _, _, to, dal = self._kargs()
+        return qsk.x_start(np.asarray(u, dtype=float), float(self._omega), c, s, geo, to, dal)
 
     def residual(self, u, omega, X0=None, outer_ctrl=None):
-        """Force of the balls on the inner ring at displacement u (balls re-equilibrated from X0)."""
+        """Force of the balls on the inner ring at displacement u (balls re-equilibrated from X0):
+        (F (5,) [N, N m], X (Z, 2) [m], state dict, converged)."""
         self._omega = omega
+        u = np.asarray(u, dtype=float)
         if X0 is None:
             X0 = self._x_start(u)
         if outer_ctrl is None:
             outer_ctrl = np.ones(self.g.Z, dtype=bool)
-        X, st, ok = self._solve_balls(u, omega, X0, outer_ctrl)
-        if not ok:
-            # retry from the geometric start (the warm start may sit in a bad basin)
-            X, st, ok = self._solve_balls(u, omega, self._x_start(u), outer_ctrl, maxit=200)
-        return self._ring_force(st), X, st, ok
+        geo, c, s, ctrl, ti, to, dal = self._kargs()
+        F, X, S, ok = qsk.residual(u, float(omega), np.ascontiguousarray(X0, dtype=float),
+                                   np.asarray(outer_ctrl, dtype=bool), ctrl, geo, c, s, ti, to, dal)
+        return F, X, _state_dict(S), bool(ok)
 
     def _ring_force(self, st):
         """(Fx, Fy, Fz, Mx, My) of the balls on the inner ring from a ball state [N, N m]."""
@@ -347,79 +266,29 @@ class QuasiStaticModel:
         return u
 
     def _solve(self, omega, loads, u0, tol, maxit, stiffness):
+        """One Newton solve of the 5-DOF ring equilibrium (qsk.solve; algorithm in its docstring)."""
         g = self.g
-        # scales: displacement ~ 1 um, tilt ~ 1e-5 rad; force scale from the load
-        us = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5])
-        Fscale = max(np.linalg.norm(loads[:3]), np.linalg.norm(loads[3:]) / (0.5 * g.dm), 1.0)
-        fs = np.array([Fscale, Fscale, Fscale, Fscale * 0.5 * g.dm, Fscale * 0.5 * g.dm])
         u = self._u_guess(loads) if u0 is None else np.array(u0, dtype=float)
-        if self.fixed_tilt:
-            u[3:5] = 0.0
         self._omega = omega
-        outer_ctrl = np.ones(g.Z, dtype=bool)
-        X = self._x_start(u)
-
-        def R_of(uu, Xw, oc):
-            Fb, Xn, st, ok = self.residual(uu, omega, Xw, oc)
-            r = (loads + Fb) / fs
-            if self.fixed_tilt:
-                r[3:5] = uu[3:5] / us[3:5]
-            return r, Xn, st, ok
-
-        r, X, st, ok = R_of(u, X, outer_ctrl)
-        it = 0
-        converged = False
-        for it in range(1, maxit + 1):
-            if self.control == "hybrid" and it <= 15:
-                new_oc = self._hybrid_criterion(st)
-                if np.any(new_oc != outer_ctrl):
-                    outer_ctrl = new_oc
-                    r, X, st, ok = R_of(u, X, outer_ctrl)
-            if ok and np.max(np.abs(r)) < tol:
-                converged = True
-                break
-            J = np.empty((5, 5))
-            for k in range(5):
-                up = u.copy()
-                up[k] += 1e-2 * us[k]
-                rp, _, _, _ = R_of(up, X, outer_ctrl)
-                J[:, k] = (rp - r) / (1e-2)
-            try:
-                step = -np.linalg.lstsq(J, r, rcond=1e-12)[0]
-            except np.linalg.LinAlgError:
-                break
-            # backtracking line search on |r|, step limited to 20 um / 1 mrad scaled units
-            smax = np.max(np.abs(step) / np.array([20.0, 20.0, 20.0, 100.0, 100.0]))
-            if smax > 1:
-                step /= smax
-            lam = 1.0
-            n0 = np.linalg.norm(r)
-            for _ in range(16):
-                un = u + lam * step * us
-                rn, Xn, stn, okn = R_of(un, X, outer_ctrl)
-                if okn and np.linalg.norm(rn) < (1 - 1e-4 * lam) * n0:
-                    break
-                lam *= 0.5
-            else:
-                raise ConvergenceError(f"quasi-static line search failed at omega={omega:.4g} rad/s, "
-                                       f"loads={loads.tolist()}, |residual|={n0:.3e}")
-            u, r, X, st, ok = un, rn, Xn, stn, okn
-        if not converged:
+        geo, c, s, ctrl, ti, to, dal = self._kargs()
+        X = np.empty((g.Z, 2))
+        S = np.empty((qsk.NS, g.Z))
+        Kmat = np.empty((5, 5))
+        info = np.zeros(2)
+        status, it = qsk.solve(float(omega), np.ascontiguousarray(loads, dtype=float), u, self.fixed_tilt, ctrl,
+                               float(tol), int(maxit), bool(stiffness), geo, c, s, ti, to, dal, X, S, Kmat, info)
+        if status == qsk.LINE_SEARCH_FAILED:
+            raise ConvergenceError(f"quasi-static line search failed at omega={omega:.4g} rad/s, "
+                                   f"loads={loads.tolist()}, |residual|={info[0]:.3e}")
+        if status != qsk.OK:
             raise ConvergenceError(f"quasi-static model did not converge in {maxit} iterations at "
                                    f"omega={omega:.4g} rad/s, loads={loads.tolist()}, "
-                                   f"max scaled residual={np.max(np.abs(r)):.3e}")
+                                   f"max scaled residual={info[1]:.3e}")
+        st = _state_dict(S)
         res = self._result(omega, loads, u, X, st, st["outer_ctrl"], it)
         if stiffness:
-            res.stiffness = self.stiffness_matrix(res)
+            res.stiffness = Kmat
         return res
-
-    def _hybrid_criterion(self, st):
-        """Harris: outer control where Q_o a_o E(k_o) cos(ai - ao) > Q_i a_i E(k_i)."""
-        ai, ao = st["ai"], st["ao"]
-        Qi, Qo = np.maximum(st["Qi"], 0), np.maximum(st["Qo"], 0)
-        a_i, _, _, Ei = self.hz.ab_E(ai, Qi, inner=True)
-        a_o, _, _, Eo = self.hz.ab_E(ao, Qo, inner=False)
-        return Qo * a_o * Eo * np.cos(ai - ao) > Qi * a_i * Ei
 
     def _result(self, omega, loads, u, X, st, outer_ctrl, it):
         g = self.g
@@ -441,18 +310,12 @@ class QuasiStaticModel:
 
     def stiffness_matrix(self, res: QuasiStaticResult) -> np.ndarray:
         """5x5 bearing stiffness K_kl = d(load_k)/d(u_l) at the solution, by central differences
-        of the ring force with every ball re-equilibrated [N/m, N/rad, N m/m, N m/rad]."""
-        h = np.array([1e-8, 1e-8, 1e-8, 1e-7, 1e-7])
-        Kmat = np.empty((5, 5))
-        for k in range(5):
-            up = res.u.copy()
-            um = res.u.copy()
-            up[k] += h[k]
-            um[k] -= h[k]
-            Fp, _, _, _ = self.residual(up, res.omega, res.X, res.outer_control)
-            Fm, _, _, _ = self.residual(um, res.omega, res.X, res.outer_control)
-            Kmat[:, k] = -(Fp - Fm) / (2 * h[k])
-        return Kmat
+        of the ring force with every ball re-equilibrated (steps 1e-8 m, 1e-7 rad)
+        [N/m, N/rad, N m/m, N m/rad]."""
+        self._omega = res.omega
+        geo, c, s, ctrl, ti, to, dal = self._kargs()
+        return qsk.stiffness(np.asarray(res.u, dtype=float), float(res.omega), np.ascontiguousarray(res.X),
+                             np.asarray(res.outer_control, dtype=bool), ctrl, geo, c, s, ti, to, dal)
 
 
 # =============================================================================================
@@ -597,6 +460,159 @@ class FourPointQuasiStaticModel(QuasiStaticModel):
                     Fi=Fi, Fo=Fo, Qi4=Qi, Qo4=Qo, ai4=ai, ao4=ao, di4=d_i, do4=d_o, ki=ki, ko=ko, Fi4=Fi4,
                     Fo4=Fo4, wi=wi, wo=wo)
 
+    # ---- Newton drivers of the four-point model (numpy; the two-point model runs them as numba kernels,
+    # bearing_core.quasistatic_kernels, with the same algorithm) ---------------------------------
+    def _newton_balls(self, u, omega, X0, outer_ctrl, tol=1e-10, maxit=60):
+        """Newton per ball (vectorised, 2x2 finite-difference Jacobians) for the ball equilibrium
+        (algorithm of quasistatic_kernels._solve_balls)."""
+        g = self.g
+        Cr, Cz = self._centres(u)
+        X = X0.copy()
+        scale = max(1.0, 0.5 * g.ball_mass * g.dm * omega ** 2)
+        h = 1e-10 * g.D
+        for it in range(maxit):
+            st = self._ball_state(X, Cr, Cz, omega, outer_ctrl)
+            R = np.stack([st["Rr"], st["Rz"]], axis=1)
+            if np.max(np.abs(R)) < tol * (scale + max(st["Qi"].max(), st["Qo"].max(), 0.0)):
+                return X, st, True
+            J = np.empty((g.Z, 2, 2))
+            for k in range(2):
+                Xp = X.copy()
+                Xp[:, k] += h
+                sp = self._ball_state(Xp, Cr, Cz, omega, outer_ctrl)
+                J[:, 0, k] = (sp["Rr"] - st["Rr"]) / h
+                J[:, 1, k] = (sp["Rz"] - st["Rz"]) / h
+            det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
+            det = np.where(np.abs(det) > 0, det, 1e-300)
+            dX0 = -(J[:, 1, 1] * R[:, 0] - J[:, 0, 1] * R[:, 1]) / det
+            dX1 = -(-J[:, 1, 0] * R[:, 0] + J[:, 0, 0] * R[:, 1]) / det
+            dX = np.stack([dX0, dX1], axis=1)
+            bad = ~np.all(np.isfinite(dX), axis=1)
+            if bad.any():  # singular 2x2 (e.g. degenerate kinematics): small steepest-descent step
+                dX[bad] = -1e-4 * g.D * np.sign(np.nan_to_num(R[bad]))
+            # limit a step to 1e-3 D (~ contact deflections) and backtrack per ball on |R|
+            lim = 1e-3 * g.D
+            mag = np.max(np.abs(dX), axis=1, keepdims=True)
+            dX = np.where(mag > lim, dX * lim / np.maximum(mag, 1e-300), dX)
+            n0 = np.hypot(R[:, 0], R[:, 1])
+            lam = np.ones(g.Z)
+            Xn = X + dX
+            for _ in range(12):
+                sn = self._ball_state(Xn, Cr, Cz, omega, outer_ctrl)
+                nn = np.hypot(sn["Rr"], sn["Rz"])
+                worse = ~(nn <= n0 * (1.0 + 1e-9)) & (lam > 1e-3)
+                if not worse.any():
+                    break
+                lam = np.where(worse, 0.5 * lam, lam)
+                Xn = X + lam[:, None] * dX
+            X = Xn
+        st = self._ball_state(X, Cr, Cz, omega, outer_ctrl)
+        return X, st, False
+
+    def residual(self, u, omega, X0=None, outer_ctrl=None):
+        """Force of the balls on the inner ring at displacement u (balls re-equilibrated from X0)."""
+        self._omega = omega
+        if X0 is None:
+            X0 = self._x_start(u)
+        if outer_ctrl is None:
+            outer_ctrl = np.ones(self.g.Z, dtype=bool)
+        X, st, ok = self._solve_balls(u, omega, X0, outer_ctrl)
+        if not ok:
+            # retry from the geometric start (the warm start may sit in a bad basin)
+            X, st, ok = self._solve_balls(u, omega, self._x_start(u), outer_ctrl, maxit=200)
+        return self._ring_force(st), X, st, ok
+
+    def _solve(self, omega, loads, u0, tol, maxit, stiffness):
+        """Newton solve of the ring equilibrium (algorithm of quasistatic_kernels.solve)."""
+        g = self.g
+        # scales: displacement ~ 1 um, tilt ~ 1e-5 rad; force scale from the load
+        us = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5])
+        Fscale = max(np.linalg.norm(loads[:3]), np.linalg.norm(loads[3:]) / (0.5 * g.dm), 1.0)
+        fs = np.array([Fscale, Fscale, Fscale, Fscale * 0.5 * g.dm, Fscale * 0.5 * g.dm])
+        u = self._u_guess(loads) if u0 is None else np.array(u0, dtype=float)
+        if self.fixed_tilt:
+            u[3:5] = 0.0
+        self._omega = omega
+        outer_ctrl = np.ones(g.Z, dtype=bool)
+        X = self._x_start(u)
+
+        def R_of(uu, Xw, oc):
+            Fb, Xn, st, ok = self.residual(uu, omega, Xw, oc)
+            r = (loads + Fb) / fs
+            if self.fixed_tilt:
+                r[3:5] = uu[3:5] / us[3:5]
+            return r, Xn, st, ok
+
+        r, X, st, ok = R_of(u, X, outer_ctrl)
+        it = 0
+        converged = False
+        for it in range(1, maxit + 1):
+            if self.control == "hybrid" and it <= 15:
+                new_oc = self._hybrid_criterion(st)
+                if np.any(new_oc != outer_ctrl):
+                    outer_ctrl = new_oc
+                    r, X, st, ok = R_of(u, X, outer_ctrl)
+            if ok and np.max(np.abs(r)) < tol:
+                converged = True
+                break
+            J = np.empty((5, 5))
+            for k in range(5):
+                up = u.copy()
+                up[k] += 1e-2 * us[k]
+                rp, _, _, _ = R_of(up, X, outer_ctrl)
+                J[:, k] = (rp - r) / (1e-2)
+            try:
+                step = -np.linalg.lstsq(J, r, rcond=1e-12)[0]
+            except np.linalg.LinAlgError:
+                break
+            # backtracking line search on |r|, step limited to 20 um / 1 mrad scaled units
+            smax = np.max(np.abs(step) / np.array([20.0, 20.0, 20.0, 100.0, 100.0]))
+            if smax > 1:
+                step /= smax
+            lam = 1.0
+            n0 = np.linalg.norm(r)
+            for _ in range(16):
+                un = u + lam * step * us
+                rn, Xn, stn, okn = R_of(un, X, outer_ctrl)
+                if okn and np.linalg.norm(rn) < (1 - 1e-4 * lam) * n0:
+                    break
+                lam *= 0.5
+            else:
+                raise ConvergenceError(f"quasi-static line search failed at omega={omega:.4g} rad/s, "
+                                       f"loads={loads.tolist()}, |residual|={n0:.3e}")
+            u, r, X, st, ok = un, rn, Xn, stn, okn
+        if not converged:
+            raise ConvergenceError(f"quasi-static model did not converge in {maxit} iterations at "
+                                   f"omega={omega:.4g} rad/s, loads={loads.tolist()}, "
+                                   f"max scaled residual={np.max(np.abs(r)):.3e}")
+        res = self._result(omega, loads, u, X, st, st["outer_ctrl"], it)
+        if stiffness:
+            res.stiffness = self.stiffness_matrix(res)
+        return res
+
+    def _hybrid_criterion(self, st):
+        """Harris: outer control where Q_o a_o E(k_o) cos(ai - ao) > Q_i a_i E(k_i)."""
+        ai, ao = st["ai"], st["ao"]
+        Qi, Qo = np.maximum(st["Qi"], 0), np.maximum(st["Qo"], 0)
+        a_i, _, _, Ei = self.hz.ab_E(ai, Qi, inner=True)
+        a_o, _, _, Eo = self.hz.ab_E(ao, Qo, inner=False)
+        return Qo * a_o * Eo * np.cos(ai - ao) > Qi * a_i * Ei
+
+    def stiffness_matrix(self, res: QuasiStaticResult) -> np.ndarray:
+        """5x5 bearing stiffness K_kl = d(load_k)/d(u_l) at the solution, by central differences
+        of the ring force with every ball re-equilibrated [N/m, N/rad, N m/m, N m/rad]."""
+        h = np.array([1e-8, 1e-8, 1e-8, 1e-7, 1e-7])
+        Kmat = np.empty((5, 5))
+        for k in range(5):
+            up = res.u.copy()
+            um = res.u.copy()
+            up[k] += h[k]
+            um[k] -= h[k]
+            Fp, _, _, _ = self.residual(up, res.omega, res.X, res.outer_control)
+            Fm, _, _, _ = self.residual(um, res.omega, res.X, res.outer_control)
+            Kmat[:, k] = -(Fp - Fm) / (2 * h[k])
+        return Kmat
+
     def _weights(self, Q, d, valid):
         """Share w_k of each arc of one ring in the ball kinematics and the gyroscopic friction: the
         contact loads Q_k (plus 1e-9 N times a softmax of the deflections over 1e-6 D, which decides for
@@ -615,7 +631,7 @@ class FourPointQuasiStaticModel(QuasiStaticModel):
         """As QuasiStaticModel._solve_balls; balls that the Newton iteration leaves out of equilibrium
         (a lightly loaded ball whose equilibrium contact angles are far from its start) are restarted
         from the minimum of their contact + centrifugal potential."""
-        X, st, ok = super()._solve_balls(u, omega, X0, outer_ctrl, tol, maxit)
+        X, st, ok = self._newton_balls(u, omega, X0, outer_ctrl, tol, maxit)
         if ok:
             return X, st, ok
         scale = max(1.0, 0.5 * self.g.ball_mass * self.g.dm * omega ** 2)
@@ -624,7 +640,7 @@ class FourPointQuasiStaticModel(QuasiStaticModel):
         Cr, Cz = self._centres(u)
         for j in np.flatnonzero(bad):
             Xe[j] = self._potential_minimum(X[j], Cr[j], Cz[j], float(st["Fc"][j]))
-        return super()._solve_balls(u, omega, Xe, outer_ctrl, tol, maxit)
+        return self._newton_balls(u, omega, Xe, outer_ctrl, tol, maxit)
 
     def _potential_minimum(self, x0, Cr, Cz, Fc):
         """Ball centre [m] minimising sum_k (2/5) K_k delta_k^2.5 - Fc Xr over the valid arcs (Hertz

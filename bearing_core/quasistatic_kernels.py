@@ -1,0 +1,608 @@
+"""numba kernels of the two-point Jones-Harris quasi-static model (bearing_core.quasistatic, whose module
+docstring states the equations and sources: Jones 1960; Harris & Kotzalas, Rolling Bearing Analysis 5th
+ed., Vol. 2 Ch. 3; seed 003 Eqs. 1-19).
+
+One ball:        _ball          contact deflections, Hertz loads (hertz.hertz_lookup_alpha on the
+                                HertzTable arrays), raceway-control kinematics, centrifugal force,
+                                gyroscopic moment and its Coulomb-bounded friction, equilibrium residual.
+All balls:       _solve_balls   per-ball Newton (2x2 finite-difference Jacobian, step limit 1e-3 D,
+                                per-ball backtracking) for the ball equilibrium at given ring displacement.
+Ring:            ring_forces    force and moment of the balls on the inner ring.
+5-DOF solve:     solve          Newton on the ring equilibrium (finite-difference 5x5 Jacobian, least
+                                squares step, backtracking line search), Harris's hybrid-control
+                                criterion, and the 5x5 stiffness matrix by central differences.
+
+Geometry and parameters come in one float array ``geo`` (indices G_*); the raceway control as an int
+(CTRL_*); the ball state of all balls as a (NS, Z) array (rows S_*). Each kernel reproduces step for step
+the algorithm documented in QuasiStaticModel.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .hertz import ROW_A_COEF, ROW_ELL_E, ROW_K_LOAD, hertz_lookup_alpha
+from .jit import hot
+
+K_REG = 1e-3  # N/m, tension spring of separated contacts (quasistatic module docstring)
+
+CTRL_OUTER, CTRL_INNER, CTRL_HYBRID = 0, 1, 2
+G_D, G_DM, G_FO, G_FI, G_A, G_ALPHA0, G_RI, G_RIG, G_MASS, G_INERTIA, G_MU, G_WOUT, N_GEO = range(13)
+(S_RR, S_RZ, S_QI, S_QO, S_DI, S_DO, S_AI, S_AO, S_BETA, S_WM, S_WR, S_FC, S_MG, S_LAMI, S_OC, S_FI,
+ S_FO, NS) = range(18)
+STATE_NAMES = ("Rr", "Rz", "Qi", "Qo", "d_i", "d_o", "ai", "ao", "beta", "wm", "wR", "Fc", "Mg", "lam_i",
+               "outer_ctrl", "Fi", "Fo")
+
+# status codes of solve()
+OK, LINE_SEARCH_FAILED, NOT_CONVERGED = 0, 1, 2
+
+
+@hot(inline="always")
+def _copy1(a, out):
+    """out[:] = a (1-D), without numpy's shape-mismatch error path."""
+    for i in range(a.shape[0]):
+        out[i] = a[i]
+
+
+@hot(inline="always")
+def _copy2(a, out):
+    """out[:, :] = a (2-D)."""
+    for i in range(a.shape[0]):
+        for k in range(a.shape[1]):
+            out[i, k] = a[i, k]
+
+
+@hot(inline="always")
+def _sign(x):
+    """sign of x (0 for 0 and NaN)."""
+    return 1.0 if x > 0.0 else (-1.0 if x < 0.0 else 0.0)
+
+
+@hot(inline="always")
+def _norm5(r):
+    """Euclidean norm of a 5-vector."""
+    s = 0.0
+    for k in range(5):
+        s += r[k] * r[k]
+    return math.sqrt(s)
+
+
+@hot(inline="always")
+def _dot_col(A, i, B, k):
+    """Dot product of column i of A and column k of B."""
+    s = 0.0
+    for j in range(A.shape[0]):
+        s += A[j, i] * B[j, k]
+    return s
+
+
+@hot(inline="always")
+def _coulomb(F, Fmax):
+    """Smooth |F| <= Fmax: F / (1 + (|F|/Fmax)^8)^(1/8); 0 where Fmax <= 0."""
+    if Fmax > 0.0:
+        x = F / Fmax
+        x2 = x * x
+        x4 = x2 * x2
+        return F / math.sqrt(math.sqrt(math.sqrt(1.0 + x4 * x4)))
+    return 0.0
+
+
+@hot
+def _ball(Xr, Xz, Cr, Cz, omega, oc_in, control, geo, tab_i, tab_o, dal):
+    """State of one ball with centre (Xr, Xz) [m] relative to the outer groove centre and inner groove
+    centre (Cr, Cz) [m]. Returns (Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, bx, wm, wR, Fc, Mg, lam_i, oc, Fi, Fo,
+    by): the quantities of QuasiStaticModel._ball_state (loads include the separated-contact spring; oc as
+    1.0 / 0.0), the attitude angle as beta = atan2(by, bx) (ball_states; the Newton iterations do not
+    need it)."""
+    D = geo[G_D]
+    dm = geo[G_DM]
+    lo = math.sqrt(Xr * Xr + Xz * Xz)
+    nor = Xr / lo
+    noz = Xz / lo
+    dvr = Xr - Cr
+    dvz = Xz - Cz
+    li = math.sqrt(dvr * dvr + dvz * dvz)
+    nir = dvr / li
+    niz = dvz / li
+    d_o = lo - (geo[G_FO] - 0.5) * D
+    d_i = li - (geo[G_FI] - 0.5) * D
+    ao = math.atan2(noz, nor)
+    ai = math.atan2(-niz, -nir)
+    if control == CTRL_INNER:
+        oc = False
+    elif control == CTRL_HYBRID:
+        oc = oc_in or d_i <= 0.0        # balls without inner contact roll on the outer race only
+    else:
+        oc = oc_in
+    Ki = hertz_lookup_alpha(tab_i, 0.0, dal, ai, ROW_K_LOAD)
+    Ko = hertz_lookup_alpha(tab_o, 0.0, dal, ao, ROW_K_LOAD)
+    Qi = Ki * d_i * math.sqrt(d_i) if d_i > 0.0 else K_REG * d_i       # K delta^1.5
+    Qo = Ko * d_o * math.sqrt(d_o) if d_o > 0.0 else K_REG * d_o
+    # raceway control (kinematics.attitude_outer / attitude_inner) and pure rolling (ball_speeds), with
+    # cos / sin of the contact angles taken from the unit normals: (cos ao, sin ao) = n_o,
+    # (cos ai, sin ai) = -n_i
+    cao = nor
+    sao = noz
+    cai = -nir
+    sai = -niz
+    gam = D / dm
+    if control == CTRL_OUTER or (control == CTRL_HYBRID and oc):
+        bx = cao + gam
+        by = sao
+    else:
+        bx = cai - gam
+        by = sai
+    hb = math.sqrt(bx * bx + by * by)
+    cb = bx / hb                           # cos(beta), sin(beta); beta = atan2(by, bx) (ball_states)
+    sb = by / hb
+    gi = D * cai / dm
+    go = D * cao / dm
+    ci = cai * cb + sai * sb               # cos(ai - beta)
+    co = cao * cb + sao * sb               # cos(ao - beta)
+    wm = omega * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci / co)
+    wR = -wm * dm * (1.0 + go) / (D * co)
+    wma = wm + geo[G_WOUT]                 # absolute orbital speed
+    Fc = 0.5 * geo[G_MASS] * dm * wma * wma
+    Mg = geo[G_INERTIA] * wma * wR * sb * -1.0
+    lam_i = 0.0 if oc else 1.0
+    lam_o = 2.0 - lam_i
+    Fi = _coulomb(lam_i * Mg / D, geo[G_MU] * max(Qi, 0.0))
+    Fo = _coulomb(lam_o * Mg / D, geo[G_MU] * max(Qo, 0.0))
+    Rr = -Qi * nir - Qo * nor + Fi * niz + Fo * noz + Fc
+    Rz = -Qi * niz - Qo * noz - Fi * nir - Fo * nor
+    return Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, bx, wm, wR, Fc, Mg, lam_i, 1.0 if oc else 0.0, Fi, Fo, by
+
+
+@hot(inline="always")
+def _centres(u, cpsi, spsi, geo, Cr, Cz):
+    """Inner groove-centre position per ball (seed 003 Eqs. 3, 5, 6) into Cr, Cz [m]."""
+    A = geo[G_A]
+    cr0 = A * math.cos(geo[G_ALPHA0])
+    cz0 = A * math.sin(geo[G_ALPHA0])
+    for j in range(cpsi.shape[0]):
+        dr = u[0] * cpsi[j] + u[1] * spsi[j]
+        da = u[2] + geo[G_RI] * (u[3] * spsi[j] - u[4] * cpsi[j])
+        Cr[j] = cr0 + dr
+        Cz[j] = cz0 + da
+
+
+@hot
+def centres(u, cpsi, spsi, geo):
+    """(Cr, Cz) [m] of every ball for ring displacement u (dx, dy, dz, tx, ty) [m, rad]."""
+    Z = cpsi.shape[0]
+    Cr = np.empty(Z)
+    Cz = np.empty(Z)
+    _centres(u, cpsi, spsi, geo, Cr, Cz)
+    return Cr, Cz
+
+
+@hot
+def ball_states(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S):
+    """All balls' states into S (NS, Z). X (Z, 2) [m]; oc (Z,) bool: outer race controls."""
+    for j in range(X.shape[0]):
+        r = _ball(X[j, 0], X[j, 1], Cr[j], Cz[j], omega, oc[j], control, geo, tab_i, tab_o, dal)
+        for k in range(NS):
+            S[k, j] = r[k]
+        S[S_BETA, j] = math.atan2(r[NS], r[S_BETA])      # attitude angle from (bx, by)
+
+
+@hot(inline="always")
+def _x_start(Cr, Cz, omega, geo, tab_o, dal, X):
+    """Initial ball positions: on the line of centres with equal deflections; at speed a ball in the
+    clearance is put on the outer race, pressed by the pure-rolling centrifugal force."""
+    D = geo[G_D]
+    ro = (geo[G_FO] - 0.5) * D
+    ri = (geo[G_FI] - 0.5) * D
+    lo = 0.0
+    ta = 0.0
+    if omega > 0.0:
+        wm = 0.5 * omega * (1.0 - D / geo[G_DM])
+        Fc = 0.5 * geo[G_MASS] * geo[G_DM] * wm ** 2
+        K0 = hertz_lookup_alpha(tab_o, 0.0, dal, geo[G_ALPHA0], ROW_K_LOAD)
+        lo = ro + (Fc / K0) ** (2.0 / 3.0)
+    for j in range(Cr.shape[0]):
+        L = math.hypot(Cr[j], Cz[j])
+        d = 0.5 * (L - (ro + ri))
+        t = (ro + d) / max(L, 1e-300)
+        X[j, 0] = Cr[j] * t
+        X[j, 1] = Cz[j] * t
+        if omega > 0.0 and d < 0.0:
+            ta = math.atan2(Cz[j], Cr[j])
+            X[j, 0] = lo * math.cos(ta)
+            X[j, 1] = lo * math.sin(ta)
+
+
+@hot
+def x_start(u, omega, cpsi, spsi, geo, tab_o, dal):
+    """Initial ball positions X (Z, 2) [m] for ring displacement u (see _x_start)."""
+    Z = cpsi.shape[0]
+    Cr = np.empty(Z)
+    Cz = np.empty(Z)
+    _centres(u, cpsi, spsi, geo, Cr, Cz)
+    X = np.empty((Z, 2))
+    _x_start(Cr, Cz, omega, geo, tab_o, dal, X)
+    return X
+
+
+@hot
+def _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, maxit, S, Rr, Rz):
+    """Newton per ball on the ball equilibrium, X (Z, 2) updated in place; 2x2 forward-difference
+    Jacobians (step 1e-10 D), Newton step limited to 1e-3 D, per-ball backtracking on |R| (at most 12
+    halvings, down to 1e-3). Converged when max |R| < tol (max(1, m dm omega^2 / 2) + max Q) over all
+    balls. Leaves the final state in S; returns converged."""
+    Z = X.shape[0]
+    D = geo[G_D]
+    scale = max(1.0, 0.5 * geo[G_MASS] * geo[G_DM] * omega ** 2)
+    h = 1e-10 * D
+    lim = 1e-3 * D
+    # residual and loads of each ball at X, kept from its line search when that evaluated the accepted point
+    Qi = np.empty(Z)
+    Qo = np.empty(Z)
+    known = np.zeros(Z, dtype=np.bool_)
+    # a ball whose Newton update leaves X bit for bit unchanged is at a fixed point of the iteration (the
+    # same X gives the same residual, Jacobian and step): it is skipped from then on, which changes nothing
+    frozen = np.zeros(Z, dtype=np.bool_)
+    for it in range(maxit):
+        rmax = 0.0
+        qmax = 0.0
+        finite = True
+        for j in range(Z):
+            if not known[j]:
+                r = _ball(X[j, 0], X[j, 1], Cr[j], Cz[j], omega, oc[j], control, geo, tab_i, tab_o, dal)
+                Rr[j] = r[0]
+                Rz[j] = r[1]
+                Qi[j] = r[2]
+                Qo[j] = r[3]
+            if not (math.isfinite(Rr[j]) and math.isfinite(Rz[j]) and math.isfinite(Qi[j])
+                    and math.isfinite(Qo[j])):
+                finite = False
+            rmax = max(rmax, abs(Rr[j]), abs(Rz[j]))
+            qmax = max(qmax, Qi[j], Qo[j])
+        if finite and rmax < tol * (scale + qmax):
+            ball_states(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S)
+            return True
+        for j in range(Z):
+            if frozen[j]:
+                continue
+            x0 = X[j, 0]
+            x1 = X[j, 1]
+            R0 = Rr[j]
+            R1 = Rz[j]
+            p = _ball(x0 + h, x1, Cr[j], Cz[j], omega, oc[j], control, geo, tab_i, tab_o, dal)
+            J00 = (p[0] - R0) / h
+            J10 = (p[1] - R1) / h
+            p = _ball(x0, x1 + h, Cr[j], Cz[j], omega, oc[j], control, geo, tab_i, tab_o, dal)
+            J01 = (p[0] - R0) / h
+            J11 = (p[1] - R1) / h
+            det = J00 * J11 - J01 * J10
+            if not abs(det) > 0.0:
+                det = 1e-300
+            d0 = -(J11 * R0 - J01 * R1) / det
+            d1 = -(-J10 * R0 + J00 * R1) / det
+            if not (math.isfinite(d0) and math.isfinite(d1)):
+                # singular 2x2 (e.g. degenerate kinematics): small steepest-descent step
+                d0 = -1e-4 * D * _sign(R0)
+                d1 = -1e-4 * D * _sign(R1)
+            mag = max(abs(d0), abs(d1))
+            if mag > lim:
+                f = lim / max(mag, 1e-300)
+                d0 *= f
+                d1 *= f
+            n0 = math.hypot(R0, R1)
+            lam = 1.0
+            xn0 = x0 + d0
+            xn1 = x1 + d1
+            known[j] = False
+            for _ in range(12):
+                q = _ball(xn0, xn1, Cr[j], Cz[j], omega, oc[j], control, geo, tab_i, tab_o, dal)
+                nn = math.hypot(q[0], q[1])
+                if (nn <= n0 * (1.0 + 1e-9)) or not (lam > 1e-3):
+                    known[j] = True
+                    Rr[j] = q[0]
+                    Rz[j] = q[1]
+                    Qi[j] = q[2]
+                    Qo[j] = q[3]
+                    break
+                lam *= 0.5
+                xn0 = x0 + lam * d0
+                xn1 = x1 + lam * d1
+            X[j, 0] = xn0
+            X[j, 1] = xn1
+            if xn0 == x0 and xn1 == x1:
+                frozen[j] = True
+    ball_states(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S)
+    return False
+
+
+@hot
+def ring_forces(cpsi, spsi, ai, Qi, Fi, Ri, rig, F):
+    """Force and moment (Fx, Fy, Fz, Mx, My) of the balls on the inner ring into F [N, N m]: contact
+    force Qi (incl. regularisation) along the inner contact normal at angle ai, applied at the inner
+    groove-centre locus of radius Ri, plus the gyroscopic friction force Fi with its moment arm rig about
+    the groove centre (seed 003 Eqs. 18-19)."""
+    for k in range(5):
+        F[k] = 0.0
+    for j in range(cpsi.shape[0]):
+        nir = -math.cos(ai[j])
+        niz = -math.sin(ai[j])
+        fr = Qi[j] * nir - Fi[j] * niz
+        fz = Qi[j] * niz + Fi[j] * nir
+        c = cpsi[j]
+        s = spsi[j]
+        F[0] += fr * c
+        F[1] += fr * s
+        F[2] += fz
+        F[3] += Ri * s * fz + rig * Fi[j] * s
+        F[4] += -Ri * c * fz - rig * Fi[j] * c
+
+
+@hot
+def _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F):
+    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 (retried from the
+    geometric start with 200 iterations if that fails); X, S: final ball positions and states."""
+    _centres(u, cpsi, spsi, geo, Cr, Cz)
+    _copy2(X0, X)
+    n_it = max(60, Cr.shape[0] // 1000)          # 60 (typed int64, not a literal: one compilation)
+    ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, n_it, S, Rr, Rz)
+    if not ok:
+        _x_start(Cr, Cz, omega, geo, tab_o, dal, X)
+        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, n_it + 140, S, Rr,
+                          Rz)
+    ring_forces(cpsi, spsi, S[S_AI], S[S_QI], S[S_FI], geo[G_RI], geo[G_RIG], F)
+    return ok
+
+
+@hot
+def residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
+    """(F (5,), X (Z, 2), S (NS, Z), ok): ring force of the balls at displacement u [N, N m] with the
+    balls in equilibrium, started from X0."""
+    Z = cpsi.shape[0]
+    X = np.empty((Z, 2))
+    S = np.empty((NS, Z))
+    Cr = np.empty(Z)
+    Cz = np.empty(Z)
+    Rr = np.empty(Z)
+    Rz = np.empty(Z)
+    F = np.empty(5)
+    ok = _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F)
+    return F, X, S, ok
+
+
+@hot
+def lstsq_svd(A, b, rcond):
+    """Minimum-norm least-squares solution of A x = b (A n x n) through the singular value decomposition,
+    singular values below rcond * s_max treated as zero: numpy.linalg.lstsq's definition, computed by
+    one-sided Jacobi rotations (Demmel & Veselic 1992; Golub & Van Loan, Matrix Computations, 4th ed.,
+    Sec. 8.6.3), which for a 5 x 5 matrix costs far less to compile than LAPACK's gelsd."""
+    n = A.shape[1]
+    U = A.copy()
+    V = np.zeros((n, n))
+    for i in range(n):
+        V[i, i] = 1.0
+    for sweep in range(60):
+        rotated = False
+        for p in range(n - 1):
+            for q in range(p + 1, n):
+                al = 0.0
+                be = 0.0
+                ga = 0.0
+                for i in range(A.shape[0]):
+                    al += U[i, p] * U[i, p]
+                    be += U[i, q] * U[i, q]
+                    ga += U[i, p] * U[i, q]
+                if abs(ga) <= 1e-15 * math.sqrt(al * be) or ga == 0.0:
+                    continue
+                rotated = True
+                zeta = (be - al) / (2.0 * ga)
+                t = (1.0 if zeta >= 0.0 else -1.0) / (abs(zeta) + math.sqrt(1.0 + zeta * zeta))
+                c = 1.0 / math.sqrt(1.0 + t * t)
+                sn = c * t
+                for i in range(A.shape[0]):
+                    up = U[i, p]
+                    U[i, p] = c * up - sn * U[i, q]
+                    U[i, q] = sn * up + c * U[i, q]
+                for i in range(n):
+                    vp = V[i, p]
+                    V[i, p] = c * vp - sn * V[i, q]
+                    V[i, q] = sn * vp + c * V[i, q]
+        if not rotated:
+            break
+    sv = np.empty(n)
+    for k in range(n):
+        sv[k] = math.sqrt(_dot_col(U, k, U, k))
+    cut = 0.0
+    for k in range(n):
+        cut = max(cut, rcond * sv[k])
+    x = np.zeros(n)
+    for k in range(n):
+        if sv[k] > cut:
+            coef = 0.0
+            for i in range(A.shape[0]):
+                coef += U[i, k] * b[i]
+            coef /= sv[k] * sv[k]                 # (u_k . b) / s_k with u_k = U[:, k] / s_k
+            for i in range(n):
+                x[i] += coef * V[i, k]
+    return x
+
+
+@hot
+def _scaled(loads, F, fs, uu, us, fixed_tilt, r):
+    """Scaled ring residual r = (loads + F) / fs; with a fixed tilt the tilt rows pin tx = ty = 0."""
+    for k in range(5):
+        r[k] = (loads[k] + F[k]) / fs[k]
+    if fixed_tilt:
+        r[3] = uu[3] / us[3]
+        r[4] = uu[4] / us[4]
+
+
+@hot
+def _hybrid_oc(S, tab_i, tab_o, dal, oc):
+    """Harris's criterion: the outer race controls where Q_o a_o E(k_o) cos(ai - ao) > Q_i a_i E(k_i)."""
+    for j in range(S.shape[1]):
+        ai = S[S_AI, j]
+        ao = S[S_AO, j]
+        Qi = max(S[S_QI, j], 0.0)
+        Qo = max(S[S_QO, j], 0.0)
+        a_i = hertz_lookup_alpha(tab_i, 0.0, dal, ai, ROW_A_COEF) * np.cbrt(Qi)
+        a_o = hertz_lookup_alpha(tab_o, 0.0, dal, ao, ROW_A_COEF) * np.cbrt(Qo)
+        Ei = hertz_lookup_alpha(tab_i, 0.0, dal, ai, ROW_ELL_E)
+        Eo = hertz_lookup_alpha(tab_o, 0.0, dal, ao, ROW_ELL_E)
+        oc[j] = Qo * a_o * Eo * math.cos(ai - ao) > Qi * a_i * Ei
+
+
+@hot
+def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, spsi, tab_i, tab_o, dal,
+          X, S, Kmat, info):
+    """5-DOF inner-ring equilibrium F_ext + F_balls(u) = 0 by Newton's method, from u (updated in place;
+    [m, rad]). Residual scaled by the load (moments by dm/2), unknowns by 1 um / 1e-5 rad; forward-difference
+    Jacobian (step 1e-2 scaled units), least-squares step (rcond 1e-12) limited to 20 um / 1 mrad,
+    backtracking line search (16 halvings, sufficient decrease 1e-4). Hybrid control: Harris's criterion
+    re-evaluated in the first 15 iterations. On success X (Z, 2), S (NS, Z) hold the balls and, if want_K,
+    Kmat the 5x5 stiffness by central differences (steps 1e-8 m, 1e-7 rad). Returns (status, iterations);
+    info[0] = |residual| at a failed line search, info[1] = max scaled residual."""
+    Z = cpsi.shape[0]
+    us = np.empty(5)
+    smax_div = np.empty(5)
+    for k in range(5):
+        us[k] = 1e-6 if k < 3 else 1e-5
+        smax_div[k] = 20.0 if k < 3 else 100.0
+    n3 = math.sqrt(loads[0] ** 2 + loads[1] ** 2 + loads[2] ** 2)
+    nm = math.sqrt(loads[3] ** 2 + loads[4] ** 2)
+    Fscale = max(n3, nm / (0.5 * geo[G_DM]), 1.0)
+    fs = np.empty(5)
+    for k in range(5):
+        fs[k] = Fscale if k < 3 else Fscale * 0.5 * geo[G_DM]
+    if fixed_tilt:
+        u[3] = 0.0
+        u[4] = 0.0
+    oc = np.ones(Z, dtype=np.bool_)
+    new_oc = np.ones(Z, dtype=np.bool_)
+    Cr = np.empty(Z)
+    Cz = np.empty(Z)
+    Rr = np.empty(Z)
+    Rz = np.empty(Z)
+    F = np.empty(5)
+    r = np.empty(5)
+    rn = np.empty(5)
+    rp = np.empty(5)
+    Xn = np.empty((Z, 2))
+    Sn = np.empty((NS, Z))
+    Xp = np.empty((Z, 2))
+    Sp = np.empty((NS, Z))
+    up = np.empty(5)
+    un = np.empty(5)
+    J = np.empty((5, 5))
+    _centres(u, cpsi, spsi, geo, Cr, Cz)
+    X0 = np.empty((Z, 2))
+    _x_start(Cr, Cz, omega, geo, tab_o, dal, X0)
+    ok = _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F)
+    _scaled(loads, F, fs, u, us, fixed_tilt, r)
+    it = 0
+    converged = False
+    for it in range(1, maxit + 1):
+        if control == CTRL_HYBRID and it <= 15:
+            _hybrid_oc(S, tab_i, tab_o, dal, new_oc)
+            changed = False
+            for j in range(Z):
+                if new_oc[j] != oc[j]:
+                    changed = True
+            if changed:
+                _copy1(new_oc, oc)
+                _copy2(X, X0)
+                ok = _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz,
+                               Rr, Rz, F)
+                _scaled(loads, F, fs, u, us, fixed_tilt, r)
+        rmax = 0.0
+        rfin = True
+        for k in range(5):
+            if not math.isfinite(r[k]):
+                rfin = False
+            rmax = max(rmax, abs(r[k]))
+        if ok and rfin and rmax < tol:
+            converged = True
+            break
+        for k in range(5):
+            _copy1(u, up)
+            up[k] += 1e-2 * us[k]
+            _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, F)
+            _scaled(loads, F, fs, up, us, fixed_tilt, rp)
+            for i in range(5):
+                J[i, k] = (rp[i] - r[i]) / 1e-2
+        jfin = True
+        for i in range(5):
+            for k in range(5):
+                if not math.isfinite(J[i, k]):
+                    jfin = False
+        if not (jfin and rfin):
+            break                   # no least-squares step
+        step = -lstsq_svd(J, r, 1e-12)
+        smax = 0.0
+        for k in range(5):
+            smax = max(smax, abs(step[k]) / smax_div[k])
+        if smax > 1.0:
+            step /= smax
+        lam = 1.0
+        n0 = _norm5(r)
+        accepted = False
+        okn = False
+        for _ in range(16):
+            for k in range(5):
+                un[k] = u[k] + lam * step[k] * us[k]
+            okn = _residual(un, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xn, Sn, Cr, Cz, Rr,
+                            Rz, F)
+            _scaled(loads, F, fs, un, us, fixed_tilt, rn)
+            if okn and _norm5(rn) < (1.0 - 1e-4 * lam) * n0:
+                accepted = True
+                break
+            lam *= 0.5
+        if not accepted:
+            info[0] = n0
+            return LINE_SEARCH_FAILED, it
+        _copy1(un, u)
+        _copy1(rn, r)
+        _copy2(Xn, X)
+        _copy2(Sn, S)
+        ok = okn
+    if not converged:
+        info[1] = 0.0
+        for k in range(5):
+            info[1] = max(info[1], abs(r[k])) if math.isfinite(r[k]) and math.isfinite(info[1]) else np.nan
+        return NOT_CONVERGED, it
+    if want_K:
+        ocs = np.empty(Z, dtype=np.bool_)
+        for j in range(Z):
+            ocs[j] = S[S_OC, j] != 0.0
+        _copy2(stiffness(u, omega, X, ocs, control, geo, cpsi, spsi, tab_i, tab_o, dal), Kmat)
+    return OK, it
+
+
+@hot
+def stiffness(u, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
+    """5x5 bearing stiffness K_kl = d(load_k)/d(u_l) [N/m, N/rad, N m/m, N m/rad] at ring displacement u
+    with balls X (Z, 2) and raceway control oc: central differences (steps 1e-8 m, 1e-7 rad) of the ring
+    force, every ball re-equilibrated from X."""
+    Z = cpsi.shape[0]
+    h = np.empty(5)
+    for k in range(5):
+        h[k] = 1e-8 if k < 3 else 1e-7
+    Kmat = np.empty((5, 5))
+    up = np.empty(5)
+    Fp = np.empty(5)
+    Fm = np.empty(5)
+    Xp = np.empty((Z, 2))
+    Sp = np.empty((NS, Z))
+    Cr = np.empty(Z)
+    Cz = np.empty(Z)
+    Rr = np.empty(Z)
+    Rz = np.empty(Z)
+    for k in range(5):
+        _copy1(u, up)
+        up[k] += h[k]
+        _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fp)
+        _copy1(u, up)
+        up[k] -= h[k]
+        _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fm)
+        for i in range(5):
+            Kmat[i, k] = -(Fp[i] - Fm[i]) / (2.0 * h[k])
+    return Kmat

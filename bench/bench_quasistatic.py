@@ -1,0 +1,138 @@
+"""Warm wall time of one Jones-Harris quasi-static solve (bearing_core.quasistatic) over a matrix of cases,
+with and without the 5x5 stiffness matrix, and of the tribological quasi-static solve
+(bearing_core.quasistatic_tribo), which starts from it (7218B, lubricated, 3000 rpm, Fx 1 kN, Fz 3 kN;
+tribo_jones_harris_start_ms: the Jones-Harris solve with stiffness inside it).
+
+    python bench/bench_quasistatic.py [--quick] [--repeat N] [--save ref.npz] [--compare ref.npz] [--json]
+
+Matrix: the two-point presets 7218B, 7008-ma2023, wan-105; speeds 0, 3000, 10,000, 20,000 rpm; loads pure
+axial, combined, radial-heavy, with moments; raceway control outer / inner / hybrid. Each solve is run
+once to compile and warm up, then timed as the best of --repeat runs (the machine is shared: the best run
+is the cost of the solve, the others add other jobs' time slices).
+
+--save writes every case's results (u, ball loads, contact angles, deflections, orbital speed, stiffness)
+to an .npz file; --compare reads such a file (e.g. written by another version of the code) and prints the
+largest relative difference of each quantity over the matrix (|new - old| / max|old| per array).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+
+import numpy as np
+
+from bearing_core.errors import ConvergenceError
+from bearing_core.geometry import load_preset
+from bearing_core.quasistatic import QuasiStaticModel
+
+RPM = math.pi / 30
+PRESETS = ("7218B", "7008-ma2023", "wan-105")
+SPEEDS_RPM = (0.0, 3000.0, 10000.0, 20000.0)
+FIELDS = ("u", "Q_i", "Q_o", "alpha_i", "alpha_o", "delta_i", "delta_o", "omega_m", "omega_R", "beta", "F_i",
+          "F_o", "p_i", "stiffness")
+
+
+def load_cases(g):
+    """(name, loads) scaled to the bearing's size: C0-like scale from Z and D."""
+    s = g.Z * (g.D / 0.0222) ** 2 * 200.0          # ~3 kN for 7218B
+    ra = 0.5 * g.dm
+    return [("axial", (0.0, 0.0, s, 0.0, 0.0)),
+            ("combined", (s / 3, 0.0, s, 0.0, 0.0)),
+            ("radial-heavy", (s, 0.3 * s, 0.3 * s, 0.0, 0.0)),
+            ("moment", (0.2 * s, 0.0, s, 0.05 * s * ra, -0.03 * s * ra))]
+
+
+def cases(quick):
+    presets = PRESETS[:1] if quick else PRESETS
+    speeds = (0.0, 3000.0) if quick else SPEEDS_RPM
+    controls = ("outer",) if quick else ("outer", "inner", "hybrid")
+    for p in presets:
+        g = load_preset(p)
+        for ctrl in controls:
+            for n in speeds:
+                for lname, loads in load_cases(g):
+                    yield p, g, ctrl, n, lname, loads
+
+
+def timed(fn, repeat):
+    ts = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        ts.append(time.perf_counter() - t0)
+    return float(np.min(ts))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--save")
+    ap.add_argument("--compare")
+    ap.add_argument("--json", action="store_true")
+    ap.add_argument("--no-tribo", action="store_true", help="skip the tribological solve timing")
+    a = ap.parse_args()
+    t0 = time.perf_counter()
+    m0 = QuasiStaticModel(load_preset("7218B"))
+    m0.solve(3000 * RPM, (1000.0, 0, 3000.0, 0, 0))
+    first_s = time.perf_counter() - t0
+    rows, saved = [], {}
+    ref = np.load(a.compare) if a.compare else None
+    worst = {}
+    for p, g, ctrl, n, lname, loads in cases(a.quick):
+        key = f"{p}|{ctrl}|{n:g}|{lname}"
+        m = QuasiStaticModel(g, ctrl)
+        w = n * RPM
+        try:
+            r = m.solve(w, loads, stiffness=True)
+        except ConvergenceError as e:
+            print(f"{key:40s} FAIL {str(e)[:100]}")
+            rows.append(dict(case=key, ok=False))
+            continue
+        t_k = timed(lambda: m.solve(w, loads, stiffness=True), a.repeat)
+        t_n = timed(lambda: m.solve(w, loads, stiffness=False), a.repeat)
+        rows.append(dict(case=key, ok=True, ms_with_stiffness=1e3 * t_k, ms_without=1e3 * t_n,
+                         iterations=r.iterations))
+        msg = ""
+        for f in FIELDS:
+            v = np.asarray(getattr(r, f), dtype=float)
+            saved[f"{key}|{f}"] = v
+            if ref is not None and f"{key}|{f}" in ref:
+                o = ref[f"{key}|{f}"]
+                d = float(np.max(np.abs(v - o)) / max(np.max(np.abs(o)), 1e-300))
+                worst[f] = max(worst.get(f, 0.0), d)
+                msg = f"  max rel diff {max(worst.get(f, 0) for f in FIELDS):.1e}"
+        print(f"{key:40s} {1e3 * t_n:8.2f} ms  {1e3 * t_k:8.2f} ms with stiffness  it {r.iterations:3d}{msg}",
+              flush=True)
+    ok = [r for r in rows if r["ok"]]
+    summary = dict(first_solve_s=first_s, cases=len(rows), failed=len(rows) - len(ok),
+                   median_ms_without=float(np.median([r["ms_without"] for r in ok])),
+                   max_ms_without=float(np.max([r["ms_without"] for r in ok])),
+                   median_ms_with_stiffness=float(np.median([r["ms_with_stiffness"] for r in ok])),
+                   max_ms_with_stiffness=float(np.max([r["ms_with_stiffness"] for r in ok])))
+    if not a.no_tribo:
+        from bearing_core.dynamics import DynamicsOptions
+        from bearing_core.quasistatic_tribo import solve_tribo_quasistatic
+        g = load_preset("7218B")
+        for tr in ("lubricated",):
+            opt = DynamicsOptions(traction=tr, mu=0.1)
+            solve_tribo_quasistatic(g, 3000 * RPM, (1000.0, 0, 3000.0, 0, 0), opt)
+            summary[f"tribo_{tr}_s"] = timed(
+                lambda: solve_tribo_quasistatic(g, 3000 * RPM, (1000.0, 0, 3000.0, 0, 0), opt), 2)
+            m7 = QuasiStaticModel(g)
+            summary["tribo_jones_harris_start_ms"] = 1e3 * timed(
+                lambda: m7.solve(3000 * RPM, (1000.0, 0, 3000.0, 0, 0), stiffness=True), a.repeat)
+    if worst:
+        summary["max_rel_diff"] = worst
+    if a.save:
+        np.savez(a.save, **saved)
+    print(json.dumps(summary, indent=1) if a.json else
+          "\n".join(f"{k}: {v}" for k, v in summary.items()))
+    if a.json:
+        print(json.dumps(rows))
+
+
+if __name__ == "__main__":
+    main()
