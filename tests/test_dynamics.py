@@ -76,7 +76,7 @@ def test_combined_load_reactions_and_cage(traction):
 def test_power_balance():
     """Energy conservation: drive power + external-load power = dissipated power
     + d(kinetic + elastic energy)/dt over 0.05 s windows, within 1%. EHL traction (default), production
-    integrator 'auto' (the Rosenbrock-W method at this low speed; measured 0.5-0.6 %, the explicit adaptive
+    integrator 'auto' (the Rosenbrock-W method at this low speed; measured 0.56-0.64 %, the explicit adaptive
     RK4 0.24 %). The energies are the integrator's own time integrals of the power channels (the method's
     quadrature over its stages, DynamicModel.integrals), not trapezoids over sampled records, which miss the
     short pocket-contact power peaks."""
