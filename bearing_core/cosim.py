@@ -177,7 +177,7 @@ class CoSimSession:
         self._new = np.zeros(len(ALL_OUTPUT_NAMES))
         self._x = np.zeros(2 * K.NOUT + len(SK.EXTRA_NAMES))
         self._ext = np.zeros(SK.N_EXT)
-        self._avg = np.zeros(K.NOUT)
+        self._ext_isothermal = False   # ext holds the (constant) temperatures of a model without the network
         self._films = None
         self._saved = None          # rollback buffers of the step in progress (_save)
         self._in_key = None         # (inputs as given, model geometry) of the last validated inputs
@@ -371,6 +371,7 @@ class CoSimSession:
             raise BearingInputError("inputs", dict(u), "a load case with a quasi-static equilibrium", str(e))
         self.t = float(t0)
         self._in_key = self._in_u = self._applied = None
+        self._ext_isothermal = False
         self._update_outputs()
         self._check_limits()
 
@@ -431,9 +432,6 @@ class CoSimSession:
                 self._applied = u
             # (held inputs: the model still holds them; advance continues the held speed from its last end)
             m.advance(t + h, record_dt=max(h, 1e-6))
-            avg = self._avg
-            np.subtract(m.quad[:K.NOUT], sv["quad"][:K.NOUT], out=avg)
-            avg /= m.t - t
             if m.thermal_runaway:
                 # a temperature past the oil's limit: flagged and the step discarded (never reported as OK)
                 from .thermal import ThermalRunaway
@@ -442,7 +440,7 @@ class CoSimSession:
                 raise StepRejected(str(ThermalRunaway(th.temperatures(), th.T_max, th.oil.name,
                                                       f"at t = {t + h:.6g} s")))
             self.t = m.t
-            self._update_outputs(avg)
+            self._update_outputs(sv["quad"], m.t - t)
             self._check_limits()
         except (BearingInputError, FloatingPointError, StepRejected) as e:
             np.copyto(m.y, sv["y"])
@@ -461,22 +459,30 @@ class CoSimSession:
             raise StepRejected(str(e))
         return Outputs(self.values.copy())
 
-    def _update_outputs(self, avg=None):
+    def _update_outputs(self, q0=None, h=0.0):
         """Outputs at the current instant into self.values (one numba call, session_kernels.assemble_outputs);
-        avg (len NOUT, dynamics_kernels channels) the step averages of the last step (None at initialisation:
-        the instantaneous values stand for them). Raises StepRejected, values unchanged, if any is not finite."""
+        the step averages from the time integrals (model.quad) at the end of the step of length h [s] and q0
+        at its start (quad entries past the output channels are not read) (None at initialisation: the instantaneous values stand for them). Raises StepRejected,
+        values unchanged, if any is not finite."""
         m = self.model
         diag, bd = m.evaluate_point()      # from the integration's end point (or one rhs call)
         if self._films is None or self._films.shape[1] != bd.shape[0]:
             self._films = np.zeros((4, bd.shape[0]))
         lam = m.films_into(bd, self._films)
-        T = m.temperatures()
         ext = self._ext
-        ext[0], ext[1], ext[2], ext[3] = T["ball"], T["outer"], T["inner"], T["oil"]
-        ext[4], ext[5] = T["heat_to_ambient"], T["heat_to_oil_flow"]
+        if m.thermal is not None or not self._ext_isothermal:     # (isothermal: constant, filled once)
+            T = m.temperatures()
+            ext[0], ext[1], ext[2], ext[3] = T["ball"], T["outer"], T["inner"], T["oil"]
+            ext[4], ext[5] = T["heat_to_ambient"], T["heat_to_oil_flow"]
+            self._ext_isothermal = m.thermal is None
         ext[6] = 1.0 if self.thermal_runaway else 0.0
-        ok = SK.assemble_outputs(diag, diag if avg is None else avg, self._films, lam, ext, _OUT_CH, CSR_MIN_SPEED,
-                                 SKID_TOL, SKID_MIN_SPEED, _OUT_PTR, _OUT_IDX, self._x, self._new)
+        if q0 is None:
+            q1 = q0 = diag
+            h = 0.0
+        else:
+            q1 = m.quad
+        ok = SK.assemble_outputs(diag, q1, q0, h, self._films, lam, ext, _OUT_CH, CSR_MIN_SPEED, SKID_TOL,
+                                 SKID_MIN_SPEED, _OUT_PTR, _OUT_IDX, self._x, self._new)
         if not ok:
             bad = [n for n, v in zip(ALL_OUTPUT_NAMES, self._new) if not math.isfinite(v)]
             raise StepRejected(f"non-finite outputs {bad} (solver failure)")

@@ -25,10 +25,11 @@ CH_SHAFT, CH_CAGE, CH_CAGE_EQ26, CH_CAGE_PR_OUTER, CH_OUTER = range(5)
 
 
 @hot
-def assemble_outputs(diag, avg, films, lam, ext, ch, csr_min, skid_tol, skid_min, ptr, idx, x, out):
+def assemble_outputs(diag, q1, q0, dt, films, lam, ext, ch, csr_min, skid_tol, skid_min, ptr, idx, x, out):
     """Outputs of a communication point into out (float64, one entry per output):
     out[i] = sum of x[idx[ptr[i]:ptr[i + 1]]] over the source vector x = [diag (NOUT channels at the
-    instant) | avg (the channels averaged over the step) | derived quantities (EXTRA_NAMES)].
+    instant) | the channels averaged over the step, (q1 - q0) / dt from their time integrals at its end and
+    start (dt <= 0: diag stands for them) | derived quantities (EXTRA_NAMES)].
 
     Derived: cage / shaft speed ratios (0 below csr_min [rad/s] of |shaft speed|, where they are 0/0),
     skid ratio 1 - CSR / CSR_theory, smallest minimum film of the loaded inner and outer contacts (films:
@@ -40,7 +41,7 @@ def assemble_outputs(diag, avg, films, lam, ext, ch, csr_min, skid_tol, skid_min
     n = diag.shape[0]
     for i in range(n):
         x[i] = diag[i]
-        x[n + i] = avg[i]
+        x[n + i] = (q1[i] - q0[i]) / dt if dt > 0.0 else diag[i]
     e = 2 * n
     w = diag[ch[CH_SHAFT]]
     wc = diag[ch[CH_CAGE]]
