@@ -372,6 +372,8 @@ class CoSimSession:
         self.t = float(t0)
         self._in_key = self._in_u = self._applied = None
         self._ext_isothermal = False
+        m = self.model
+        SK.same_point(m.t, m.y, m.U, m.P, m.t, m.y, m.U, m.P)    # load the compiled kernel here, not in the first step
         self._update_outputs()
         self._check_limits()
 
