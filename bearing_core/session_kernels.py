@@ -9,7 +9,13 @@ from __future__ import annotations
 
 import math
 
-from .jit import hot
+from numba import njit
+
+# Strict IEEE arithmetic here (no fastmath): with the reciprocal flag LLVM computes a division as a
+# multiplication by the reciprocal in a vectorised loop body but divides in its scalar remainder, so which
+# elements round which way would depend on the arrays' alignment in memory, and two identical runs could
+# give step averages differing in the last bit. These kernels are not on the integration's hot path.
+_exact = njit(cache=True, error_model="numpy")
 
 # derived quantities the output kernel computes, after the 2 x NOUT channels (instantaneous, step-averaged)
 EXTRA_NAMES = ("cage_shaft_ratio", "cage_shaft_ratio_theory", "skid_ratio", "film_min_inner", "film_min_outer",
@@ -24,7 +30,7 @@ thermal runaway flag (0 / 1)."""
 CH_SHAFT, CH_CAGE, CH_CAGE_EQ26, CH_CAGE_PR_OUTER, CH_OUTER = range(5)
 
 
-@hot
+@_exact
 def assemble_outputs(diag, q1, q0, dt, films, lam, ext, ch, csr_min, skid_tol, skid_min, ptr, idx, x, out):
     """Outputs of a communication point into out (float64, one entry per output):
     out[i] = sum of x[idx[ptr[i]:ptr[i + 1]]] over the source vector x = [diag (NOUT channels at the
@@ -87,7 +93,7 @@ def assemble_outputs(diag, q1, q0, dt, films, lam, ext, ch, csr_min, skid_tol, s
     return ok
 
 
-@hot
+@_exact
 def same_point(t, y, U, P, kt, ky, kU, kP):
     """True if (t, y, U, P) equal (kt, ky, kU, kP) element by element (NaN never equal), same shapes."""
     if t != kt or y.shape[0] != ky.shape[0] or U.shape[0] != kU.shape[0] or P.shape[0] != kP.shape[0]:
