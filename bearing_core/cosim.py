@@ -462,10 +462,10 @@ class CoSimSession:
         return Outputs(self.values.copy())
 
     def _update_outputs(self, q0=None, h=0.0):
-        """Outputs at the current instant into self.values (one numba call, session_kernels.assemble_outputs);
-        the step averages from the time integrals (model.quad) at the end of the step of length h [s] and q0
-        at its start (quad entries past the output channels are not read) (None at initialisation: the instantaneous values stand for them). Raises StepRejected,
-        values unchanged, if any is not finite."""
+        """Outputs at the current instant into self.values (one numba call, session_kernels.assemble_outputs).
+        Step averages: from the time integrals (model.quad) at the end of the step of length h [s] and q0 at
+        its start; q0 None at initialisation, where the instantaneous values stand for them. Raises
+        StepRejected, values unchanged, if any output is not finite."""
         m = self.model
         diag, bd = m.evaluate_point()      # from the integration's end point (or one rhs call)
         if self._films is None or self._films.shape[1] != bd.shape[0]:

@@ -231,7 +231,8 @@ def main(argv=None):
               "the right-hand-side call for outputs and films)")
         print(f"  counting the Python of DynamicModel.advance too: {out['fmu_overhead_vs_kernels_us']:.0f} us through "
               f"the FMU, {out['session_overhead_vs_kernels_us']:.0f} us in the session; at {SHORT_H * 1e6:g} us steps "
-              f"(warm caches): {out['fmu_overhead_short_step_us']:.0f} us / {out['session_overhead_short_step_us']:.0f} us")
+              f"(warm caches): {out['fmu_overhead_short_step_us']:.0f} us / "
+              f"{out['session_overhead_short_step_us']:.0f} us")
         print(f"warm: initialisation {out['warm_init_s']:.2f} s, first step {out['warm_first_step_s']:.3f} s")
         print(f"first run (cold if the cache folder was empty): initialisation {out['cold_init_s']:.2f} s, "
               f"first step {out['cold_first_step_s']:.3f} s")
