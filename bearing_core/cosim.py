@@ -3,6 +3,7 @@
     s = CoSimSession(CoSimParameters(bearing="7218B", traction_model="lubricated"))
     s.initialize(t0=0.0, inputs={"shaft_speed": 104.7, "Fz": 3000.0})
     out = s.step(t=0.0, h=1e-3, inputs={...})       # advances exactly to t + h, inputs held
+    out["cage_speed"]                                # outputs: a read-only mapping (s.values: the array)
 
 Inputs are held constant over a step (shaft speed included: a speed step is applied at the start of
 the step). Outputs are the instantaneous values at the end of the step, except the energy-carrying ones
@@ -14,9 +15,9 @@ BearingInputError (configuration); numbers that are not finite never leave this 
 """
 from __future__ import annotations
 
-import copy
 import math
-from dataclasses import dataclass, field
+from collections.abc import Mapping
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -28,6 +29,8 @@ from . import dynamics_kernels as K
 from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # noqa: F401 (re-export)
 from .cosim_spec import INT_OUTPUT_NAMES, INT_OUTPUT_SPEC  # noqa: F401 (re-export)
 from .cosim_spec import STEP_AVERAGED_NAMES
+from . import session_kernels as SK
+from .skid import SKID_MIN_SPEED, SKID_OVERSKIDDING, SKID_PURE_ROLLING, SKID_SKIDDING, SKID_TOL
 HEAT_CHANNELS = {"race_inner": "P_race_inner", "race_outer": "P_race_outer", "pocket": "P_pocket",
                  "land": "P_land", "drag": "P_drag", "damping": "P_damping", "churn_cage": "P_churn_cage",
                  "churn_ring": "P_churn_ring"}
@@ -41,6 +44,72 @@ STEP_AVERAGED = (
 """(output name, dynamics channel or channels summed): outputs averaged over each communication step."""
 assert tuple(n for n, _ in STEP_AVERAGED) == STEP_AVERAGED_NAMES
 CSR_MIN_SPEED = 1.0   # rad/s (9.5 rpm): below it |shaft speed| the cage/shaft ratios are reported as 0
+ALL_OUTPUT_NAMES = OUTPUT_NAMES + INT_OUTPUT_NAMES
+"""The session's output array (CoSimSession.values): the Real outputs, then the Integer ones."""
+OUTPUT_INDEX = {n: i for i, n in enumerate(ALL_OUTPUT_NAMES)}
+
+
+def _output_map():
+    """(ptr, idx) of session_kernels.assemble_outputs: each output as the sum of entries of [instantaneous
+    channels | step-averaged channels | session_kernels.EXTRA_NAMES]."""
+    n = K.NOUT
+    inst = {"reaction_Fx": "Fx", "reaction_Fy": "Fy", "reaction_Fz": "Fz", "reaction_Mx": "Mx", "reaction_My": "My",
+            "cage_speed": "cage_speed", "heat_flux_race_slide": "P_race_slide", "heat_flux_race_spin": "P_race_spin",
+            "heat_flux_race_diffslip": "P_race_diffslip", "ir_x": "ir_x", "ir_y": "ir_y", "ir_z": "ir_z",
+            "ir_tx": "ir_tx", "ir_ty": "ir_ty", "ir_ax": "ir_ax", "max_contact_pressure": "p_max",
+            "alpha_i_mean": "alpha_i_mean", "alpha_o_mean": "alpha_o_mean", "Q_i_max": "Q_i_max",
+            "Q_o_max": "Q_o_max", "ball0_omega_r": "ball0_wr", "ball0_omega_t": "ball0_wt",
+            "ball0_omega_z": "ball0_wz", "ball0_slide_roll_i": "ball0_slide_roll_i",
+            "ball0_slide_roll_o": "ball0_slide_roll_o", "ball0_spin_roll_i": "ball0_spin_roll_i",
+            "ball0_spin_roll_o": "ball0_spin_roll_o", "ball0_traction_i": "ball0_Ft_i",
+            "ball0_traction_o": "ball0_Ft_o", "cage_speed_pure_rolling_outer": "cage_speed_pure_rolling_outer",
+            "cage_speed_pure_rolling_inner": "cage_speed_pure_rolling_inner"}
+    src = {name: [K.OUT_INDEX[c]] for name, c in inst.items()}
+    for name, chans in STEP_AVERAGED:
+        chans = chans if isinstance(chans, tuple) else (chans,)
+        src["instantaneous_" + name] = [K.OUT_INDEX[c] for c in chans]
+        src[name] = [n + K.OUT_INDEX[c] for c in chans]
+    for k, name in enumerate(SK.EXTRA_NAMES):
+        src[name] = [2 * n + k]
+    missing = set(ALL_OUTPUT_NAMES) - set(src)
+    assert not missing, f"outputs without a source: {sorted(missing)}"
+    ptr = np.zeros(len(ALL_OUTPUT_NAMES) + 1, dtype=np.int64)
+    idx = []
+    for i, name in enumerate(ALL_OUTPUT_NAMES):
+        idx += src[name]
+        ptr[i + 1] = len(idx)
+    ch = np.array([K.OUT_INDEX[c] for c in ("shaft_speed", "cage_speed", "pure_rolling_cage_speed",
+                                            "cage_speed_pure_rolling_outer", "outer_ring_speed")], dtype=np.int64)
+    return ptr, np.array(idx, dtype=np.int64), ch
+
+
+_OUT_PTR, _OUT_IDX, _OUT_CH = _output_map()
+assert (SKID_SKIDDING, SKID_PURE_ROLLING, SKID_OVERSKIDDING) == (1, 0, -1)   # the codes assemble_outputs writes
+_I_RUNAWAY = OUTPUT_INDEX["thermal_runaway"]
+_I_PMAX = OUTPUT_INDEX["max_contact_pressure"]
+_INT_SLICE = slice(len(OUTPUT_NAMES), len(ALL_OUTPUT_NAMES))
+
+
+class Outputs(Mapping):
+    """Read-only name -> value view of an output array (Real outputs as float, Integer ones as int)."""
+
+    __slots__ = ("_v",)
+
+    def __init__(self, values: np.ndarray):
+        self._v = values
+
+    def __getitem__(self, name):
+        i = OUTPUT_INDEX[name]
+        return int(self._v[i]) if i >= _INT_SLICE.start else float(self._v[i])
+
+    def __iter__(self):
+        return iter(ALL_OUTPUT_NAMES)
+
+    def __len__(self):
+        return len(ALL_OUTPUT_NAMES)
+
+    def __repr__(self):
+        return f"Outputs({dict(self)!r})"
 P_LIMIT = 4.2e9   # Pa: ISO 76 static-capacity contact stress of ball bearings; beyond it the model refuses
 
 
@@ -100,9 +169,25 @@ class CoSimSession:
         self.p = params
         self.model: DynamicModel | None = None
         self.t = 0.0
-        self.outputs = {n: 0.0 for n in OUTPUT_NAMES}
-        self.outputs.update({n: 0 for n in INT_OUTPUT_NAMES})
+        # outputs at the last communication point, in the order of ALL_OUTPUT_NAMES (updated in place: the
+        # FMU reads its output variables from this array)
+        self.values = np.zeros(len(ALL_OUTPUT_NAMES))
         self.thermal_runaway = False
+        # work arrays of one communication point (allocated once: no per-step allocations)
+        self._new = np.zeros(len(ALL_OUTPUT_NAMES))
+        self._x = np.zeros(2 * K.NOUT + len(SK.EXTRA_NAMES))
+        self._ext = np.zeros(SK.N_EXT)
+        self._ext_isothermal = False   # ext holds the (constant) temperatures of a model without the network
+        self._films = None
+        self._saved = None          # rollback buffers of the step in progress (_save)
+        self._in_key = None         # (inputs as given, model geometry) of the last validated inputs
+        self._in_u = None           # ... and their validated values
+        self._applied = None        # the validated inputs the model holds (None: apply at the next step)
+
+    @property
+    def outputs(self) -> Outputs:
+        """Snapshot of the outputs at the last communication point (name -> value)."""
+        return Outputs(self.values.copy())
 
     def _geometry(self):
         """The preset with the non-zero geometry overrides applied (validated by BearingGeometry)."""
@@ -285,35 +370,70 @@ class CoSimSession:
         except ConvergenceError as e:
             raise BearingInputError("inputs", dict(u), "a load case with a quasi-static equilibrium", str(e))
         self.t = float(t0)
+        self._in_key = self._in_u = self._applied = None
+        self._ext_isothermal = False
+        m = self.model
+        SK.same_point(m.t, m.y, m.U, m.P, m.t, m.y, m.U, m.P)    # load the compiled kernel here, not in the first step
         self._update_outputs()
         self._check_limits()
 
-    def step(self, t: float, h: float, inputs: dict) -> dict:
+    def _validated(self, inputs: dict) -> dict:
+        """The inputs checked (_inputs, _check_seated, _check_capacity); checked again only when they or the
+        running geometry changed since the last call (a NaN never compares equal: always checked)."""
+        g = self.model.g
+        key = self._in_key
+        try:
+            same = key is not None and key[1] is g and key[0] == inputs
+        except (TypeError, ValueError):   # values that do not compare (arrays ...): check them
+            same = False
+        if same:
+            return self._in_u
+        try:
+            u = self._inputs(inputs)
+            self._check_seated(u, g)
+            self._check_capacity(u, g)
+        except BearingInputError as e:
+            raise StepRejected(str(e))
+        self._in_key, self._in_u = (dict(inputs), g), u
+        return u
+
+    def _save(self):
+        """Copy the state a failed step returns to into preallocated buffers."""
+        m = self.model
+        sv = self._saved
+        if sv is None or sv["y"].shape != m.y.shape:
+            sv = self._saved = {"y": np.empty_like(m.y), "U": np.empty_like(m.U), "stats": np.empty_like(m.stats),
+                                "quad": np.empty_like(m.quad), "out": np.empty_like(self.values)}
+        np.copyto(sv["y"], m.y)
+        np.copyto(sv["U"], m.U)
+        np.copyto(sv["stats"], m.stats)
+        np.copyto(sv["quad"], m.quad)
+        np.copyto(sv["out"], self.values)
+        sv["t"] = m.t
+        sv["thermal"] = m.thermal_state()     # None without the thermal network
+        return sv
+
+    def step(self, t: float, h: float, inputs: dict) -> Outputs:
         """Advance from t to t + h with the inputs held; returns the outputs at t + h."""
-        if self.model is None:
+        m = self.model
+        if m is None:
             raise StepRejected("step before initialize")
         if not (math.isfinite(h) and h > 0.0):
             raise StepRejected(f"communication step h = {h!r} is invalid; allowed: h > 0")
         if abs(t - self.t) > 1e-9 * max(1.0, abs(t)):
             raise StepRejected(f"step starts at t = {t!r} but the bearing is at t = {self.t!r}")
+        u = self._validated(inputs)
+        sv = self._save()
         try:
-            u = self._inputs(inputs)
-            self._check_seated(u, self.model.g)
-            self._check_capacity(u, self.model.g)
-        except BearingInputError as e:
-            raise StepRejected(str(e))
-        m = self.model
-        saved = (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), m.thermal_state(), m.quad.copy(),
-                 dict(self.outputs))
-        try:
-            m.set_inputs(loads=(u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"]),
-                         displacement=None if self.p.coupling != "displacement" else
-                         [u[k] for k in ("dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")])
-            # input held over the step: the speed takes its new value at the start of the step
-            m.set_speed(u["shaft_speed"], u["outer_ring_speed"])
-            q0 = m.quad[:K.NOUT].copy()
+            if self._applied is not u:
+                m.set_inputs(loads=(u["Fx"], u["Fy"], u["Fz"], u["Mx"], u["My"]),
+                             displacement=None if self.p.coupling != "displacement" else
+                             [u[k] for k in ("dx", "dy", "dz", "tx", "ty", "vx", "vy", "vz", "wx", "wy")])
+                # input held over the step: the speed takes its new value at the start of the step
+                m.set_speed(u["shaft_speed"], u["outer_ring_speed"])
+                self._applied = u
+            # (held inputs: the model still holds them; advance continues the held speed from its last end)
             m.advance(t + h, record_dt=max(h, 1e-6))
-            avg = (m.quad[:K.NOUT] - q0) / (m.t - t)
             if m.thermal_runaway:
                 # a temperature past the oil's limit: flagged and the step discarded (never reported as OK)
                 from .thermal import ThermalRunaway
@@ -322,83 +442,56 @@ class CoSimSession:
                 raise StepRejected(str(ThermalRunaway(th.temperatures(), th.T_max, th.oil.name,
                                                       f"at t = {t + h:.6g} s")))
             self.t = m.t
-            self._update_outputs(avg)
+            self._update_outputs(sv["quad"], m.t - t)
             self._check_limits()
         except (BearingInputError, FloatingPointError, StepRejected) as e:
-            m.y, m.t, m.U, m.stats = saved[:4]
+            np.copyto(m.y, sv["y"])
+            np.copyto(m.U, sv["U"])
+            np.copyto(m.stats, sv["stats"])
+            np.copyto(m.quad, sv["quad"])
+            m.t = sv["t"]
+            self._applied = None
             m.invalidate_jacobian()      # the failed step's W is not carried into the next attempt
-            m.set_thermal_state(saved[4])
-            m.quad[:] = saved[5]
+            m.set_thermal_state(sv["thermal"])
             self.t = m.t
-            self._update_outputs()
-            for name in STEP_AVERAGED_NAMES:      # the averages of the last accepted step stay
-                self.outputs[name] = saved[6][name]
+            # the outputs of the restored point: those before the step (instantaneous values and the
+            # averages of the last accepted step), with the runaway flag of now
+            np.copyto(self.values, sv["out"])
+            self.values[_I_RUNAWAY] = 1.0 if self.thermal_runaway else 0.0
             raise StepRejected(str(e))
-        return dict(self.outputs)
+        return Outputs(self.values.copy())
 
-    def _update_outputs(self, avg=None):
-        """Outputs at the current instant; avg (len NOUT, dynamics_kernels channels) the step averages of
-        the last step (None at initialisation: the instantaneous values stand for them)."""
-        diag, bd = self.model.evaluate_point()      # from the integration's end point (or one rhs call)
-        o = dict(zip(K.OUT_NAMES, diag.tolist()))
-        w = o["shaft_speed"]
-        # ratios to the (signed) shaft speed: 0 below CSR_MIN_SPEED, where they are 0/0 (at rest, passing
-        # through zero, or inner ring held with the outer ring turning)
-        csr = o["cage_speed"] / w if abs(w) >= CSR_MIN_SPEED else 0.0
-        csr_t = o["pure_rolling_cage_speed"] / w if abs(w) >= CSR_MIN_SPEED else 0.0
-        heat = {k: o[f"P_{k}"] for k in ("race_inner", "race_outer", "pocket", "land", "drag", "damping",
-                                         "churn_cage", "churn_ring")}
-        T = self.model.temperatures()
-        fl = self.model.film(bd)
-        out = {
-            "reaction_Fx": o["Fx"], "reaction_Fy": o["Fy"], "reaction_Fz": o["Fz"],
-            "reaction_Mx": o["Mx"], "reaction_My": o["My"],
-            "cage_speed": o["cage_speed"], "cage_shaft_ratio": csr, "cage_shaft_ratio_theory": csr_t,
-            "skid_ratio": 1.0 - csr / csr_t if csr_t > 0 else 0.0,
-            "friction_torque": o["friction_torque"], "friction_torque_outer": o["friction_torque_outer"],
-            "heat_flux_total": sum(heat.values()),
-            **{f"heat_flux_{k}": v for k, v in heat.items()},
-            "heat_flux_race_slide": o["P_race_slide"], "heat_flux_race_spin": o["P_race_spin"],
-            "heat_flux_race_diffslip": o["P_race_diffslip"],
-            "ir_x": o["ir_x"], "ir_y": o["ir_y"], "ir_z": o["ir_z"], "ir_tx": o["ir_tx"], "ir_ty": o["ir_ty"],
-            "ir_ax": o["ir_ax"],
-            "max_contact_pressure": o["p_max"], "alpha_i_mean": o["alpha_i_mean"],
-            "alpha_o_mean": o["alpha_o_mean"], "Q_i_max": o["Q_i_max"], "Q_o_max": o["Q_o_max"],
-            "ball0_omega_r": o["ball0_wr"], "ball0_omega_t": o["ball0_wt"], "ball0_omega_z": o["ball0_wz"],
-            "ball0_slide_roll_i": o["ball0_slide_roll_i"], "ball0_slide_roll_o": o["ball0_slide_roll_o"],
-            "ball0_spin_roll_i": o["ball0_spin_roll_i"], "ball0_spin_roll_o": o["ball0_spin_roll_o"],
-            "ball0_traction_i": o["ball0_Ft_i"], "ball0_traction_o": o["ball0_Ft_o"],
-            "temperature_ball": T["ball"], "temperature_outer_ring": T["outer"],
-            "temperature_inner_ring": T["inner"], "temperature_oil": T["oil"],
-            "heat_to_ambient": T["heat_to_ambient"], "heat_to_oil_flow": T["heat_to_oil_flow"],
-            "film_min_inner": float(fl["h_min_i"][fl["h_min_i"] > 0].min()) if np.any(fl["h_min_i"] > 0) else 0.0,
-            "film_min_outer": float(fl["h_min_o"][fl["h_min_o"] > 0].min()) if np.any(fl["h_min_o"] > 0) else 0.0,
-            "film_parameter_min": fl["Lambda_min"],
-        }
-        from .skid import classify_skid
-        state, slip = classify_skid(o["cage_speed"], o["cage_speed_pure_rolling_outer"],
-                                    omega_outer=o["outer_ring_speed"])
-        out["cage_speed_pure_rolling_outer"] = o["cage_speed_pure_rolling_outer"]
-        out["cage_speed_pure_rolling_inner"] = o["cage_speed_pure_rolling_inner"]
-        out["cage_slip_ratio"] = slip
-        out["skid_state"] = int(state)
-        out["thermal_runaway"] = int(self.thermal_runaway)
-        out["drive_power"] = o["P_drive"]
-        # energy-carrying outputs: step averages under the existing names, the sampled values beside them
-        a = o if avg is None else dict(zip(K.OUT_NAMES, np.asarray(avg).tolist()))
-        for name, src in STEP_AVERAGED:
-            out["instantaneous_" + name] = out[name]
-            if isinstance(src, tuple):
-                out[name] = sum(a[k] for k in src)
-            else:
-                out[name] = a[src]
-        bad = [k for k, v in out.items() if not math.isfinite(v)]
-        if bad:
+    def _update_outputs(self, q0=None, h=0.0):
+        """Outputs at the current instant into self.values (one numba call, session_kernels.assemble_outputs).
+        Step averages: from the time integrals (model.quad) at the end of the step of length h [s] and q0 at
+        its start; q0 None at initialisation, where the instantaneous values stand for them. Raises
+        StepRejected, values unchanged, if any output is not finite."""
+        m = self.model
+        diag, bd = m.evaluate_point()      # from the integration's end point (or one rhs call)
+        if self._films is None or self._films.shape[1] != bd.shape[0]:
+            self._films = np.zeros((4, bd.shape[0]))
+        lam = m.films_into(bd, self._films)
+        ext = self._ext
+        if m.thermal is not None or not self._ext_isothermal:     # (isothermal: constant, filled once)
+            T = m.temperatures()
+            ext[0], ext[1], ext[2], ext[3] = T["ball"], T["outer"], T["inner"], T["oil"]
+            ext[4], ext[5] = T["heat_to_ambient"], T["heat_to_oil_flow"]
+            self._ext_isothermal = m.thermal is None
+        ext[6] = 1.0 if self.thermal_runaway else 0.0
+        if q0 is None:
+            q1 = q0 = diag
+            h = 0.0
+        else:
+            q1 = m.quad
+        ok = SK.assemble_outputs(diag, q1, q0, h, self._films, lam, ext, _OUT_CH, CSR_MIN_SPEED, SKID_TOL,
+                                 SKID_MIN_SPEED, _OUT_PTR, _OUT_IDX, self._x, self._new)
+        if not ok:
+            bad = [n for n, v in zip(ALL_OUTPUT_NAMES, self._new) if not math.isfinite(v)]
             raise StepRejected(f"non-finite outputs {bad} (solver failure)")
-        self.outputs = out
+        np.copyto(self.values, self._new)
 
     def _check_limits(self):
-        p = self.outputs["max_contact_pressure"]
+        p = float(self.values[_I_PMAX])
         if p > P_LIMIT:
             raise StepRejected(f"maximum contact pressure {p / 1e9:.2f} GPa exceeds the {P_LIMIT / 1e9:.1f} GPa "
                                "static limit of ball bearings (ISO 76): the loads are beyond what the bearing carries")
@@ -406,7 +499,7 @@ class CoSimSession:
     # ---- state for rollback (FMI get/set FMU state) --------------------------------------------
     def get_state(self):
         m = self.model
-        return None if m is None else (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), dict(self.outputs),
+        return None if m is None else (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), self.values.copy(),
                                        m.thermal_state(), m.quad.copy(), m.integrator_state())
 
     def set_state(self, state):
@@ -422,5 +515,6 @@ class CoSimSession:
         self.model.update_operating_geometry()     # running geometry of the restored speed and temperatures
         self.model.set_integrator_state(ws)
         self.t = t
-        self.outputs = dict(outs)
-        self.thermal_runaway = bool(self.outputs.get("thermal_runaway", 0))
+        self._applied = None           # the restored U holds the inputs of the restored point
+        self.values[:] = outs
+        self.thermal_runaway = bool(self.values[_I_RUNAWAY])

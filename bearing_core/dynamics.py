@@ -22,6 +22,7 @@ from .geometry import BearingGeometry
 from .hertz_tables import HertzInterp
 from .lubricants import get_lubricant
 from .quasistatic import quasistatic_model
+from .session_kernels import same_point
 
 TRACTION_MODELS = ("lubricated", "coulomb", "kalker", "lubricated-curve")
 LUBRICATION_REGIMES = ("auto", "oil", "solid", "dry")
@@ -512,6 +513,17 @@ class DynamicModel:
         (arrays over balls; 0 where unloaded) and the smallest film parameter Lambda_min [-] (h_min over the
         composite roughness of roughness_pair()). bd: the per-ball details of evaluate_point() at this
         instant, if already computed (saves a right-hand-side call)."""
+        if bd is None:
+            bd = self.evaluate_point()[1]
+        h = np.zeros((4, bd.shape[0]))
+        lam = self.films_into(bd, h)
+        return {"h_c_i": h[0], "h_min_i": h[1], "h_c_o": h[2], "h_min_o": h[3],
+                "Lambda_min": float(lam) if math.isfinite(lam) else 0.0,
+                "T_oil": getattr(self, "_T_oil", self.opt.oil_temperature)}
+
+    def films_into(self, bd: np.ndarray, h: np.ndarray) -> float:
+        """film() into a caller's array: h (4 x nb) = h_c_i, h_min_i, h_c_o, h_min_o [m] of the per-ball
+        details bd; returns the smallest film parameter Lambda (inf if no contact is loaded)."""
         g = self.g
         T = getattr(self, "_T_oil", self.opt.oil_temperature)
         key = (id(self.opt), T)
@@ -522,21 +534,15 @@ class DynamicModel:
                         + (1 - g.ball_material.nu ** 2) / g.ball_material.E)
             self._film_key = key
             self._film_par = (float(oil.eta(T)), float(oil.alpha(T)), Ep, *self.roughness_pair())
-        if bd is None:
-            bd = self.evaluate_point()[1]
-        h = np.zeros((4, bd.shape[0]))
         eta0, alpha, Ep, s1, s2 = self._film_par
-        lam = K.contact_films(bd, g.D, g.dm, g.fi, g.fo, eta0, alpha, Ep, s1, s2, h)
-        return {"h_c_i": h[0], "h_min_i": h[1], "h_c_o": h[2], "h_min_o": h[3],
-                "Lambda_min": float(lam) if math.isfinite(lam) else 0.0, "T_oil": T}
+        return K.contact_films(bd, g.D, g.dm, g.fi, g.fo, eta0, alpha, Ep, s1, s2, h)
 
     def evaluate_point(self) -> tuple[np.ndarray, np.ndarray]:
         """(output channels (NOUT), per-ball details (nb x NBD)) at the current instant: those the last
         integration computed at its end point if the state, time and inputs are still those, else one
         right-hand-side call (dynamics_kernels.evaluate). Read-only arrays."""
         k = self._end_key
-        if (k is not None and k[0] == self.t and k[4] is self._tp and np.array_equal(k[1], self.y)
-                and np.array_equal(k[2], self.U) and np.array_equal(k[3], self.P)):
+        if k is not None and k[4] is self._tp and same_point(self.t, self.y, self.U, self.P, k[0], k[1], k[2], k[3]):
             return self._end_diag, self._end_bd
         diag = np.zeros(K.NOUT)
         bd = np.zeros((int(self.P[K.P_NB]), K.NBD))

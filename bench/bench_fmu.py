@@ -11,7 +11,11 @@ time). The per-step overhead is the wall time per doStep that is not time integr
 run in process through bearing_core.cosim.CoSimSession (same arithmetic, same integrator choices) with the
 integration kernels timed, and their time per step is subtracted from the FMU's wall time per step
 (``fmu_overhead_us``: FMI layer + session; ``session_overhead_us``: the session alone; medians over the
-steps). On a loaded machine the wall times vary from run to run; the overheads are the robust figures.
+steps). The ``*_vs_kernels_us`` figures subtract only the numba integration kernels, i.e. they also count the
+Python of DynamicModel.advance as overhead. The ``*_short_step_us`` figures are the same medians over
+SHORT_N steps of SHORT_H = 10 us after the 1 ms steps: there the processor caches stay warm, so they show the
+overhead's own cost without the cache misses that other processes on a shared machine cause during a long
+integration. On a loaded machine the wall times vary from run to run; the overheads are the robust figures.
 
     python bench/bench_fmu.py [--t-end 0.2] [--fmu dist/BearingFMU.fmu] [--cache DIR] [--json]
 """
@@ -31,6 +35,31 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 H = 1e-3
+SHORT_H, SHORT_N = 1e-5, 300
+
+
+def _time_kernels(dyn_module, acc, bare):
+    """Wrap DynamicModel._integrate (acc[0]) and the numba integration kernels (bare[0]) of a dynamics
+    module with timers; returns a function undoing it."""
+    K = dyn_module.K
+    undo = [(dyn_module.DynamicModel, "_integrate", dyn_module.DynamicModel._integrate)]
+    undo += [(K, n, getattr(K, n)) for n in ("integrate", "integrate_rosw")]
+
+    def timer(f, box):
+        def timed(*a):
+            t1 = time.perf_counter()
+            try:
+                return f(*a)
+            finally:
+                box[0] += time.perf_counter() - t1
+        return timed
+    for obj, name, f in undo:
+        setattr(obj, name, timer(f, acc if name == "_integrate" else bare))
+    return lambda: [setattr(obj, name, f) for obj, name, f in undo]
+
+
+def _median_us(walls, subtract):
+    return float(np.median(np.subtract(walls, subtract))) * 1e6
 
 
 def worker(fmu: str, t_end: float) -> dict:
@@ -49,36 +78,37 @@ def worker(fmu: str, t_end: float) -> dict:
     t_init = time.perf_counter() - t0
     # the FMU's model code runs in this interpreter under a content-hashed package name: time its
     # integration kernels from here (the per-step overhead is then measured within each step)
-    kern = [0.0]
+    kern, bare = [0.0], [0.0]
     for name, mod in list(sys.modules.items()):
         if name.startswith("bearing_core_") and name.endswith(".dynamics") and hasattr(mod, "DynamicModel"):
-            orig = mod.DynamicModel._integrate
-
-            def timed(self, *a, _orig=orig):
-                t1 = time.perf_counter()
-                try:
-                    return _orig(self, *a)
-                finally:
-                    kern[0] += time.perf_counter() - t1
-            mod.DynamicModel._integrate = timed
+            _time_kernels(mod, kern, bare)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     outs = [vr["cage_speed"], vr["reaction_Fx"], vr["heat_flux_total"]]
     n = int(round(t_end / H))
-    walls, kerns = [], []
+    walls, kerns, bares = [], [], []
     t = 0.0
     for k in range(n):
-        kern[0] = 0.0
+        kern[0] = bare[0] = 0.0
         a = time.perf_counter()
         f.doStep(currentCommunicationPoint=t, communicationStepSize=H)
         f.getReal(outs)
         walls.append(time.perf_counter() - a)
         kerns.append(kern[0])
+        bares.append(bare[0])
         t = (k + 1) * H
     last = f.getReal(outs)
+    short = []
+    for k in range(SHORT_N):
+        bare[0] = 0.0
+        a = time.perf_counter()
+        f.doStep(currentCommunicationPoint=t, communicationStepSize=SHORT_H)
+        f.getReal(outs)
+        short.append(time.perf_counter() - a - bare[0])
+        t = n * H + (k + 1) * SHORT_H
     f.terminate()
     f.freeInstance()
     return {"init_s": t_init, "first_step_s": walls[0], "step_walls": walls, "kernel_walls": kerns,
-            "cage_speed_end": last[0]}
+            "bare_kernel_walls": bares, "short_step_overheads": short, "cage_speed_end": last[0]}
 
 
 def in_process(t_end: float) -> dict:
@@ -97,17 +127,9 @@ def in_process(t_end: float) -> dict:
         w.model.advance(w.model.t + 2e-4)
     s = CoSimSession(CoSimParameters())
     s.initialize(0.0, inputs)
-    kern = [0.0]
+    kern, bare = [0.0], [0.0]
     ev = [0.0]
-    orig = dynamics.DynamicModel._integrate
     orig_ev = dynamics.DynamicModel.evaluate_point
-
-    def timed(self, *a):
-        t0 = time.perf_counter()
-        try:
-            return orig(self, *a)
-        finally:
-            kern[0] += time.perf_counter() - t0
 
     def timed_ev(self):
         t0 = time.perf_counter()
@@ -115,22 +137,30 @@ def in_process(t_end: float) -> dict:
             return orig_ev(self)
         finally:
             ev[0] += time.perf_counter() - t0
-    dynamics.DynamicModel._integrate = timed
+    undo = _time_kernels(dynamics, kern, bare)
     dynamics.DynamicModel.evaluate_point = timed_ev
     n = int(round(t_end / H))
-    walls, kerns, evs = [], [], []
+    walls, kerns, bares, evs, short = [], [], [], [], []
     try:
         for k in range(n):
-            kern[0] = ev[0] = 0.0
+            kern[0] = bare[0] = ev[0] = 0.0
             a = time.perf_counter()
             s.step(k * H, H, inputs)
             walls.append(time.perf_counter() - a)
             kerns.append(kern[0])
+            bares.append(bare[0])
             evs.append(ev[0])
+        end = s.outputs["cage_speed"]
+        for k in range(SHORT_N):
+            bare[0] = 0.0
+            a = time.perf_counter()
+            s.step(s.t, SHORT_H, inputs)
+            short.append(time.perf_counter() - a - bare[0])
     finally:
-        dynamics.DynamicModel._integrate = orig
+        undo()
         dynamics.DynamicModel.evaluate_point = orig_ev
-    return {"step_walls": walls, "kernel_walls": kerns, "eval_walls": evs, "cage_speed_end": s.outputs["cage_speed"]}
+    return {"step_walls": walls, "kernel_walls": kerns, "bare_kernel_walls": bares, "eval_walls": evs,
+            "short_step_overheads": short, "cage_speed_end": end}
 
 
 def _run_worker(fmu, t_end, cache):
@@ -178,6 +208,10 @@ def main(argv=None):
         "fmu_overhead_us": (float(np.median(np.subtract(sw, warm["kernel_walls"][1:]))) * 1e6
                             if any(warm["kernel_walls"]) else float(np.median(np.subtract(sw, kw))) * 1e6),
         "session_overhead_us": float(np.median(np.subtract(ip["step_walls"][1:], kw))) * 1e6,
+        "fmu_overhead_vs_kernels_us": _median_us(sw, warm["bare_kernel_walls"][1:]),
+        "session_overhead_vs_kernels_us": _median_us(ip["step_walls"][1:], ip["bare_kernel_walls"][1:]),
+        "fmu_overhead_short_step_us": float(np.median(warm["short_step_overheads"])) * 1e6,
+        "session_overhead_short_step_us": float(np.median(ip["short_step_overheads"])) * 1e6,
         # of which the one right-hand-side call for the outputs and films at the communication point
         "output_eval_us": float(np.median(ip["eval_walls"][1:])) * 1e6,
         "kernel_per_step_ms": kern * 1e3,
@@ -195,6 +229,10 @@ def main(argv=None):
         print(f"per-step overhead: {out['fmu_overhead_us']:.0f} us through the FMU, "
               f"{out['session_overhead_us']:.0f} us in the session alone (of which {out['output_eval_us']:.0f} us "
               "the right-hand-side call for outputs and films)")
+        print(f"  counting the Python of DynamicModel.advance too: {out['fmu_overhead_vs_kernels_us']:.0f} us through "
+              f"the FMU, {out['session_overhead_vs_kernels_us']:.0f} us in the session; at {SHORT_H * 1e6:g} us steps "
+              f"(warm caches): {out['fmu_overhead_short_step_us']:.0f} us / "
+              f"{out['session_overhead_short_step_us']:.0f} us")
         print(f"warm: initialisation {out['warm_init_s']:.2f} s, first step {out['warm_first_step_s']:.3f} s")
         print(f"first run (cold if the cache folder was empty): initialisation {out['cold_init_s']:.2f} s, "
               f"first step {out['cold_first_step_s']:.3f} s")

@@ -185,16 +185,18 @@ class BearingFMU(Fmi2Slave):
                                         description=_INPUT_DESC[name]))
             self._units[name] = unit
         self._ranges["shaft_speed"] = self._ranges["outer_ring_speed"] = (-2.0e4, 2.0e4)
-        for name, unit, desc in OUTPUT_SPEC:
-            setattr(self, name, 0.0)
+        # outputs: read from the session's output array (bearing_core.cosim.CoSimSession.values, in the order
+        # of OUTPUT_SPEC then INT_OUTPUT_SPEC), which the session updates in place at every communication point
+        self._out = [0.0] * (len(OUTPUT_SPEC) + len(INT_OUTPUT_SPEC))
+        for i, (name, unit, desc) in enumerate(OUTPUT_SPEC):
             self.register_variable(Real(name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
-                                        initial=Fmi2Initial.calculated, description=desc))
+                                        initial=Fmi2Initial.calculated, description=desc,
+                                        getter=lambda i=i: float(self._out[i])))
             self._units[name] = _MODELICA_UNIT.get(unit, unit)
-        for name, unit, desc in INT_OUTPUT_SPEC:
-            setattr(self, name, 0)
+        for i, (name, unit, desc) in enumerate(INT_OUTPUT_SPEC, start=len(OUTPUT_SPEC)):
             self.register_variable(Integer(name, causality=Fmi2Causality.output,
                                            variability=Fmi2Variability.discrete, initial=Fmi2Initial.calculated,
-                                           description=desc))
+                                           description=desc, getter=lambda i=i: int(self._out[i])))
 
     def _register_enum(self, param, items, desc):
         """The Enumeration twin of the String parameter ``param`` (fmi2Set/GetInteger: item value)."""
@@ -306,8 +308,7 @@ class BearingFMU(Fmi2Slave):
     _t0 = 0.0
 
     def _publish(self):
-        for k, v in self._session.outputs.items():
-            setattr(self, k, v)
+        self._out = self._session.values
 
     def do_step(self, current_time, step_size):
         from bearing_core.cosim import StepRejected
@@ -331,7 +332,8 @@ class BearingFMU(Fmi2Slave):
 
     # ---- FMU state (rollback for iterative masters) ----------------------------------------------
     def _get_fmu_state(self):
-        state = super()._get_fmu_state()
+        # the variables that can be set (parameters, inputs); the outputs come back with the session state
+        state = {v.name: v.getter() for v in self.vars.values() if v.causality != Fmi2Causality.output}
         state["_session_state"] = None if self._session is None else self._session.get_state()
         return state
 

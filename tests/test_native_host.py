@@ -243,9 +243,10 @@ def test_two_versions_side_by_side(built, tmp_path):
     sys.path.insert(0, str(HERE.parent))
     from build_fmu import _build
     src = (HERE.parent / "fmu_src" / "bearing_fmu.py").read_text()
-    marker = "        for k, v in self._session.outputs.items():\n            setattr(self, k, v)\n"
+    marker = "        self._out = self._session.values\n"
     assert marker in src
-    v2 = src.replace(marker, marker + "        self.cage_speed = 2.0 * self.cage_speed\n")
+    v2 = src.replace(marker, marker + "        self._out = self._out.copy()\n"
+                     "        self._out[[n for n, *_ in OUTPUT_SPEC].index('cage_speed')] *= 2.0\n")
     fmu2 = _build("BearingFMU", {"bearing_fmu": v2}, "bearing_fmu", tmp_path / "v2")
     code = r"""
 import json, sys

@@ -188,6 +188,11 @@ class Instance:
 
     def _new_slave(self):
         self.slave = self.cls(instance_name=self.name, resources=self.res, visible=self.visible)
+        # per value reference and type, the getter / setter of variables already checked once: outputs and
+        # parameters to get (any mode after fmi2ExitInitializationMode), inputs to set (their check depends on
+        # the mode only); the per-step fmi2Get/Set calls then skip the checks that cannot fail again
+        self._fast_get = {}
+        self._fast_set = {}
         self.mode = "instantiated"
         self.failure = None
 
@@ -253,15 +258,30 @@ class Instance:
         self._check_get()
         vrs = (ctypes.c_uint * n).from_address(vr_addr) if n else []
         out = (ctype * n).from_address(val_addr) if n else []
+        fast = self._fast_get if self.mode != "instantiated" else None
         for i in range(n):
-            var = self._var(vrs[i], kind)
-            if self.mode == "instantiated" and var.causality.name == "output":
-                raise _FmiError(f"{var.name} is an output: it is computed by fmi2ExitInitializationMode")
-            out[i] = conv(var.getter())
+            getter = fast.get((kind, vrs[i])) if fast is not None else None
+            if getter is None:
+                var = self._var(vrs[i], kind)
+                if self.mode == "instantiated" and var.causality.name == "output":
+                    raise _FmiError(f"{var.name} is an output: it is computed by fmi2ExitInitializationMode")
+                getter = var.getter
+                if fast is not None:
+                    fast[(kind, vrs[i])] = getter
+            out[i] = conv(getter())
 
     def _set(self, vr_addr, n, val_addr, kind, ctype, conv):
         vrs = (ctypes.c_uint * n).from_address(vr_addr) if n else []
         vals = (ctype * n).from_address(val_addr) if n else []
+        if self.mode not in ("failed", "terminated"):
+            # inputs checked before: only the mode check applies to them (done above)
+            fast = self._fast_set
+            setters = [fast.get((kind, vrs[i])) for i in range(n)]
+            if None not in setters:
+                vs = [conv(vals[i]) for i in range(n)]
+                for setter, v in zip(setters, vs):
+                    setter(v)
+                return
         todo = []
         for i in range(n):
             var = self._var(vrs[i], kind)
@@ -270,6 +290,8 @@ class Instance:
             todo.append((var, v))
         for var, v in todo:   # all or nothing
             var.setter(v)
+            if var.causality.name == "input":
+                self._fast_set[(kind, var.value_reference)] = var.setter
 
     # ---- FMI calls --------------------------------------------------------------------------
     @_fmi
