@@ -8,6 +8,7 @@ import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
+import numpy as np
 import pytest
 
 HERE = Path(__file__).resolve().parent
@@ -110,9 +111,14 @@ def test_enumerations_settable_by_value(fmu, tmp_path):
     a = drive(fmu, dict(spec, params={"bearing_preset": pre["7008-ma2023"], "traction_model_choice": tm["coulomb"]}),
               tmp_path, "a.json")
     b = drive(fmu, dict(spec, params={"bearing": "7008-ma2023", "traction_model": "coulomb"}), tmp_path, "b.json")
-    assert a["init_error"] is None and [r["values"] for r in a["rows"]] == [r["values"] for r in b["rows"]]
+    # the same run to round-off: two FMU processes running the same kernels have differed by ~1e-13
+    # relative in friction_torque (an adaptive step decision can amplify that, so 1e-9 is kept loose enough)
+    va, vb = np.array([r["values"] for r in a["rows"]]), np.array([r["values"] for r in b["rows"]])
+    assert a["init_error"] is None and va.shape == vb.shape
+    assert np.allclose(va, vb, rtol=1e-9, atol=1e-12), (va, vb)
     c = drive(fmu, dict(spec, params={"bearing": "7218B"}), tmp_path, "c.json")
-    assert [r["values"] for r in a["rows"]] != [r["values"] for r in c["rows"]]
+    vc = np.array([r["values"] for r in c["rows"]])
+    assert not np.allclose(va, vc, rtol=1e-3)
     bad = drive(fmu, dict(spec, params={"traction_model_choice": 9}), tmp_path, "bad.json")
     assert bad["init_error"] and "traction_model_choice = 9 is not an item value" in bad["log"]
     both = drive(fmu, dict(spec, params={"bearing": "wan-105", "bearing_preset": pre["7008-ma2023"]}), tmp_path,
