@@ -12,10 +12,9 @@ Ranges and error bounds (relative to the exact value; measured by tests/test_mat
     tanh_pos(x)  x >= 0                                                                   <= 5e-15
 
 Methods (standard, as in fdlibm / Cody & Waite, "Software Manual for the Elementary Functions", 1980):
-exp: x = k ln2 + r, |r| <= ln2 / 2 (ln2 split into a high and a low part), exp(r) by its Taylor series to
-r^12 (truncation r^13 / 13! < 2e-16), times 2^k built from the exponent bits; expm1: the same reduction,
-e^r - 1 by its Taylor series to r^13, then 2^k (e^r - 1) + (2^k - 1) (exact for k = 0, so no cancellation
-near 0; one polynomial, where exp(x) - 1 beside a series for small |x| cost two); log: x = 2^e m with m in
+exp and expm1: x = k ln2 + r, |r| <= ln2 / 2 (ln2 split into a high and a low part), t = e^r - 1 by its
+Taylor series to r^13 (truncation r^14 / 14! < 5e-18), 2^k built from the exponent bits; exp = 2^k t + 2^k,
+expm1 = 2^k t + (2^k - 1) (exact for k = 0, so no cancellation near 0); log: x = 2^e m with m in
 [sqrt(1/2), sqrt(2)), log m = 2 atanh(s), s = (m - 1) / (m + 1), |s| <= 0.1716, series to s^19 (truncation < 1e-16); log1p(y) =
 log(u) + (y - (u - 1)) / u with u = 1 + y rounded (the correction restores the bits lost in 1 + y);
 asinh(x) = log1p(x + x^2 / (1 + sqrt(1 + x^2))); tanh(x) = -expm1(-2x) / (2 + expm1(-2x)).
@@ -70,22 +69,8 @@ def _bits_f64(typingctx, n):
 
 
 @_mx
-def exp(x):
-    """e^x, x clamped to [-708, 708] (module docstring)."""
-    xc = min(max(x, -708.0), 708.0)
-    kf = math.floor(xc * _INV_LN2 + 0.5)
-    r = (xc - kf * _LN2_HI) - kf * _LN2_LO
-    if x != x:
-        r = x
-    p = 1.0 + r * (1.0 + r * (1.0 / 2.0 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (
-        1.0 / 720.0 + r * (1.0 / 5040.0 + r * (1.0 / 40320.0 + r * (1.0 / 362880.0 + r * (
-            1.0 / 3628800.0 + r * (1.0 / 39916800.0 + r * (1.0 / 479001600.0))))))))))))
-    return p * _bits_f64((np.int64(kf) + 1023) << 52)
-
-
-@_mx
-def expm1(x):
-    """e^x - 1, accurate near 0 (module docstring)."""
+def _exp_parts(x):
+    """(2^k, e^r - 1) with x = k ln2 + r, |r| <= ln2 / 2, x clamped to [-708, 708] (module docstring)."""
     xc = min(max(x, -708.0), 708.0)
     kf = math.floor(xc * _INV_LN2 + 0.5)
     r = (xc - kf * _LN2_HI) - kf * _LN2_LO
@@ -95,7 +80,20 @@ def expm1(x):
         1.0 / 720.0 + r * (1.0 / 5040.0 + r * (1.0 / 40320.0 + r * (1.0 / 362880.0 + r * (
             1.0 / 3628800.0 + r * (1.0 / 39916800.0 + r * (1.0 / 479001600.0 + r * (
                 1.0 / 6227020800.0)))))))))))))
-    s = _bits_f64((np.int64(kf) + 1023) << 52)
+    return _bits_f64((np.int64(kf) + 1023) << 52), t
+
+
+@_mx
+def exp(x):
+    """e^x, x clamped to [-708, 708] (module docstring)."""
+    s, t = _exp_parts(x)
+    return s * t + s
+
+
+@_mx
+def expm1(x):
+    """e^x - 1, accurate near 0 (module docstring)."""
+    s, t = _exp_parts(x)
     return s * t + (s - 1.0)
 
 
