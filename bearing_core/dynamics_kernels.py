@@ -916,6 +916,29 @@ def _rejected_step(h, ok, err, q):
     return h * max(0.2, 0.9 * err ** (-1.0 / q))
 
 
+@hot(inline="always")
+def _rk4_stages(t, h, y, out, yt, k1, k2, k3, k4, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag,
+                bd):
+    """Stages 2-4 of classical RK4 from y with the first stage k1 given, their output channels added to
+    the step integrals dq (weights 1/3, 1/3, 1/6), and out <- y + h/6 (k1 + 2 k2 + 2 k3 + k4) (out may be
+    y itself; yt is scratch)."""
+    n = y.size
+    for i in range(n):
+        yt[i] = y[i] + 0.5 * h * k1[i]
+    rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, 1.0 / 3.0, diag, False)
+    for i in range(n):
+        yt[i] = y[i] + 0.5 * h * k2[i]
+    rhs(t + 0.5 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, 1.0 / 3.0, diag, False)
+    for i in range(n):
+        yt[i] = y[i] + h * k3[i]
+    rhs(t + h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, 1.0 / 6.0, diag, False)
+    for i in range(n):
+        out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+
+
 @hot(nogil=True)
 def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
               rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out):
@@ -950,20 +973,9 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             _quad_point(quad, t, diag)     # zero-width at the start of a call; otherwise already stored
             _quad_stage(dq, 1.0 / 6.0, diag, True)
             nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, diag)
+            _rk4_stages(t, h, y, y, yt, k1, k2, k3, k4, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
+                        diag, bd)
             for i in range(n):
-                yt[i] = y[i] + 0.5 * h * k1[i]
-            rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 1.0 / 3.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + 0.5 * h * k2[i]
-            rhs(t + 0.5 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 1.0 / 3.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + h * k3[i]
-            rhs(t + h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 1.0 / 6.0, diag, False)
-            for i in range(n):
-                y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
                 if not math.isfinite(y[i]):
                     stats[4] = 1.0
                     return nrec
@@ -998,20 +1010,8 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             h_prop = h
             h = min(h, _step_cap(t, t1, next_rec, rec_dt))
             _quad_stage(dq, 1.0 / 6.0, d0, True)
-            for i in range(n):
-                yt[i] = y[i] + 0.5 * h * k1[i]
-            rhs(t + 0.5 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 1.0 / 3.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + 0.5 * h * k2[i]
-            rhs(t + 0.5 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 1.0 / 3.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + h * k3[i]
-            rhs(t + h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 1.0 / 6.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+            _rk4_stages(t, h, y, yt, yt, k1, k2, k3, k4, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
+                        diag, bd)
             # the last step's FSAL call also fills the per-ball details (outputs at t1)
             rhs(t + h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
             stats[2] += 4
