@@ -183,7 +183,7 @@ def cmd_quasistatic(a) -> int:
     from .geometry import load_preset
     from .quasistatic import solve_quasistatic
 
-    if a.speed_rpm < 0:
+    if not 0.0 <= a.speed_rpm <= 190000.0:
         raise _BadArg(f"--speed-rpm = {a.speed_rpm} is invalid; allowed: 0 <= speed <= 190000 rpm")
     g = load_preset(a.bearing)
     if a.traction is not None:

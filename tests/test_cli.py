@@ -32,6 +32,7 @@ def test_human_table(capsys):
     ["quasistatic", "--bearing", "7218B", "--speed-rpm", "abc"],
     ["quasistatic", "--bearing", "nope", "--speed-rpm", "100"],
     ["quasistatic", "--bearing", "7218B", "--speed-rpm", "-5"],
+    ["quasistatic", "--bearing", "7218B", "--speed-rpm", "1e9", "--fz", "100"],
     ["quasistatic", "--bearing", "7218B", "--speed-rpm", "100", "--fz", "nan"],
     ["quasistatic", "--bearing", "7218B", "--speed-rpm", "100", "--control", "diagonal"],
 ])
@@ -40,6 +41,8 @@ def test_bad_arguments_exit_2_one_line(args):
     assert p.returncode == 2
     assert len(p.stderr.strip().splitlines()) == 1
     assert p.stdout == ""
+    if args[3] == "1e9":      # the user's parameter and unit, not the library's rad/s
+        assert "--speed-rpm" in p.stderr and "rpm" in p.stderr
 
 
 def test_dynamics_subcommand_writes_outputs(tmp_path, capsys):
