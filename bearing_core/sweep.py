@@ -873,6 +873,14 @@ def _cached_results(keys, cache_dir):
     return results, todo
 
 
+def _store_result(cache_dir, key, r):
+    """Write a successful point's result to cache_dir/<key>.json (atomically, through a temporary file)."""
+    if r.get("status") == "ok" and cache_dir:
+        tmp = cache_dir / f".{key}.tmp"
+        tmp.write_text(json.dumps({k: v for k, v in r.items() if k != "cached"}))
+        tmp.replace(cache_dir / f"{key}.json")
+
+
 def _run_tasks(tasks, cache_dir, client, retries, progress, desc):
     """tasks: list of (key, callable, args). Cached results are read from cache_dir/<key>.json; the rest is
     submitted to the client. Returns (results in task order, number computed)."""
@@ -894,10 +902,7 @@ def _run_tasks(tasks, cache_dir, client, retries, progress, desc):
                 r = {"status": "failed", "error": f"{type(e).__name__}: {e}"}
             r = dict(r, cached=False)
             results[i] = r
-            if r.get("status") == "ok" and cache_dir:
-                tmp = cache_dir / f".{tasks[i][0]}.tmp"
-                tmp.write_text(json.dumps({k: v for k, v in r.items() if k != "cached"}))
-                tmp.replace(cache_dir / f"{tasks[i][0]}.json")
+            _store_result(cache_dir, tasks[i][0], r)
             failed += r.get("status") == "failed"
             bar.set_postfix(failed=failed, refresh=False)
             bar.update(1)
@@ -959,10 +964,7 @@ def _run_batches(keys, points, model, opts, skid, cache_dir, client, retries, pr
                 for i, r in zip(g, rs):
                     r = dict(r, cached=False)
                     results[i] = r
-                    if r.get("status") == "ok" and cache_dir:
-                        tmp = cache_dir / f".{keys[i]}.tmp"
-                        tmp.write_text(json.dumps({k: v for k, v in r.items() if k != "cached"}))
-                        tmp.replace(cache_dir / f"{keys[i]}.json")
+                    _store_result(cache_dir, keys[i], r)
                     failed += r.get("status") == "failed"
                 with lock:
                     closed.add(g[0])

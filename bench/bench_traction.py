@@ -37,6 +37,9 @@ from bearing_core.contact_kernels import (TRACTION_COULOMB, ball_race_contact, c
 from bearing_core.dynamics import DynamicModel, DynamicsOptions
 from bearing_core.geometry import load_preset
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_dynamics import _rhs_loop  # noqa: E402  (the right-hand-side timing loop, shared)
+
 try:
     from bearing_core.jit import build_info
 except ImportError:          # trees without bearing_core.jit: numba defaults
@@ -93,16 +96,6 @@ def _traction_loop(n, C, kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy
                                  C[k, 9], C[k, 10], C[k, 11], C[k, 12], tmodel, tp, Gc, nuc, fnx, fny,
                                  qx, qwx, qy, qwy)
             acc += r[0] + r[5]
-    return acc
-
-
-@njit(cache=True)
-def _rhs_loop(n, t, y, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd):
-    dy = np.zeros_like(y)
-    acc = 0.0
-    for _ in range(n):
-        K.rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-        acc += dy[11]
     return acc
 
 
