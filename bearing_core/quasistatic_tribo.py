@@ -47,11 +47,12 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from . import dynamics_kernels as K
+from . import quasistatic_tribo_kernels as TK
 from .errors import BearingInputError, ConvergenceError, check_range
 from .geometry import BearingGeometry
 
-NLOC = 6    # per-ball unknowns: r, z, Omega_r, Omega_t, Omega_z, theta_dot
-NGLOB = 6   # dx, dy, dz, tx, ty, (omega_c: not an unknown with free orbits; kept for the layout)
+NLOC = TK.NLOC      # per-ball unknowns: r, z, Omega_r, Omega_t, Omega_z, theta_dot
+NGLOB = TK.NGLOB    # dx, dy, dz, tx, ty, (omega_c: not an unknown with free orbits; kept for the layout)
 GLOBAL_NAMES = ("dx", "dy", "dz", "tx", "ty", "cage_speed")
 
 
@@ -188,8 +189,7 @@ class TriboQuasiStaticModel:
         psi = y[b].copy()
         y[b + 4] = 0.0
         y[b + 5] = 0.0
-        mb, Jb, D, dm = g.ball_mass, g.ball_inertia, g.D, g.dm
-        hD, hdm = 0.5 * D, 0.5 * dm
+        hdm = 0.5 * g.dm
         act = np.ones(NGLOB, dtype=bool)
         if self.opt.fixed_tilt:
             act[3:5] = False
@@ -197,9 +197,6 @@ class TriboQuasiStaticModel:
         scale = max(np.max(np.abs(loads[:3])), np.max(np.abs(loads[3:])) / hdm, 1.0)
         ftol = tol * scale
         tabs = (dmod._tab_i, dmod._tab_o, dmod._ta0, dmod._tda, dmod._tp, *dmod._quad)
-        dy = np.empty(y.size)
-        diag = np.zeros(K.NOUT)
-        bd = np.zeros((Z, K.NBD))
         t = dmod.t
         iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
 
@@ -221,136 +218,36 @@ class TriboQuasiStaticModel:
             xg[:5] = start.u
             xg[5] = start.cage_speed * ratio
 
-        def evaluate(xl, xg):
-            """Residuals [N]: per ball (Z, 6), global (6), and each ball's share of the global ones (Z, 6)."""
-            yy = y.copy()
-            yy[0:5] = xg[:5]
-            yy[11] = xg[5]
-            yy[b + 1] = xl[:, 0]
-            yy[b + 2] = xl[:, 1]
-            yy[b + 3] = xl[:, 5]
-            yy[b + 6] = xl[:, 2]
-            yy[b + 7] = xl[:, 3]
-            yy[b + 8] = xl[:, 4]
-            K.rhs(t, yy, dy, P, U, *tabs, diag, bd, True)
-            # row k is the generalised force of unknown k (r, z, Omega_r, Omega_t, Omega_z, theta_dot)
-            Rl = np.empty((Z, NLOC))
-            Rl[:, 0] = mb * dy[b + 4]                            # F_r + m r th_d^2
-            Rl[:, 1] = mb * dy[b + 5]                            # F_z
-            Rl[:, 2] = Jb * dy[b + 6] / hD                       # M_r + J th_d Omega_t
-            Rl[:, 3] = Jb * dy[b + 7] / hD                       # M_t - J th_d Omega_r
-            Rl[:, 4] = Jb * dy[b + 8] / hD                       # M_z
-            Rl[:, 5] = mb * xl[:, 0] * dy[b + 3]                 # F_t
-            share = np.empty((Z, NGLOB))
-            share[:, 0:3] = bd[:, K.BD_CFRX:K.BD_CFRZ + 1]
-            share[:, 3:5] = bd[:, K.BD_CMRX:K.BD_CMRY + 1] / hdm
-            share[:, 5] = 0.0
-            Rg = np.empty(NGLOB)
-            # ring: external load + balls (support damping is zero at rest)
-            Rg[0:3] = U[K.U_FX:K.U_FZ + 1] + diag[iF:iF + 3]
-            Rg[3:5] = (U[K.U_MX:K.U_MY + 1] + diag[iM:iM + 2]) / hdm
-            Rg[5] = 0.0
-            Rg[~act] = 0.0
-            return Rl, Rg, share, yy
-
-        def jacobian(xl, xg, Rl, Rg, share):
-            """Arrow-structured Jacobian by forward differences (12 rhs calls): ball blocks A, ball-global
-            B, global-ball C (each Z x 6 x 6) and global-global Dg (6 x 6)."""
-            hl = np.empty((Z, NLOC))
-            hl[:, 0:2] = 1e-10
-            hl[:, 2:5] = 1e-7 * np.maximum(np.abs(xl[:, 2:5]), 0.1 * omega) + 1e-9
-            hl[:, 5] = 1e-7 * max(np.max(np.abs(xl[:, 5])), 1.0)
-            hg = np.array([1e-10, 1e-10, 1e-10, 1e-9, 1e-9, 1e-7 * max(abs(xg[5]), 1.0)])
-            A = np.empty((Z, NLOC, NLOC))
-            C = np.empty((Z, NGLOB, NLOC))
-            for k in range(NLOC):
-                xp = xl.copy()
-                xp[:, k] += hl[:, k]
-                Rl2, _, sh2, _ = evaluate(xp, xg)
-                A[:, :, k] = (Rl2 - Rl) / hl[:, k:k + 1]
-                C[:, :, k] = (sh2 - share) / hl[:, k:k + 1]
-            C[:, ~act, :] = 0.0
-            B = np.zeros((Z, NLOC, NGLOB))
-            Dg = np.zeros((NGLOB, NGLOB))
-            for k in range(NGLOB):
-                if act[k]:
-                    xp = xg.copy()
-                    xp[k] += hg[k]
-                    Rl2, Rg2, _, _ = evaluate(xl, xp)
-                    B[:, :, k] = (Rl2 - Rl) / hg[k]
-                    Dg[:, k] = (Rg2 - Rg) / hg[k]
-            Dg[~act, :] = 0.0
-            Dg[~act, ~act] = -1.0
-            return A, B, C, Dg
-
-        # Levenberg-Marquardt on the scaled unknowns (positions in um, speeds in omega, forces in N; the
-        # tilts in 10 urad), the dense Jacobian assembled from the arrow blocks (n = 6 Z + 6 is small);
-        # scipy.optimize.least_squares, trust-region reflective.
+        # residuals, Jacobian, linear solves and the pseudo-transient loop: quasistatic_tribo_kernels
+        # (numba), on the scaled unknowns (positions in um, speeds in omega, forces in N; the tilts in
+        # 10 urad)
         xs_l = np.array([1e-6, 1e-6, omega, omega, omega, omega])
         xs_g = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5, omega])
         n = Z * NLOC + NGLOB
-        cache = {}
-
-        def unpack(v):
-            return v[:Z * NLOC].reshape(Z, NLOC) * xs_l, v[Z * NLOC:] * xs_g
+        wk = dict(xl=np.empty((Z, NLOC)), xg=np.empty(NGLOB), yy=np.empty(y.size), dy=np.empty(y.size),
+                  diag=np.zeros(K.NOUT), bd=np.zeros((Z, K.NBD)), Rl=np.empty((Z, NLOC)), Rg=np.empty(NGLOB),
+                  share=np.empty((Z, NGLOB)))
 
         def fun(v):
-            Rl_, Rg_, sh_, yy_ = evaluate(*unpack(v))
-            cache["x"] = v.copy()
-            cache["r"] = (Rl_, Rg_, sh_)
-            out = np.concatenate([Rl_.ravel(), Rg_])
-            return np.where(np.isfinite(out), out, 1e12)
+            R = np.empty(n)
+            TK.scaled_residual(t, y, v, xs_l, xs_g, act, iF, iM, P, U, *tabs, wk["xl"], wk["xg"], wk["yy"],
+                               wk["dy"], wk["diag"], wk["bd"], wk["Rl"], wk["Rg"], wk["share"], R)
+            return R
 
         def jac(v):
-            xl_, xg_ = unpack(v)
-            if "x" in cache and np.array_equal(cache["x"], v):
-                Rl_, Rg_, sh_ = cache["r"]
-            else:
-                Rl_, Rg_, sh_, _ = evaluate(xl_, xg_)
-            A, B, C, Dg = jacobian(xl_, xg_, Rl_, Rg_, sh_)
-            J = np.zeros((n, n))
-            for j in range(Z):
-                r0 = j * NLOC
-                J[r0:r0 + NLOC, r0:r0 + NLOC] = A[j] * xs_l[None, :]
-                J[r0:r0 + NLOC, Z * NLOC:] = B[j] * xs_g[None, :]
-                J[Z * NLOC:, r0:r0 + NLOC] = C[j] * xs_l[None, :]
-            J[Z * NLOC:, Z * NLOC:] = Dg * xs_g[None, :]
+            fun(v)
+            A = np.empty((Z, NLOC, NLOC))
+            B = np.empty((Z, NLOC, NGLOB))
+            C = np.empty((Z, NGLOB, NLOC))
+            Dg = np.empty((NGLOB, NGLOB))
+            TK.jacobian(t, y, wk["xl"], wk["xg"], wk["Rl"], wk["Rg"], wk["share"], act, omega, iF, iM, P, U,
+                        *tabs, wk["yy"], wk["dy"], wk["diag"], wk["bd"], A, B, C, Dg)
+            J = np.empty((n, n))
+            TK.assemble(A, B, C, Dg, xs_l, xs_g, J)
             return J
 
-        # pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer. Anal. 35 (1998) 508): implicit Euler
-        # steps of the pseudo-dynamics dx/dtau = diag(|J_ii|)^-1 R(x), whose fixed points are the steady
-        # states; the residuals are generalised forces, so the pseudo-dynamics is dissipative (contact
-        # stiffness, traction opposing slip) and the step (D/dtau - J) dx = R grows into Newton's
-        # (dtau by switched evolution relaxation, dtau *= |R_old| / |R_new|).
-        def ptc(v, budget):
-            R = fun(v)
-            r = np.max(np.abs(R))
-            dtau = 1.0
-            nfev = 1
-            while r > ftol and nfev < budget:
-                J = jac(v)
-                nfev += 12
-                d = np.abs(np.diag(J))
-                d = np.maximum(d, 1e-9 * max(np.max(d), 1.0))
-                try:
-                    dv = np.linalg.solve(np.diag(d / dtau) - J, R)
-                except np.linalg.LinAlgError:
-                    dtau *= 0.1
-                    continue
-                # cap: positions 2 um, speeds 0.3 omega per step
-                dv /= max(1.0, np.max(np.abs(dv[cap_idx])) / 2.0, np.max(np.abs(dv[~cap_idx])) / 0.3)
-                R2 = fun(v + dv)
-                nfev += 1
-                r2 = np.max(np.abs(R2))
-                if not np.isfinite(r2) or r2 > 4.0 * r:
-                    dtau = max(dtau * 0.1, 1e-8)
-                    continue
-                v = v + dv
-                dtau = min(dtau * min(max(r / max(r2, 1e-300), 0.3), 10.0), 1e15)
-                R, r = R2, r2
-            return v, r, nfev
-
         def trf(v, budget):
+            # trust-region least squares (scipy.optimize.least_squares, trust-region reflective)
             from scipy.optimize import least_squares
             sol = least_squares(fun, v, jac=jac, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15,
                                 max_nfev=max(budget, 2))
@@ -359,14 +256,12 @@ class TriboQuasiStaticModel:
         v0 = np.concatenate([(xl / xs_l).ravel(), xg / xs_g])
         if not np.all(np.abs(fun(v0)) < 1e12):
             raise ConvergenceError("quasi-static tribological model: non-finite residual at the start")
-        cap_idx = np.concatenate([np.tile(np.array([True, True, False, False, False, False]), Z),
-                                  np.array([True, True, True, False, False, False])])
         # pseudo-transient continuation first, then a trust-region least-squares solve from the start and
         # from the better of the two end points (FASTSIM's slip/stick switching makes the residual only
         # piecewise smooth; one of them usually gets through)
-        nfev = 0
-        v1, r1, n1 = ptc(v0, maxit)
-        nfev += n1
+        v1 = v0.copy()
+        r1, nfev, _ = TK.ptc(t, y, v1, xs_l, xs_g, act, float(omega), float(ftol), int(maxit), iF, iM, P, U,
+                             *tabs)
         best_v, best_r = v1, r1
         if best_r > ftol:
             for vs in (v0, v1):
@@ -380,9 +275,9 @@ class TriboQuasiStaticModel:
         class sol:   # noqa: N801
             x = best_v
         sol.nfev = nfev
-        xl, xg = unpack(sol.x)
-        Rl, Rg, share, yy = evaluate(xl, xg)
-        res = max(np.max(np.abs(Rl)), np.max(np.abs(Rg)))
+        fun(sol.x)
+        xl, xg, yy = wk["xl"].copy(), wk["xg"].copy(), wk["yy"].copy()
+        res = max(np.max(np.abs(wk["Rl"])), np.max(np.abs(wk["Rg"])))
         if not res <= ftol:
             raise ConvergenceError(f"quasi-static tribological model at {omega * 30 / math.pi:.0f} rpm did not "
                                    f"converge in {sol.nfev} evaluations (residual {res:.3g} N, tolerance "
