@@ -256,12 +256,31 @@ class TriboQuasiStaticModel:
         v0 = np.concatenate([(xl / xs_l).ravel(), xg / xs_g])
         if not np.all(np.abs(fun(v0)) < 1e12):
             raise ConvergenceError("quasi-static tribological model: non-finite residual at the start")
-        # pseudo-transient continuation first, then a trust-region least-squares solve from the start and
-        # from the better of the two end points (FASTSIM's slip/stick switching makes the residual only
-        # piecewise smooth; one of them usually gets through)
-        v1 = v0.copy()
-        r1, nfev, _ = TK.ptc(t, y, v1, xs_l, xs_g, act, float(omega), float(ftol), int(maxit), iF, iM, P, U,
-                             *tabs)
+        # pseudo-transient continuation with a kept Jacobian first (a third of the budget). If it does not
+        # converge, or converges to a state in which a ball that carried load at the start has lost both
+        # raceway contacts (a spurious root: an unloaded ball with zero orbital speed has zero residuals),
+        # the pseudo-transient continuation with a new Jacobian at every step from the start; then a
+        # trust-region least-squares solve from the start and from the better of the two end points
+        # (FASTSIM's slip/stick switching makes the residual only piecewise smooth; one of them usually gets
+        # through)
+        bd0 = wk["bd"]
+        loaded0 = (bd0[:, K.BD_QI] > 0.0) | (bd0[:, K.BD_QO] > 0.0)
+
+        def ptc(lazy, budget):
+            v = v0.copy()
+            r, nf, _ = TK.ptc(t, y, v, xs_l, xs_g, act, float(omega), float(ftol), int(budget), lazy, iF, iM,
+                              P, U, *tabs)
+            return v, r, nf
+
+        v1, r1, nfev = ptc(True, max(maxit // 3, 1))
+        if r1 <= ftol:
+            fun(v1)
+            bd1 = wk["bd"]
+            if np.any(loaded0 & (bd1[:, K.BD_QI] <= 0.0) & (bd1[:, K.BD_QO] <= 0.0)):
+                r1 = np.inf
+        if not r1 <= ftol:
+            v1, r1, n1 = ptc(False, maxit)
+            nfev += n1
         best_v, best_r = v1, r1
         if best_r > ftol:
             for vs in (v0, v1):

@@ -32,6 +32,9 @@ NGLOB = 6   # dx, dy, dz, tx, ty, (cage speed: not an unknown with free orbits; 
 
 # ptc status
 PTC_CONVERGED, PTC_BUDGET = 0, 1
+# lazy Jacobian of ptc: rebuilt after this many accepted chord steps, or when dtau grew this much
+LAZY_AGE = 20
+LAZY_DTAU = 10.0
 
 
 @hot
@@ -366,7 +369,7 @@ def scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, 
 
 
 @hot
-def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
+def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
         qx, qwx, qy, qwy):
     """Pseudo-transient continuation from the scaled unknowns v (overwritten with the end point): implicit
     Euler steps (diag(|J_ii|) / dtau - J) dv = R of the pseudo-dynamics dx/dtau = diag(|J_ii|)^-1 R(x),
@@ -374,7 +377,13 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, iF, iM, P, U, tab_i, tab
     dtau <= 1e15); a step is capped at 2 um per position and 0.3 omega per speed and rejected (dtau / 10,
     Jacobian kept) if the residual grows more than 4-fold or is not finite. Stops when max |R| <= ftol or
     after budget residual evaluations (12 per Jacobian, 1 per trial step). Returns (max |R|, evaluations,
-    status PTC_CONVERGED | PTC_BUDGET)."""
+    status PTC_CONVERGED | PTC_BUDGET).
+
+    lazy=False: a new Jacobian for every step. lazy=True: the Jacobian is kept over accepted steps
+    (chord steps, 1 evaluation each) and rebuilt when the residual grew, after LAZY_AGE steps, when dtau
+    grew LAZY_DTAU-fold since the rebuild (the step turns into Newton's) and before shrinking dtau after a
+    rejected step; converged on a kept Jacobian, one step on a new one follows (accepted if it lowers the
+    residual), so the end point has Newton's accuracy, not just the tolerance."""
     Z = (v.size - NGLOB) // NLOC
     n = v.size
     xl = np.empty((Z, NLOC))
@@ -406,16 +415,32 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, iF, iM, P, U, tab_i, tab
     nfev = 1
     dtau = 1.0
     fresh = False          # Jacobian up to date at v
-    while r > ftol and nfev < budget:
+    age = 0                # accepted steps on the current Jacobian
+    dtau_ref = dtau
+    polish = False
+    at_v = True            # (xl, xg), (Rl, Rg, share) hold v and its residual blocks
+    while nfev < budget:
+        if r <= ftol:
+            if not (lazy and age > 0) or polish:
+                break
+            polish = True      # converged on a kept Jacobian: one step on a new one
+            fresh = False
         if not fresh:
-            # (xl, xg) and (Rl, Rg, share) hold v and its residual blocks: the last residual call was at
-            # the start or at the step just accepted
+            if not at_v:       # the last residual call was a rejected trial: the blocks at v again
+                scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx,
+                                qy, qwy, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R)
+                nfev += 1
+                at_v = True
             jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
                      qx, qwx, qy, qwy, yy, dy, diag, bd, A, B, C, Dg)
             jacobian_diagonal(A, Dg, xs_l, xs_g, d)
             nfev += 12
             fresh = True
+            age = 0
+            dtau_ref = dtau
         if not arrow_solve(A, B, C, Dg, xs_l, xs_g, d, dtau, R, dv):
+            if polish:
+                break
             dtau *= 0.1
             nfev += 1       # counts as a trial (keeps the loop finite when the matrix stays singular)
             continue
@@ -432,13 +457,26 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, iF, iM, P, U, tab_i, tab
         r2 = scaled_residual(t, y0, v2, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
                              qx, qwx, qy, qwy, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R2)
         nfev += 1
+        at_v = False
+        if polish:
+            if r2 < r:
+                for i in range(n):
+                    v[i] = v2[i]
+                r = r2
+            break
         if not math.isfinite(r2) or r2 > 4.0 * r:
-            dtau = max(dtau * 0.1, 1e-8)
+            if lazy and age > 0:
+                fresh = False          # a kept Jacobian: rebuild it before shrinking dtau
+            else:
+                dtau = max(dtau * 0.1, 1e-8)
             continue
         for i in range(n):
             v[i] = v2[i]
             R[i] = R2[i]
+        at_v = True
         dtau = min(dtau * min(max(r / max(r2, 1e-300), 0.3), 10.0), 1e15)
+        age += 1
+        if not lazy or r2 > r or age >= LAZY_AGE or dtau > LAZY_DTAU * dtau_ref:
+            fresh = False
         r = r2
-        fresh = False
     return r, nfev, PTC_CONVERGED if r <= ftol else PTC_BUDGET
