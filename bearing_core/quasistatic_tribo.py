@@ -258,11 +258,11 @@ class TriboQuasiStaticModel:
             raise ConvergenceError("quasi-static tribological model: non-finite residual at the start")
         # pseudo-transient continuation with a kept Jacobian first (a third of the budget). If it does not
         # converge, or converges to a state in which a ball that carried load at the start has lost both
-        # raceway contacts (a spurious root: an unloaded ball with zero orbital speed has zero residuals),
-        # the pseudo-transient continuation with a new Jacobian at every step from the start; then a
-        # trust-region least-squares solve from the start and from the better of the two end points
-        # (FASTSIM's slip/stick switching makes the residual only piecewise smooth; one of them usually gets
-        # through)
+        # raceway contacts or a ball has (nearly) stopped orbiting (spurious roots: a ball without contact
+        # load and without orbital speed has zero residuals), the pseudo-transient continuation with a new
+        # Jacobian at every step from the start; then a trust-region least-squares solve from the start and
+        # from the better of the two end points (FASTSIM's slip/stick switching makes the residual only
+        # piecewise smooth; one of them usually gets through)
         bd0 = wk["bd"]
         loaded0 = (bd0[:, K.BD_QI] > 0.0) | (bd0[:, K.BD_QO] > 0.0)
 
@@ -276,7 +276,9 @@ class TriboQuasiStaticModel:
         if r1 <= ftol:
             fun(v1)
             bd1 = wk["bd"]
-            if np.any(loaded0 & (bd1[:, K.BD_QI] <= 0.0) & (bd1[:, K.BD_QO] <= 0.0)):
+            lost = loaded0 & (bd1[:, K.BD_QI] <= 0.0) & (bd1[:, K.BD_QO] <= 0.0)
+            stopped = np.abs(wk["xl"][:, 5]) < 0.1 * abs(jh.cage_speed)
+            if np.any(lost | stopped):
                 r1 = np.inf
         if not r1 <= ftol:
             v1, r1, n1 = ptc(False, maxit)
