@@ -31,10 +31,14 @@ Solution: 6 Z + 5 unknowns, with a finite-difference Jacobian of the bearing's a
 touch each other: a 6 x 6 block per ball coupled to the ring; column k of every ball block comes from ONE
 rhs call that perturbs unknown k of all balls, and the rhs reports each ball's share of the ring loads:
 12 calls per Jacobian). First pseudo-transient continuation (implicit Euler steps of a dissipative
-pseudo-dynamics that grow into Newton steps), then, if needed, a trust-region least-squares solve
-(scipy.optimize.least_squares 'trf'). Start: the Jones-Harris solution (outer raceway control), as
-DynamicModel.initialize; if that fails, continuation in speed from 100 rpm. Residuals are forces [N]
-(moments over D/2 or dm/2). Measured on 7218B (docs/kalker.md, with the earlier illustrative lubricated
+pseudo-dynamics that grow into Newton steps) on a Jacobian kept over the steps while they make progress
+(each step then costs one rhs call), finished by one step on a new Jacobian; if that fails or ends at a
+spurious root (a ball that stopped orbiting or lost its contacts), the same continuation with a new
+Jacobian at every step from the start; then, if needed, a trust-region least-squares solve
+(scipy.optimize.least_squares 'trf'). Residuals, Jacobian, the block-arrow linear solves and the
+continuation loop run in numba (quasistatic_tribo_kernels). Start: the Jones-Harris solution (outer
+raceway control), as DynamicModel.initialize; if that fails, continuation in speed from 100 rpm. Residuals
+are forces [N] (moments over D/2 or dm/2). Measured on 7218B (docs/kalker.md, with the earlier illustrative lubricated
 curve): 31 of 36 cases (Kalker 0.1 / 0.001, Coulomb, lubricated; 1000 / 3000 / 10,000 rpm; pure thrust and two combined loads) converge to 1e-7 of
 the load; the rest raise ConvergenceError (full-slip Kalker and Coulomb contacts at 10,000 rpm under
 combined load, Kalker 0.1 at 1000 rpm under combined load).
@@ -120,6 +124,10 @@ class TriboQuasiStaticModel:
     """Quasi-static tribological model of one bearing with the traction of ``options`` (a DynamicsOptions:
     traction, mu, kalker_grid, lubricant, u_min, drag, churning, fixed_tilt are used; integrator settings
     are not). Load-driven inner ring only."""
+
+    #: first stage of the solve: pseudo-transient continuation on a kept Jacobian (False: start with the
+    #: per-step Jacobian, as the fallback does)
+    lazy_jacobian = True
 
     def __init__(self, geometry: BearingGeometry, options=None):
         from .dynamics import DynamicModel, DynamicsOptions
@@ -272,7 +280,7 @@ class TriboQuasiStaticModel:
                               P, U, *tabs)
             return v, r, nf
 
-        v1, r1, nfev = ptc(True, max(maxit // 3, 1))
+        v1, r1, nfev = ptc(True, max(maxit // 3, 1)) if self.lazy_jacobian else (v0, np.inf, 0)
         if r1 <= ftol:
             fun(v1)
             bd1 = wk["bd"]
