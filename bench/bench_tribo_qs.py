@@ -42,16 +42,19 @@ def matrix(g, quick):
             for fx, fz in loads:
                 opt = DynamicsOptions(traction=tr, mu=mu)
                 t0 = time.perf_counter()
+                c0 = time.thread_time()
                 try:
                     q = solve_tribo_quasistatic(g, n * RPM, (fx, 0, fz, 0, 0), opt)
                     row = dict(ok=True, evaluations=q.iterations, residual_N=q.residual,
                                cage_rpm=q.cage_speed / RPM, jh_cage_rpm=q.jones_harris.cage_speed / RPM)
                 except ConvergenceError as e:
                     row = dict(ok=False, error=str(e)[-120:])
-                row.update(traction=tr, mu=mu, speed_rpm=n, Fx_N=fx, Fz_N=fz, wall_s=time.perf_counter() - t0)
+                row.update(traction=tr, mu=mu, speed_rpm=n, Fx_N=fx, Fz_N=fz, wall_s=time.perf_counter() - t0,
+                           cpu_s=time.thread_time() - c0)
                 rows.append(row)
                 print(f"{tr:10s} mu {mu:<5g} {n:6d} rpm Fx {fx:5d} Fz {fz:5d}: "
-                      + (f"ok  {row['evaluations']:5d} evals {row['wall_s']:6.2f} s  cage {row['cage_rpm']:8.1f} "
+                      + (f"ok  {row['evaluations']:5d} evals {row['wall_s']:6.3f} s ({1e3 * row['cpu_s']:7.1f} ms "
+                         f"CPU)  cage {row['cage_rpm']:8.1f} "
                          f"(J-H {row['jh_cage_rpm']:8.1f}) rpm" if row["ok"] else f"FAIL {row['wall_s']:6.2f} s"),
                       flush=True)
     return rows
