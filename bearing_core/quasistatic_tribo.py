@@ -38,10 +38,11 @@ Jacobian at every step from the start; then, if needed, a trust-region least-squ
 (scipy.optimize.least_squares 'trf'). Residuals, Jacobian, the block-arrow linear solves and the
 continuation loop run in numba (quasistatic_tribo_kernels). Start: the Jones-Harris solution (outer
 raceway control), as DynamicModel.initialize; if that fails, continuation in speed from 100 rpm. Residuals
-are forces [N] (moments over D/2 or dm/2). Measured on 7218B (docs/kalker.md, with the earlier illustrative lubricated
-curve): 31 of 36 cases (Kalker 0.1 / 0.001, Coulomb, lubricated; 1000 / 3000 / 10,000 rpm; pure thrust and two combined loads) converge to 1e-7 of
-the load; the rest raise ConvergenceError (full-slip Kalker and Coulomb contacts at 10,000 rpm under
-combined load, Kalker 0.1 at 1000 rpm under combined load).
+are forces [N] (moments over D/2 or dm/2). Measured on 7218B (bench/bench_tribo_qs.py, rheology-based EHL
+traction): 29 of 36 cases (Kalker 0.1 / 0.001, Coulomb, lubricated; 1000 / 3000 / 10,000 rpm; pure thrust
+and two combined loads) converge to 1e-7 of the load, at 1000 and 3000 rpm in 90-600 rhs calls (4-22 ms); the rest
+raise ConvergenceError (Kalker 0.1 at 1000 rpm under combined load and at 3000 rpm under the radial-heavy
+load, Kalker 0.001 and Coulomb at 10,000 rpm under combined load).
 """
 from __future__ import annotations
 
