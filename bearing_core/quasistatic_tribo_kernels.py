@@ -83,10 +83,10 @@ def residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, q
         share[j, 5] = 0.0
     # ring: external load + balls (support damping is zero at rest)
     Rg[0] = U[K.U_FX] + diag[iF]
-    Rg[1] = U[K.U_FX + 1] + diag[iF + 1]
-    Rg[2] = U[K.U_FX + 2] + diag[iF + 2]
+    Rg[1] = U[K.U_FY] + diag[iF + 1]
+    Rg[2] = U[K.U_FZ] + diag[iF + 2]
     Rg[3] = (U[K.U_MX] + diag[iM]) / hdm
-    Rg[4] = (U[K.U_MX + 1] + diag[iM + 1]) / hdm
+    Rg[4] = (U[K.U_MY] + diag[iM + 1]) / hdm
     Rg[5] = 0.0
     for k in range(NGLOB):
         if not act[k]:
