@@ -91,6 +91,10 @@ _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 (R_LUBMODEL, R_ETA0, R_LNE, R_Z, R_ALPHA, R_BETA, R_TAU0, R_TAUL0, R_GAML, R_GFILM, R_KOIL, R_EPRIME,
  R_GSC11, R_RCK, R_RQ, R_MUBL, R_VBL, R_RR, R_THERMAL, R_KGAM) = range(7, 27)
 N_PARAMS = 27
+# rows of ehl_ellipse_traction's point scratch: sliding velocity (t, m), position (x, y, rho), pressure,
+# shear-force weight, distance from the inlet edge, shear force per unit sliding speed
+_VT, _VM, _XS, _YS, _RH, _PP, _WQ, _SI, _DF = range(9)
+_NROWS = 9
 
 
 @hot(inline="always")
@@ -291,17 +295,11 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     # padded to a multiple of 16 points with zero sliding, pressure and weight (zero stress): LLVM runs its
     # vectorised loop body only for trip counts of 16 and more
     npad = (npt + 15) // 16 * 16
-    buf = np.empty((9, npad))
-    buf[:, npt:] = 0.0
-    vt = buf[0]
-    vm = buf[1]
-    xs = buf[2]
-    ys = buf[3]
-    rh = buf[4]
-    pp = buf[5]
-    wq = buf[6]
-    si = buf[7]
-    dF = buf[8]
+    # point data as rows of one scratch array, indexed in 2-D (row views would cost a reference count each)
+    buf = np.empty((_NROWS, npad))
+    for r in range(_NROWS):
+        for n in range(npt, npad):
+            buf[r, n] = 0.0
     n = 0
     for i in range(nx):
         x = a * xi[i]
@@ -319,27 +317,30 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
         for j in range(ny):
             y = bw * zeta[j]
             p = p_max * w * math.sqrt(1.0 - zeta[j] * zeta[j])     # local Hertz pressure
-            vt[n] = vt_x
-            vm[n] = vm_x + w_spin * y
-            xs[n] = x
-            ys[n] = y
-            rh[n] = rho
-            pp[n] = p
+            buf[_VT, n] = vt_x
+            buf[_VM, n] = vm_x + w_spin * y
+            buf[_XS, n] = x
+            buf[_YS, n] = y
+            buf[_RH, n] = rho
+            buf[_PP, n] = p
             # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear force
             # tau dA = tau * (wi wzeta[j] / p)
-            wq[n] = wi * wzeta[j] / p if p > 0.0 else 0.0
-            si[n] = bw + sgn * y                                # distance from the inlet edge
+            buf[_WQ, n] = wi * wzeta[j] / p if p > 0.0 else 0.0
+            buf[_SI, n] = bw + sgn * y                          # distance from the inlet edge
             n += 1
     # ---- pass 2: shear stress at every point (vectorised)
     for n in range(npad):
-        v = math.sqrt(vt[n] * vt[n] + vm[n] * vm[n])
+        vt = buf[_VT, n]
+        vm = buf[_VM, n]
+        p = buf[_PP, n]
+        v = math.sqrt(vt * vt + vm * vm)
         tau = 0.0
         if fluid:
-            tau = _point_stress(v, f * pp[n], si[n], lxh, lne, z, h, u, tau0, tauL0, gamL, Ge, cfilm, cflash,
+            tau = _point_stress(v, f * p, buf[_SI, n], lxh, lne, z, h, u, tau0, tauL0, gamL, Ge, cfilm, cflash,
                                 beta, thermal, kgam)
         if mubl > 0.0:
-            tau += mubl * pp[n] * mx.tanh_pos(v / vbl)        # asperities' share, boundary friction
-        dF[n] = tau * wq[n] / v if v > 0.0 else 0.0          # shear force per unit sliding speed
+            tau += mubl * p * mx.tanh_pos(v / vbl)            # asperities' share, boundary friction
+        buf[_DF, n] = tau * buf[_WQ, n] / v if v > 0.0 else 0.0    # shear force per unit sliding speed
     # ---- pass 3: forces, moments and power
     Ft = 0.0
     Fm = 0.0
@@ -348,15 +349,18 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     Mt = 0.0
     P = 0.0
     for n in range(npad):
-        r = dF[n]
-        ft = -r * vt[n]
-        fm = -r * vm[n]
+        r = buf[_DF, n]
+        vt = buf[_VT, n]
+        vm = buf[_VM, n]
+        rho = buf[_RH, n]
+        ft = -r * vt
+        fm = -r * vm
         Ft += ft
         Fm += fm
-        Mn += ys[n] * fm - xs[n] * ft
-        Mm += rh[n] * ft
-        Mt -= rh[n] * fm
-        P += r * (vt[n] * vt[n] + vm[n] * vm[n])
+        Mn += buf[_YS, n] * fm - buf[_XS, n] * ft
+        Mm += rho * ft
+        Mt -= rho * fm
+        P += r * (vt * vt + vm * vm)
     # ---- EHL rolling resistance: moment F_R Rx opposing the relative rolling rotation about m
     if params[R_RR] > 0.5:
         FR = _rolling_force_ln(Ep, Rx, k, lnU, lnG, lnW) * f if eta0 > 0.0 else 0.0
