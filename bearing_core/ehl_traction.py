@@ -225,9 +225,24 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
                          h / (8.0 * k_oil), cflash, beta, thermal, kgam)
 
 
+@hot(inline="always")
+def ehl_scratch(n_major, n_minor):
+    """Scratch array [-] of ehl_ellipse_traction_into for a quadrature of n_major x n_minor nodes: one row per
+    point quantity, the points padded to a multiple of 16 (allocate once, reuse for every contact)."""
+    return np.empty((_NROWS, (n_major * n_minor + 15) // 16 * 16))
+
+
 @hot
 def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
                          params, xi, wxi, zeta, wzeta):
+    """ehl_ellipse_traction_into with a scratch array of its own (same arguments and outputs)."""
+    return ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t,
+                                     u_roll, params, xi, wxi, zeta, wzeta, ehl_scratch(xi.shape[0], zeta.shape[0]))
+
+
+@hot
+def ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
+                              params, xi, wxi, zeta, wzeta, buf):
     """Rheology-based EHL traction on the ball, integrated over the Hertz ellipse (module docstring).
 
     Same contact geometry, kinematics, quadrature and outputs as contact_kernels.ellipse_traction
@@ -235,7 +250,8 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     dissipated power), plus Rx, Ry [m] the effective radii of the contact in and across the rolling
     direction (for the film thickness and the rolling force). params: contact_kernels.traction_params
     with the oil's rheology (lubricants.rheology_traction_params). The EHL rolling-resistance moment is
-    included in M_m and in the power.
+    included in M_m and in the power. buf: scratch array of ehl_scratch(xi.size, zeta.size) or larger (its
+    contents are overwritten; one per thread).
 
     Three passes over the quadrature points: their sliding field, pressure and weights; the shear law
     (_point_stress, branch-free, vectorised by LLVM over the points); the sums of forces and moments."""
@@ -295,8 +311,9 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     # padded to a multiple of 16 points with zero sliding, pressure and weight (zero stress): LLVM runs its
     # vectorised loop body only for trip counts of 16 and more
     npad = (npt + 15) // 16 * 16
-    # point data as rows of one scratch array, indexed in 2-D (row views would cost a reference count each)
-    buf = np.empty((_NROWS, npad))
+    # point data as rows of the scratch array, indexed in 2-D (row views would cost a reference count each)
+    if buf.shape[0] < _NROWS or buf.shape[1] < npad:
+        raise ValueError("ehl_ellipse_traction_into: scratch array smaller than ehl_scratch(xi.size, zeta.size)")
     for r in range(_NROWS):
         for n in range(npt, npad):
             buf[r, n] = 0.0
