@@ -143,15 +143,14 @@ def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wr
                    fny, qx, qwx, qy, qwy, sc):
     """Traction of one ball-race contact on the ball: (F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W]) by
     FASTSIM (kalker), the rheology-based EHL traction with rolling resistance (ehl_traction; Rx, Ry [m]
-    the contact's effective radii; sc its scratch, ehl_traction.ehl_scratch) or the ellipse-integrated
+    the contact's effective radii; sc = ehl_traction.ehl_scratch of the quadrature) or the ellipse-integrated
     curve / Coulomb law (contact_kernels)."""
     if kalker:
         ft, fm, mn, pl = fastsim_traction_fast(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, PRESSURE_HERTZ)
         # the shear acts on the contact surface, D/2 from the ball centre
         return ft, fm, mn, 0.5 * D * ft, -0.5 * D * fm, pl
     if tmodel == TRACTION_EHL:
-        return ehl_ellipse_traction_into(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, qx, qwx, qy,
-                                         qwy, sc)
+        return ehl_ellipse_traction_into(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, sc)
     return ellipse_traction(a, b, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, qx, qwx, qy, qwy)
 
 
@@ -208,7 +207,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     Z = P[P_Z]
     tmodel = int(tp[P_LUBMODEL]) if P[P_TRACTION] < 0.5 else TRACTION_COULOMB   # lubricated: EHL or curve
     kalker = P[P_TRACTION] > 1.5          # Kalker's simplified theory (FASTSIM), seed 000 Eqs. 7-9
-    sc = ehl_scratch(qx.shape[0], qy.shape[0])    # EHL traction's point scratch, shared by all contacts
+    sc = ehl_scratch(qx, qwx, qy, qwy)    # EHL traction's point quadrature and scratch, shared by all contacts
     Gc = P[P_GCOMB]
     nuc = P[P_NUCOMB]
     fnx = int(P[P_FS_NX])

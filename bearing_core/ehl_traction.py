@@ -91,10 +91,12 @@ _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 (R_LUBMODEL, R_ETA0, R_LNE, R_Z, R_ALPHA, R_BETA, R_TAU0, R_TAUL0, R_GAML, R_GFILM, R_KOIL, R_EPRIME,
  R_GSC11, R_RCK, R_RQ, R_MUBL, R_VBL, R_RR, R_THERMAL, R_KGAM) = range(7, 27)
 N_PARAMS = 27
-# rows of ehl_ellipse_traction's point scratch: sliding velocity (t, m), position (x, y, rho), pressure,
-# shear-force weight, distance from the inlet edge, shear force per unit sliding speed
-_VT, _VM, _XS, _YS, _RH, _PP, _WQ, _SI, _DF = range(9)
-_NROWS = 9
+# rows of ehl_scratch (one column per quadrature point): the nodes and weights (xi, w_xi, zeta, w_zeta of
+# contact_kernels.ellipse_quadrature), then ehl_ellipse_traction_into's work rows: sliding velocity (t, m),
+# position (x, y, rho), pressure, shear-force weight, distance from the inlet edge, shear force per unit
+# sliding speed
+_XI, _WXI, _ZETA, _WZETA, _VT, _VM, _XS, _YS, _RH, _PP, _WQ, _SI, _DF = range(13)
+_NROWS = 13
 
 
 @hot(inline="always")
@@ -225,24 +227,41 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
                          h / (8.0 * k_oil), cflash, beta, thermal, kgam)
 
 
-@hot(inline="always")
-def ehl_scratch(n_major, n_minor):
-    """Scratch array [-] of ehl_ellipse_traction_into for a quadrature of n_major x n_minor nodes: one row per
-    point quantity, the points padded to a multiple of 16 (allocate once, reuse for every contact)."""
-    return np.empty((_NROWS, (n_major * n_minor + 15) // 16 * 16))
+@hot
+def ehl_scratch(xi, wxi, zeta, wzeta):
+    """Point quadrature and work space of ehl_ellipse_traction_into [-], from the nodes and weights of
+    contact_kernels.ellipse_quadrature: one column per point (xi[i], zeta[j] for i major, j minor), padded
+    to a multiple of 16 columns with zero weight and zero pressure (zeta = 1) (LLVM runs its vectorised
+    loop bodies only for trip counts of 16 and more); rows _XI, _WXI, _ZETA, _WZETA the nodes and
+    weights, the others overwritten by each call. Build once per quadrature and thread, reuse for every
+    contact."""
+    nx = xi.shape[0]
+    ny = zeta.shape[0]
+    npt = nx * ny
+    buf = np.zeros((_NROWS, (npt + 15) // 16 * 16))
+    for n in range(npt, buf.shape[1]):
+        buf[_ZETA, n] = 1.0
+    for i in range(nx):
+        for j in range(ny):
+            buf[_XI, i * ny + j] = xi[i]
+            buf[_WXI, i * ny + j] = wxi[i]
+            buf[_ZETA, i * ny + j] = zeta[j]
+            buf[_WZETA, i * ny + j] = wzeta[j]
+    return buf
 
 
 @hot
 def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
                          params, xi, wxi, zeta, wzeta):
-    """ehl_ellipse_traction_into with a scratch array of its own (same arguments and outputs)."""
+    """ehl_ellipse_traction_into with the quadrature (xi, wxi, zeta, wzeta) of
+    contact_kernels.ellipse_quadrature, as contact_kernels.ellipse_traction takes it (same outputs)."""
     return ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t,
-                                     u_roll, params, xi, wxi, zeta, wzeta, ehl_scratch(xi.shape[0], zeta.shape[0]))
+                                     u_roll, params, ehl_scratch(xi, wxi, zeta, wzeta))
 
 
 @hot
 def ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
-                              params, xi, wxi, zeta, wzeta, buf):
+                              params, sc):
     """Rheology-based EHL traction on the ball, integrated over the Hertz ellipse (module docstring).
 
     Same contact geometry, kinematics, quadrature and outputs as contact_kernels.ellipse_traction
@@ -250,11 +269,14 @@ def ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin,
     dissipated power), plus Rx, Ry [m] the effective radii of the contact in and across the rolling
     direction (for the film thickness and the rolling force). params: contact_kernels.traction_params
     with the oil's rheology (lubricants.rheology_traction_params). The EHL rolling-resistance moment is
-    included in M_m and in the power. buf: scratch array of ehl_scratch(xi.size, zeta.size) or larger (its
-    contents are overwritten; one per thread).
+    included in M_m and in the power. sc: the quadrature as ehl_scratch (its work rows are overwritten:
+    one per thread).
 
-    Three passes over the quadrature points: their sliding field, pressure and weights; the shear law
-    (_point_stress, branch-free, vectorised by LLVM over the points); the sums of forces and moments."""
+    Three passes over the quadrature points, each vectorised by LLVM over the points (branch-free in the
+    point's values, indexed in 2-D: row views would cost a reference count each): their sliding field,
+    pressure and weights; the shear law (_point_stress); the sums of forces and moments."""
+    if sc.shape[0] != _NROWS:
+        raise ValueError("ehl_ellipse_traction_into: sc is not an ehl_scratch array")
     if not (p_max > 0.0 and a > 0.0 and b > 0.0):
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     # ---- per contact (all parameters as scalars from here on)
@@ -305,59 +327,40 @@ def ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin,
     if curv:
         c0 = math.sqrt(hh * hh - a * a) - math.sqrt(R_def * R_def - a * a)
     pab = p_max * a * b
-    nx = xi.shape[0]
-    ny = zeta.shape[0]
-    npt = nx * ny
-    # padded to a multiple of 16 points with zero sliding, pressure and weight (zero stress): LLVM runs its
-    # vectorised loop body only for trip counts of 16 and more
-    npad = (npt + 15) // 16 * 16
-    # point data as rows of the scratch array, indexed in 2-D (row views would cost a reference count each)
-    if buf.shape[0] < _NROWS or buf.shape[1] < npad:
-        raise ValueError("ehl_ellipse_traction_into: scratch array smaller than ehl_scratch(xi.size, zeta.size)")
-    for r in range(_NROWS):
-        for n in range(npt, npad):
-            buf[r, n] = 0.0
-    n = 0
-    for i in range(nx):
-        x = a * xi[i]
-        w2 = 1.0 - xi[i] * xi[i]
+    npad = sc.shape[1]
+    for n in range(npad):
+        xn = sc[_XI, n]
+        zn = sc[_ZETA, n]
+        x = a * xn
+        w2 = 1.0 - xn * xn
         w = math.sqrt(w2)
-        if curv:
-            rho = math.sqrt(R_def * R_def - x * x) + c0
-        else:
-            rho = hh
+        rho = math.sqrt(R_def * R_def - x * x) + c0 if curv else hh
         d = rho - hh
-        vt_x = vs_t - w_spin * x + w_roll_m * d
-        vm_x = vs_m - w_roll_t * d
-        wi = pab * w2 * wxi[i]
-        bw = b * w
-        for j in range(ny):
-            y = bw * zeta[j]
-            p = p_max * w * math.sqrt(1.0 - zeta[j] * zeta[j])     # local Hertz pressure
-            buf[_VT, n] = vt_x
-            buf[_VM, n] = vm_x + w_spin * y
-            buf[_XS, n] = x
-            buf[_YS, n] = y
-            buf[_RH, n] = rho
-            buf[_PP, n] = p
-            # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear force
-            # tau dA = tau * (wi wzeta[j] / p)
-            buf[_WQ, n] = wi * wzeta[j] / p if p > 0.0 else 0.0
-            buf[_SI, n] = bw + sgn * y                          # distance from the inlet edge
-            n += 1
+        y = b * w * zn
+        p = p_max * w * math.sqrt(1.0 - zn * zn)                 # local Hertz pressure
+        sc[_VT, n] = vs_t - w_spin * x + w_roll_m * d
+        sc[_VM, n] = vs_m - w_roll_t * d + w_spin * y
+        sc[_XS, n] = x
+        sc[_YS, n] = y
+        sc[_RH, n] = rho
+        sc[_PP, n] = p
+        # quadrature weight of the pressure-weighted integral: pab w^2 wxi wzeta = p dA, so the shear force
+        # tau dA = tau * (pab w^2 wxi wzeta / p)
+        sc[_WQ, n] = pab * w2 * sc[_WXI, n] * sc[_WZETA, n] / p if p > 0.0 else 0.0
+        sc[_SI, n] = b * w + sgn * y                               # distance from the inlet edge
     # ---- pass 2: shear stress at every point (vectorised)
     for n in range(npad):
-        vt = buf[_VT, n]
-        vm = buf[_VM, n]
-        p = buf[_PP, n]
+        vt = sc[_VT, n]
+        vm = sc[_VM, n]
+        p = sc[_PP, n]
         v = math.sqrt(vt * vt + vm * vm)
         tau = 0.0
         if fluid:
-            tau = _point_stress(v, f * p, buf[_SI, n], lxh, lne, z, h, u, tau0, tauL0, gamL, Ge, cfilm, cflash,
+            tau = _point_stress(v, f * p, sc[_SI, n], lxh, lne, z, h, u, tau0, tauL0, gamL, Ge, cfilm, cflash,
                                 beta, thermal, kgam)
         if mubl > 0.0:
             tau += mubl * p * mx.tanh_pos(v / vbl)            # asperities' share, boundary friction
-        buf[_DF, n] = tau * buf[_WQ, n] / v if v > 0.0 else 0.0    # shear force per unit sliding speed
+        sc[_DF, n] = tau * sc[_WQ, n] / v if v > 0.0 else 0.0    # shear force per unit sliding speed
     # ---- pass 3: forces, moments and power
     Ft = 0.0
     Fm = 0.0
@@ -366,15 +369,15 @@ def ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin,
     Mt = 0.0
     P = 0.0
     for n in range(npad):
-        r = buf[_DF, n]
-        vt = buf[_VT, n]
-        vm = buf[_VM, n]
-        rho = buf[_RH, n]
+        r = sc[_DF, n]
+        vt = sc[_VT, n]
+        vm = sc[_VM, n]
+        rho = sc[_RH, n]
         ft = -r * vt
         fm = -r * vm
         Ft += ft
         Fm += fm
-        Mn += buf[_YS, n] * fm - buf[_XS, n] * ft
+        Mn += sc[_YS, n] * fm - sc[_XS, n] * ft
         Mm += rho * ft
         Mt -= rho * fm
         P += r * (vt * vt + vm * vm)

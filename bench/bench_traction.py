@@ -89,7 +89,7 @@ def race_contacts(m):
 @njit(cache=True)
 def _traction_loop(n, C, kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy):
     acc = 0.0
-    sc = ehl_scratch(qx.shape[0], qy.shape[0])       # one scratch for all contacts, as in dynamics_kernels.rhs
+    sc = ehl_scratch(qx, qwx, qy, qwy)        # one scratch for all contacts, as in dynamics_kernels.rhs
     for _ in range(n):
         for k in range(C.shape[0]):
             a, b, p = C[k, 0], C[k, 1], C[k, 2]
