@@ -227,7 +227,7 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
                          h / (8.0 * k_oil), cflash, beta, thermal, kgam)
 
 
-@hot
+@hot(inline="always")
 def ehl_scratch(xi, wxi, zeta, wzeta):
     """Point quadrature and work space of ehl_ellipse_traction_into [-], from the nodes and weights of
     contact_kernels.ellipse_quadrature: one column per point (xi[i], zeta[j] for i major, j minor), padded
