@@ -48,7 +48,7 @@ from .jit import hot
 from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics, ellipse_traction,
                               ball_pocket_contact, ball_pocket_lubricated, normal_contact_force, DAMP_LINEAR,
                               TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
-from .ehl_traction import ehl_ellipse_traction
+from .ehl_traction import ehl_ellipse_traction_into, ehl_scratch
 from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 from .churning import cylinder_churning_torque
 from .film import ellipticity_nb, film_parameter_nb, film_thickness_nb
@@ -140,22 +140,23 @@ def _shaft(U, t):
 
 @hot(inline="always")
 def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx,
-                   fny, qx, qwx, qy, qwy):
+                   fny, qx, qwx, qy, qwy, sc):
     """Traction of one ball-race contact on the ball: (F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W]) by
     FASTSIM (kalker), the rheology-based EHL traction with rolling resistance (ehl_traction; Rx, Ry [m]
-    the contact's effective radii) or the ellipse-integrated curve / Coulomb law (contact_kernels)."""
+    the contact's effective radii; sc = ehl_traction.ehl_scratch of the quadrature) or the ellipse-integrated
+    curve / Coulomb law (contact_kernels)."""
     if kalker:
         ft, fm, mn, pl = fastsim_traction_fast(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, PRESSURE_HERTZ)
         # the shear acts on the contact surface, D/2 from the ball centre
         return ft, fm, mn, 0.5 * D * ft, -0.5 * D * fm, pl
     if tmodel == TRACTION_EHL:
-        return ehl_ellipse_traction(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, qx, qwx, qy, qwy)
+        return ehl_ellipse_traction_into(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, sc)
     return ellipse_traction(a, b, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, qx, qwx, qy, qwy)
 
 
 @hot
 def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, a, b, p, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct,
-                     vcz, D, dm, Rdef, Ry, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy):
+                     vcz, D, dm, Rdef, Ry, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc):
     """One ball-raceway contact of the ball (rb, rd, thd, zd, Wr, Wt, Wz: state in its local frame) with a
     race turning at w_race [rad/s] whose curvature centre moves at (vcr, vct, vcz) [m/s]; contact geometry
     (delta [m], normal n, alpha [rad], Hertz Q [N], semi-axes a, b [m], p [Pa]) from contact_kernels.
@@ -181,7 +182,7 @@ def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, a, b, p, rb, rd, thd, zd,
     else:
         Rx = 0.5 * D * (1.0 + D * math.cos(alpha) / dm)
     ft, fm, mn, mm, mt, pl = _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur,
-                                            tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
+                                            tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc)
     return Fn, pdamp, uel, ft, fm, mn, mm, mt, pl, vs_t, vs_m, wsp, ur
 
 
@@ -206,6 +207,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     Z = P[P_Z]
     tmodel = int(tp[P_LUBMODEL]) if P[P_TRACTION] < 0.5 else TRACTION_COULOMB   # lubricated: EHL or curve
     kalker = P[P_TRACTION] > 1.5          # Kalker's simplified theory (FASTSIM), seed 000 Eqs. 7-9
+    sc = ehl_scratch(qx, qwx, qy, qwy)    # EHL traction's point quadrature and scratch, shared by all contacts
     Gc = P[P_GCOMB]
     nuc = P[P_NUCOMB]
     fnx = int(P[P_FS_NX])
@@ -334,11 +336,11 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         (Fni, pd_i, ue_i, fti, fmi, mni, mmi, mti, pli, vsti, vsmi, wspi,
          uri) = _raceway_contact(True, dli, nir, niz, ai, Qi, ai_s, bi_s, pi_, rb, rd, thd, zd, Wr, Wt, Wz, w,
                                  vri, vrt, vrz, D, dm, Rdi, Ryi, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny,
-                                 qx, qwx, qy, qwy)
+                                 qx, qwx, qy, qwy, sc)
         (Fno, pd_o, ue_o, fto, fmo, mno, mmo, mto, plo, vsto, vsmo, wspo,
          uro) = _raceway_contact(False, dlo, nor, noz, ao, Qo, ao_s, bo_s, po, rb, rd, thd, zd, Wr, Wt, Wz, wo,
                                  vor, vot, 0.0, D, dm, Rdo, Ryo, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny,
-                                 qx, qwx, qy, qwy)
+                                 qx, qwx, qy, qwy, sc)
         P_dp += pd_i
         Uel += ue_i
         P_dp += pd_o
@@ -384,7 +386,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             (Fn2, pd2, ue2, ft2, fm2, mn2, mm2, mt2, pl2, vst2, vsm2, wsp2,
              ur2) = _raceway_contact(True, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2, rb, rd, thd, zd, Wr, Wt,
                                      Wz, w, vrr - zib * tdot, vrt, vrz, D, dm, Rdi, Ryi, zeta, mb, kalker, tmodel,
-                                     tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy)
+                                     tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc)
             P_dp += pd2; Uel += ue2
             Fr += -Fn2 * nir2 - fm2 * niz2; Ft += ft2; Fz += -Fn2 * niz2 + fm2 * nir2
             Mr += mn2 * nir2 - mm2 * niz2; Mt += mt2; Mz += mn2 * niz2 + mm2 * nir2
@@ -399,7 +401,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             (Fn2, pd2, ue2, ft2, fm2, mn2, mm2, mt2, pl2, vst2, vsm2, wsp2,
              ur2) = _raceway_contact(False, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2, rb, rd, thd, zd, Wr,
                                      Wt, Wz, wo, vor, vot, 0.0, D, dm, Rdo, Ryo, zeta, mb, kalker, tmodel, tp, Gc,
-                                     nuc, fnx, fny, qx, qwx, qy, qwy)
+                                     nuc, fnx, fny, qx, qwx, qy, qwy, sc)
             P_dp += pd2; Uel += ue2
             Fr += -Fn2 * nor2 - fm2 * noz2; Ft += ft2; Fz += -Fn2 * noz2 + fm2 * nor2
             Mr += mn2 * nor2 - mm2 * noz2; Mt += mt2; Mz += mn2 * noz2 + mm2 * nor2

@@ -91,6 +91,12 @@ _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 (R_LUBMODEL, R_ETA0, R_LNE, R_Z, R_ALPHA, R_BETA, R_TAU0, R_TAUL0, R_GAML, R_GFILM, R_KOIL, R_EPRIME,
  R_GSC11, R_RCK, R_RQ, R_MUBL, R_VBL, R_RR, R_THERMAL, R_KGAM) = range(7, 27)
 N_PARAMS = 27
+# rows of ehl_scratch (one column per quadrature point): the nodes and weights (xi, w_xi, zeta, w_zeta of
+# contact_kernels.ellipse_quadrature), then ehl_ellipse_traction_into's work rows: sliding velocity (t, m),
+# position (x, y, rho), pressure, shear-force weight, distance from the inlet edge, shear force per unit
+# sliding speed
+_XI, _WXI, _ZETA, _WZETA, _VT, _VM, _XS, _YS, _RH, _PP, _WQ, _SI, _DF = range(13)
+_NROWS = 13
 
 
 @hot(inline="always")
@@ -148,24 +154,30 @@ def thermal_eyring_root(lX, K):
     exact to 1e-9 relative; below, three Newton steps on g from s_iso / (1 + K min(s_iso, 1)), with
     s_iso = asinh(X) approximated by X below X = 1e-3 and by ln(X + sqrt(1 + X^2)) above (relative error
     <= 2e-7 either way; Newton removes it). Newton's step g / g' is taken as g w / (2 - w + K w),
-    w = 1 - e^{-2s}: one division. Measured relative error against the converged root
-    (tests/test_jit_flags.py, ln X in [-28, 50]): <= 2e-8 for K <= 3, <= 3e-7 for K <= 10,
-    <= 1.2e-6 for K <= 31.6."""
+    w = 1 - e^{-2s}: one division. The seed, the closed form and the first two Newton steps use the coarse
+    exp / log of bearing_core.mathx (<= 6e-7): Newton's last step, in full precision, squares the
+    iterate's error, so that the root moves by < 1e-10 relative against the same steps in full precision
+    (measured 5e-11; 1.4e-12 for K <= 3). Measured relative error against the converged root (tests/test_jit_flags.py,
+    ln X in [-28, 50]): <= 2e-8 for K <= 3, <= 3e-7 for K <= 10, <= 1.2e-6 for K <= 31.6."""
     a1 = 1.0 / (1.0 + K)
     s0 = (lX + LN2) * a1
-    e0 = mx.exp(-2.0 * s0)
+    e0 = mx.exp_lo(-2.0 * s0)
     big = s0 + e0 * (1.0 + 0.5 * e0) * a1
-    x = mx.exp(lX if lX < 20.0 else 20.0)
-    si = mx.log(x + math.sqrt(1.0 + x * x))
+    x = mx.exp_lo(lX if lX < 20.0 else 20.0)
+    si = mx.log_lo(x + math.sqrt(1.0 + x * x))
     si = x if x < 1e-3 else si
     si = si if lX <= 20.0 else lX + LN2
     s = si / (1.0 + K * (si if si < 1.0 else 1.0))
     s = 1e-300 if s < 1e-300 else s
-    for _ in range(3):
-        om = -mx.expm1(-2.0 * s)                         # w = 1 - e^{-2s}
-        g = s * (1.0 + K) + mx.log(om) - LN2 - lX
+    for _ in range(2):                                   # coarse steps
+        om = -mx.expm1_lo(-2.0 * s)                      # w = 1 - e^{-2s}
+        g = s * (1.0 + K) + mx.log_lo(om) - LN2 - lX
         ds = g * om / (2.0 - om + K * om)                # g / g', g' = (2 - w) / w + K
         s = 0.1 * s if ds >= 0.9 * s else s - ds
+    om = -mx.expm1(-2.0 * s)                             # last step in full precision
+    g = s * (1.0 + K) + mx.log(om) - LN2 - lX
+    ds = g * om / (2.0 - om + K * om)
+    s = 0.1 * s if ds >= 0.9 * s else s - ds
     return s if not s0 > 5.0 else big
 
 
@@ -214,9 +226,41 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
                          h / (8.0 * k_oil), cflash, beta, thermal, kgam)
 
 
+@hot(inline="always")
+def ehl_scratch(xi, wxi, zeta, wzeta):
+    """Point quadrature and work space of ehl_ellipse_traction_into [-], from the nodes and weights of
+    contact_kernels.ellipse_quadrature: one column per point (xi[i], zeta[j] for i major, j minor), padded
+    to a multiple of 16 columns with zero weight and zero pressure (zeta = 1) (LLVM runs its vectorised
+    loop bodies only for trip counts of 16 and more); rows _XI, _WXI, _ZETA, _WZETA the nodes and
+    weights, the others overwritten by each call. Build once per quadrature and thread, reuse for every
+    contact."""
+    nx = xi.shape[0]
+    ny = zeta.shape[0]
+    npt = nx * ny
+    buf = np.zeros((_NROWS, (npt + 15) // 16 * 16))
+    for n in range(npt, buf.shape[1]):
+        buf[_ZETA, n] = 1.0
+    for i in range(nx):
+        for j in range(ny):
+            buf[_XI, i * ny + j] = xi[i]
+            buf[_WXI, i * ny + j] = wxi[i]
+            buf[_ZETA, i * ny + j] = zeta[j]
+            buf[_WZETA, i * ny + j] = wzeta[j]
+    return buf
+
+
 @hot
 def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
                          params, xi, wxi, zeta, wzeta):
+    """ehl_ellipse_traction_into with the quadrature (xi, wxi, zeta, wzeta) of
+    contact_kernels.ellipse_quadrature, as contact_kernels.ellipse_traction takes it (same outputs)."""
+    return ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t,
+                                     u_roll, params, ehl_scratch(xi, wxi, zeta, wzeta))
+
+
+@hot
+def ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
+                              params, sc):
     """Rheology-based EHL traction on the ball, integrated over the Hertz ellipse (module docstring).
 
     Same contact geometry, kinematics, quadrature and outputs as contact_kernels.ellipse_traction
@@ -224,10 +268,14 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     dissipated power), plus Rx, Ry [m] the effective radii of the contact in and across the rolling
     direction (for the film thickness and the rolling force). params: contact_kernels.traction_params
     with the oil's rheology (lubricants.rheology_traction_params). The EHL rolling-resistance moment is
-    included in M_m and in the power.
+    included in M_m and in the power. sc: the quadrature as ehl_scratch (its work rows are overwritten:
+    one per thread).
 
-    Three passes over the quadrature points: their sliding field, pressure and weights; the shear law
-    (_point_stress, branch-free, vectorised by LLVM over the points); the sums of forces and moments."""
+    Three passes over the quadrature points, each vectorised by LLVM over the points (branch-free in the
+    point's values, indexed in 2-D: row views would cost a reference count each): their sliding field,
+    pressure and weights; the shear law (_point_stress); the sums of forces and moments."""
+    if sc.shape[0] != _NROWS:
+        raise ValueError("ehl_ellipse_traction_into: sc is not an ehl_scratch array")
     if not (p_max > 0.0 and a > 0.0 and b > 0.0):
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     # ---- per contact (all parameters as scalars from here on)
@@ -278,61 +326,40 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     if curv:
         c0 = math.sqrt(hh * hh - a * a) - math.sqrt(R_def * R_def - a * a)
     pab = p_max * a * b
-    nx = xi.shape[0]
-    ny = zeta.shape[0]
-    npt = nx * ny
-    # padded to a multiple of 16 points with zero sliding, pressure and weight (zero stress): LLVM runs its
-    # vectorised loop body only for trip counts of 16 and more
-    npad = (npt + 15) // 16 * 16
-    buf = np.empty((9, npad))
-    buf[:, npt:] = 0.0
-    vt = buf[0]
-    vm = buf[1]
-    xs = buf[2]
-    ys = buf[3]
-    rh = buf[4]
-    pp = buf[5]
-    wq = buf[6]
-    si = buf[7]
-    dF = buf[8]
-    n = 0
-    for i in range(nx):
-        x = a * xi[i]
-        w2 = 1.0 - xi[i] * xi[i]
+    npad = sc.shape[1]
+    for n in range(npad):
+        xn = sc[_XI, n]
+        zn = sc[_ZETA, n]
+        x = a * xn
+        w2 = 1.0 - xn * xn
         w = math.sqrt(w2)
-        if curv:
-            rho = math.sqrt(R_def * R_def - x * x) + c0
-        else:
-            rho = hh
+        rho = math.sqrt(R_def * R_def - x * x) + c0 if curv else hh
         d = rho - hh
-        vt_x = vs_t - w_spin * x + w_roll_m * d
-        vm_x = vs_m - w_roll_t * d
-        wi = pab * w2 * wxi[i]
-        bw = b * w
-        for j in range(ny):
-            y = bw * zeta[j]
-            p = p_max * w * math.sqrt(1.0 - zeta[j] * zeta[j])     # local Hertz pressure
-            vt[n] = vt_x
-            vm[n] = vm_x + w_spin * y
-            xs[n] = x
-            ys[n] = y
-            rh[n] = rho
-            pp[n] = p
-            # quadrature weight of the pressure-weighted integral: wi wzeta[j] = p dA, so the shear force
-            # tau dA = tau * (wi wzeta[j] / p)
-            wq[n] = wi * wzeta[j] / p if p > 0.0 else 0.0
-            si[n] = bw + sgn * y                                # distance from the inlet edge
-            n += 1
+        y = b * w * zn
+        p = p_max * w * math.sqrt(1.0 - zn * zn)                 # local Hertz pressure
+        sc[_VT, n] = vs_t - w_spin * x + w_roll_m * d
+        sc[_VM, n] = vs_m - w_roll_t * d + w_spin * y
+        sc[_XS, n] = x
+        sc[_YS, n] = y
+        sc[_RH, n] = rho
+        sc[_PP, n] = p
+        # quadrature weight of the pressure-weighted integral: pab w^2 wxi wzeta = p dA, so the shear force
+        # tau dA = tau * (pab w^2 wxi wzeta / p)
+        sc[_WQ, n] = pab * w2 * sc[_WXI, n] * sc[_WZETA, n] / p if p > 0.0 else 0.0
+        sc[_SI, n] = b * w + sgn * y                               # distance from the inlet edge
     # ---- pass 2: shear stress at every point (vectorised)
     for n in range(npad):
-        v = math.sqrt(vt[n] * vt[n] + vm[n] * vm[n])
+        vt = sc[_VT, n]
+        vm = sc[_VM, n]
+        p = sc[_PP, n]
+        v = math.sqrt(vt * vt + vm * vm)
         tau = 0.0
         if fluid:
-            tau = _point_stress(v, f * pp[n], si[n], lxh, lne, z, h, u, tau0, tauL0, gamL, Ge, cfilm, cflash,
+            tau = _point_stress(v, f * p, sc[_SI, n], lxh, lne, z, h, u, tau0, tauL0, gamL, Ge, cfilm, cflash,
                                 beta, thermal, kgam)
         if mubl > 0.0:
-            tau += mubl * pp[n] * mx.tanh_pos(v / vbl)        # asperities' share, boundary friction
-        dF[n] = tau * wq[n] / v if v > 0.0 else 0.0          # shear force per unit sliding speed
+            tau += mubl * p * mx.tanh_pos(v / vbl)            # asperities' share, boundary friction
+        sc[_DF, n] = tau * sc[_WQ, n] / v if v > 0.0 else 0.0    # shear force per unit sliding speed
     # ---- pass 3: forces, moments and power
     Ft = 0.0
     Fm = 0.0
@@ -341,15 +368,18 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
     Mt = 0.0
     P = 0.0
     for n in range(npad):
-        r = dF[n]
-        ft = -r * vt[n]
-        fm = -r * vm[n]
+        r = sc[_DF, n]
+        vt = sc[_VT, n]
+        vm = sc[_VM, n]
+        rho = sc[_RH, n]
+        ft = -r * vt
+        fm = -r * vm
         Ft += ft
         Fm += fm
-        Mn += ys[n] * fm - xs[n] * ft
-        Mm += rh[n] * ft
-        Mt -= rh[n] * fm
-        P += r * (vt[n] * vt[n] + vm[n] * vm[n])
+        Mn += sc[_YS, n] * fm - sc[_XS, n] * ft
+        Mm += rho * ft
+        Mt -= rho * fm
+        P += r * (vt * vt + vm * vm)
     # ---- EHL rolling resistance: moment F_R Rx opposing the relative rolling rotation about m
     if params[R_RR] > 0.5:
         FR = _rolling_force_ln(Ep, Rx, k, lnU, lnG, lnW) * f if eta0 > 0.0 else 0.0

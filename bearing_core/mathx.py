@@ -11,13 +11,22 @@ Ranges and error bounds (relative to the exact value; measured by tests/test_mat
     asinh_pos(x) x in [0, 1e150]                                                          <= 1e-15
     tanh_pos(x)  x >= 0                                                                   <= 5e-15
 
+Coarse variants, for the early iterates of Newton solves whose last step uses the functions above (the
+last step squares the iterate's error, so that their error does not reach the root):
+
+    exp_lo(x)    as exp                                                                    <= 2e-7
+    expm1_lo(x)  as expm1                                                                  <= 6e-7
+    log_lo(x)    as log                                                                    <= 1e-7
+
 Methods (standard, as in fdlibm / Cody & Waite, "Software Manual for the Elementary Functions", 1980):
 exp and expm1: x = k ln2 + r, |r| <= ln2 / 2 (ln2 split into a high and a low part), t = e^r - 1 by its
 Taylor series to r^13 (truncation r^14 / 14! < 5e-18), 2^k built from the exponent bits; exp = 2^k t + 2^k,
 expm1 = 2^k t + (2^k - 1) (exact for k = 0, so no cancellation near 0); log: x = 2^e m with m in
 [sqrt(1/2), sqrt(2)), log m = 2 atanh(s), s = (m - 1) / (m + 1), |s| <= 0.1716, series to s^19 (truncation < 1e-16); log1p(y) =
 log(u) + (y - (u - 1)) / u with u = 1 + y rounded (the correction restores the bits lost in 1 + y);
-asinh(x) = log1p(x + x^2 / (1 + sqrt(1 + x^2))); tanh(x) = -expm1(-2x) / (2 + expm1(-2x)).
+asinh(x) = log1p(x + x^2 / (1 + sqrt(1 + x^2))); tanh(x) = -expm1(-2x) / (2 + expm1(-2x)). The coarse
+variants use the same reductions with the series cut at r^6 (truncation r^7 / 7! < 1.2e-7, relative
+to e^r - 1 r^6 / 7! < 3.5e-7) and at s^7 (2 s^9 / 9 < 3e-8).
 """
 from __future__ import annotations
 
@@ -84,6 +93,39 @@ def _exp_parts(x):
 
 
 @_mx
+def _exp_reduce(x):
+    """(2^k, r) with x = k ln2 + r, |r| <= ln2 / 2, x clamped to [-708, 708]; r = NaN for x = NaN."""
+    xc = min(max(x, -708.0), 708.0)
+    kf = math.floor(xc * _INV_LN2 + 0.5)
+    r = (xc - kf * _LN2_HI) - kf * _LN2_LO
+    if x != x:
+        r = x
+    return _bits_f64((np.int64(kf) + 1023) << 52), r
+
+
+@_mx
+def _exp_parts_lo(x):
+    """_exp_parts with the series cut at r^6 (coarse variants)."""
+    s, r = _exp_reduce(x)
+    return s, r * (1.0 + r * (1.0 / 2.0 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (
+        1.0 / 720.0))))))
+
+
+@_mx
+def exp_lo(x):
+    """e^x to 2e-7 relative, x clamped to [-708, 708] (module docstring: coarse variants)."""
+    s, t = _exp_parts_lo(x)
+    return s * t + s
+
+
+@_mx
+def expm1_lo(x):
+    """e^x - 1 to 6e-7 relative (module docstring: coarse variants)."""
+    s, t = _exp_parts_lo(x)
+    return s * t + (s - 1.0)
+
+
+@_mx
 def exp(x):
     """e^x, x clamped to [-708, 708] (module docstring)."""
     s, t = _exp_parts(x)
@@ -108,8 +150,8 @@ def _log1p_reduced(f):
 
 
 @_mx
-def log(x):
-    """Natural logarithm of x in [2.3e-308, 1.8e308] (module docstring)."""
+def _log_reduce(x):
+    """(e, m) with x = 2^e m, m in [sqrt(1/2), sqrt(2)), x taken as >= 2.3e-308; m = NaN for x = NaN."""
     xc = max(x, _TINY)
     bits = _f64_bits(xc)
     e = (bits >> 52) - 1023
@@ -119,7 +161,25 @@ def log(x):
     ef = float(e + 1) if big else float(e)
     if x != x:
         m = x
+    return ef, m
+
+
+@_mx
+def log(x):
+    """Natural logarithm of x in [2.3e-308, 1.8e308] (module docstring)."""
+    ef, m = _log_reduce(x)
     return ef * _LN2_HI + (_log1p_reduced(m - 1.0) + ef * _LN2_LO)
+
+
+@_mx
+def log_lo(x):
+    """Natural logarithm to 1e-7 relative, x as for log (module docstring: coarse variants)."""
+    ef, m = _log_reduce(x)
+    f = m - 1.0
+    s = f / (2.0 + f)
+    z = s * s
+    return ef * _LN2_HI + ((2.0 * s + 2.0 * s * (z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0))))) +
+                           ef * _LN2_LO)
 
 
 @_mx

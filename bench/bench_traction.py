@@ -35,6 +35,7 @@ from bearing_core import dynamics_kernels as K
 from bearing_core.contact_kernels import (TRACTION_COULOMB, ball_race_contact, contact_kinematics,
                                           ellipse_quadrature)
 from bearing_core.dynamics import DynamicModel, DynamicsOptions
+from bearing_core.ehl_traction import ehl_scratch
 from bearing_core.geometry import load_preset
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -88,13 +89,14 @@ def race_contacts(m):
 @njit(cache=True)
 def _traction_loop(n, C, kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy):
     acc = 0.0
+    sc = ehl_scratch(qx, qwx, qy, qwy)        # one scratch for all contacts, as in dynamics_kernels.rhs
     for _ in range(n):
         for k in range(C.shape[0]):
             a, b, p = C[k, 0], C[k, 1], C[k, 2]
             Q = 2.0 / 3.0 * math.pi * a * b * p
             r = K._race_traction(kalker, a, b, Q, p, C[k, 3], C[k, 4], C[k, 5], C[k, 6], C[k, 7], C[k, 8],
                                  C[k, 9], C[k, 10], C[k, 11], C[k, 12], tmodel, tp, Gc, nuc, fnx, fny,
-                                 qx, qwx, qy, qwy)
+                                 qx, qwx, qy, qwy, sc)
             acc += r[0] + r[5]
     return acc
 

@@ -43,6 +43,13 @@ CASES = {
     "asinh_pos": (M.asinh_pos, np.arcsinh, np.concatenate([_logspace(-300, 150, 20000), RNG.uniform(0, 3, 5000)]),
                   1e-15),
     "tanh_pos": (M.tanh_pos, np.tanh, np.concatenate([_logspace(-300, 3, 20000), RNG.uniform(0, 3, 5000)]), 5e-15),
+    # coarse variants
+    "exp_lo": (M.exp_lo, np.exp, np.concatenate([RNG.uniform(-708, 708, 20000), RNG.uniform(-1, 1, 5000),
+                                                 RNG.uniform(-1e-6, 1e-6, 2000)]), 2e-7),
+    "expm1_lo": (M.expm1_lo, np.expm1, np.concatenate([RNG.uniform(-700, 700, 10000), RNG.uniform(-0.4, 0.4, 10000),
+                                                       _logspace(-300, 0, 3000), -_logspace(-300, 0, 3000)]), 6e-7),
+    "log_lo": (M.log_lo, np.log, np.concatenate([_logspace(-307, 308, 20000), RNG.uniform(0.5, 2.0, 10000),
+                                                 1.0 + RNG.uniform(-1e-6, 1e-6, 3000)]), 1e-7),
 }
 
 
