@@ -32,7 +32,7 @@ from .hertz import ROW_K_LOAD, hertz_lookup_alpha
 from .jit import hot
 from .quasistatic_kernels import (CTRL_HYBRID, CTRL_INNER, CTRL_OUTER, G_A, G_ALPHA0, G_D, G_DM, G_FI, G_FO, G_INERTIA,
                                   G_MASS, G_MU, G_RI, G_RIG, G_WOUT, K_REG, LINE_SEARCH_FAILED, NOT_CONVERGED,
-                                  NS, OK, S_FC, S_QI, S_QO, S_RR, S_RZ)
+                                  NS, OK, S_BETA, S_FC, S_QI, S_QO, S_RR, S_RZ)
 
 G_EO, G_EI, N_GEO = qk.N_GEO, qk.N_GEO + 1, qk.N_GEO + 2
 # per-contact rows after the two-point rows: loads, angles, deflections, friction forces, weights of
@@ -44,12 +44,9 @@ PAIR_ROWS = {"Qi4": S4_QI1, "Qo4": S4_QO1, "ai4": S4_AI1, "ao4": S4_AO1, "di4": 
 
 
 @hot(inline="always")
-def _hertz_q(valid, d, K):
-    """Contact load of one arc [N]: K d^1.5 when compressed, the tension spring K_REG d when separated,
-    0 when the contact point is not on the arc."""
-    if not valid:
-        return 0.0
-    return K * d * math.sqrt(d) if d > 0.0 else K_REG * d
+def _exp_neg(x):
+    """exp(x) for x <= 0, 1 at x = 0 without the call (the deflection softmax of the most compressed arc)."""
+    return 1.0 if x == 0.0 else math.exp(x)
 
 
 @hot(inline="always")
@@ -61,49 +58,66 @@ def _weights(v1, v2, Q1, Q2, d1, d2, D):
         dm_ = d1
     if v2:
         dm_ = max(dm_, d2)
-    w1 = max(Q1, 0.0) + 1e-9 * math.exp(min(0.0, d1 - dm_) / (1e-6 * D)) if v1 else 0.0
-    w2 = max(Q2, 0.0) + 1e-9 * math.exp(min(0.0, d2 - dm_) / (1e-6 * D)) if v2 else 0.0
+    w1 = max(Q1, 0.0) + 1e-9 * _exp_neg(min(0.0, d1 - dm_) / (1e-6 * D)) if v1 else 0.0
+    w2 = max(Q2, 0.0) + 1e-9 * _exp_neg(min(0.0, d2 - dm_) / (1e-6 * D)) if v2 else 0.0
     ws = w1 + w2
     return w1 / ws, w2 / ws
 
 
+@hot(inline="always")
+def _arc(vr, vz, rc, f, D, off, side, sg, tab, dal, full):
+    """One arc: ball centre minus arc centre (vr, vz) [m], arc radius rc [m]. Returns (n_r, n_z, delta,
+    alpha, valid, Q): unit normal from the arc centre, deflection, contact angle (atan2 of sg n; on an
+    invalid arc computed only if full, else 0: it then enters nothing), whether the contact point lies
+    on the arc's own side of the groove mid-plane (side +1: f D sin(alpha) >= e, -1: < -e) and the load
+    (K delta^1.5, K_REG delta when separated, 0 when invalid)."""
+    L = math.sqrt(vr * vr + vz * vz)
+    nr = vr / L
+    nz = vz / L
+    d = L - rc
+    sn = sg * f * D * nz
+    valid = sn >= off if side > 0 else sn < -off
+    a = math.atan2(sg * nz, sg * nr) if (valid or full) else 0.0
+    Q = 0.0
+    if valid:
+        Q = hertz_lookup_alpha(tab, 0.0, dal, a, ROW_K_LOAD) * d * math.sqrt(d) if d > 0.0 else K_REG * d
+    return nr, nz, d, a, valid, Q
+
+
+@hot(inline="always")
+def _mean_dir(w1, w2, a1, a2, c1, s1, c2, s2):
+    """cos and sin of the weighted contact angle w1 a1 + w2 a2; from the normals (c_k, s_k) = (cos a_k,
+    sin a_k) where one weight is 0 (one valid arc: the angle itself)."""
+    if w2 == 0.0:
+        return c1, s1
+    if w1 == 0.0:
+        return c2, s2
+    a = w1 * a1 + w2 * a2
+    return math.cos(a), math.sin(a)
+
+
 @hot
-def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, tab_i, tab_o, dal):
+def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, tab_i, tab_o, dal, full):
     """State of one ball with centre (Xr, Xz) [m] relative to the centre of outer arc 1, inner arc
     centres (cr1, cz1), (cr2, cz2) [m]. Returns two tuples: the two-point state in the order of the rows
-    S_* (Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, beta, wm, wR, Fc, Mg, lam_i, oc, Fi, Fo) and the per-contact
-    values in the order of the rows S4_*."""
+    S_* (Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, bx, wm, wR, Fc, Mg, lam_i, oc, Fi, Fo) and the per-contact
+    values in the order of the rows S4_*, and by: the attitude angle is beta = atan2(by, bx) (ball_states4;
+    the Newton iterations do not need it). full: also the angles of invalid arcs (recorded states)."""
     D = geo[G_D]
     dm = geo[G_DM]
     eo = geo[G_EO]
     ei = geo[G_EI]
-    ro = (geo[G_FO] - 0.5) * D
-    ri = (geo[G_FI] - 0.5) * D
-    # outer arcs 1, 2: centres (0, 0), (0, 2 e_o)
-    vz2 = Xz - 2.0 * eo
-    lo1 = math.hypot(Xr, Xz)
-    lo2 = math.hypot(Xr, vz2)
-    nor1, noz1 = Xr / lo1, Xz / lo1
-    nor2, noz2 = Xr / lo2, vz2 / lo2
-    do1, do2 = lo1 - ro, lo2 - ro
-    ao1, ao2 = math.atan2(noz1, nor1), math.atan2(noz2, nor2)
-    vo1 = geo[G_FO] * D * noz1 >= eo
-    vo2 = geo[G_FO] * D * noz2 < -eo
-    # inner arcs 1, 2
-    dvr1, dvz1 = Xr - cr1, Xz - cz1
-    dvr2, dvz2 = Xr - cr2, Xz - cz2
-    li1 = math.hypot(dvr1, dvz1)
-    li2 = math.hypot(dvr2, dvz2)
-    nir1, niz1 = dvr1 / li1, dvz1 / li1
-    nir2, niz2 = dvr2 / li2, dvz2 / li2
-    di1, di2 = li1 - ri, li2 - ri
-    ai1, ai2 = math.atan2(-niz1, -nir1), math.atan2(-niz2, -nir2)
-    vi1 = -geo[G_FI] * D * niz1 >= ei
-    vi2 = -geo[G_FI] * D * niz2 < -ei
-    Qi1 = _hertz_q(vi1, di1, hertz_lookup_alpha(tab_i, 0.0, dal, ai1, ROW_K_LOAD))
-    Qi2 = _hertz_q(vi2, di2, hertz_lookup_alpha(tab_i, 0.0, dal, ai2, ROW_K_LOAD))
-    Qo1 = _hertz_q(vo1, do1, hertz_lookup_alpha(tab_o, 0.0, dal, ao1, ROW_K_LOAD))
-    Qo2 = _hertz_q(vo2, do2, hertz_lookup_alpha(tab_o, 0.0, dal, ao2, ROW_K_LOAD))
+    fo = geo[G_FO]
+    fi = geo[G_FI]
+    # outer arcs 1, 2: centres (0, 0), (0, 2 e_o); inner arcs: (cr_k, cz_k); normal n_i from the inner
+    # centre, contact angle of an inner arc atan2(-n_iz, -n_ir)
+    nor1, noz1, do1, ao1, vo1, Qo1 = _arc(Xr, Xz, (fo - 0.5) * D, fo, D, eo, 1, 1.0, tab_o, dal, full)
+    nor2, noz2, do2, ao2, vo2, Qo2 = _arc(Xr, Xz - 2.0 * eo, (fo - 0.5) * D, fo, D, eo, -1, 1.0, tab_o, dal,
+                                          full)
+    nir1, niz1, di1, ai1, vi1, Qi1 = _arc(Xr - cr1, Xz - cz1, (fi - 0.5) * D, fi, D, ei, 1, -1.0, tab_i, dal,
+                                          full)
+    nir2, niz2, di2, ai2, vi2, Qi2 = _arc(Xr - cr2, Xz - cz2, (fi - 0.5) * D, fi, D, ei, -1, -1.0, tab_i, dal,
+                                          full)
     wi1, wi2 = _weights(vi1, vi2, Qi1, Qi2, di1, di2, D)
     wo1, wo2 = _weights(vo1, vo2, Qo1, Qo2, do1, do2, D)
     ai = wi1 * ai1 + wi2 * ai2
@@ -119,23 +133,29 @@ def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, tab_i, tab_o,
         oc = oc_in or di_e <= 0.0        # balls without inner contact roll on the outer race only
     else:
         oc = oc_in
-    # kinematics.kinematics at the weighted angles (raceway control, pure rolling)
+    # kinematics.kinematics at the weighted angles (raceway control, pure rolling), cos / sin of the
+    # angles from the normals where one arc of a ring carries all the weight
+    cai, sai = _mean_dir(wi1, wi2, ai1, ai2, -nir1, -niz1, -nir2, -niz2)
+    cao, sao = _mean_dir(wo1, wo2, ao1, ao2, nor1, noz1, nor2, noz2)
     gam = D / dm
-    cai, sai = math.cos(ai), math.sin(ai)
-    cao, sao = math.cos(ao), math.sin(ao)
     if control == CTRL_OUTER or (control == CTRL_HYBRID and oc):
-        beta = math.atan2(sao, cao + gam)
+        bx = cao + gam
+        by = sao
     else:
-        beta = math.atan2(sai, cai - gam)
+        bx = cai - gam
+        by = sai
+    hb = math.sqrt(bx * bx + by * by)
+    cb = bx / hb                           # cos(beta), sin(beta)
+    sb = by / hb
     gi = D * cai / dm
     go = D * cao / dm
-    ci = math.cos(ai - beta)
-    co = math.cos(ao - beta)
+    ci = cai * cb + sai * sb               # cos(ai - beta)
+    co = cao * cb + sao * sb               # cos(ao - beta)
     wm = omega * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci / co)
     wR = -wm * dm * (1.0 + go) / (D * co)
     wma = wm + geo[G_WOUT]                 # absolute orbital speed
     Fc = 0.5 * geo[G_MASS] * dm * wma * wma
-    Mg = geo[G_INERTIA] * wma * wR * math.sin(beta) * -1.0
+    Mg = geo[G_INERTIA] * wma * wR * sb * -1.0
     lam_i = 0.0 if oc else 1.0
     lam_o = 2.0 - lam_i
     Fi = qk._coulomb(lam_i * Mg / D, geo[G_MU] * (max(Qi1, 0.0) + max(Qi2, 0.0)))
@@ -148,16 +168,17 @@ def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, tab_i, tab_o,
     ki = 1 if wi2 > wi1 else 0             # dominant arc (numpy.argmax: the first on a tie)
     ko = 1 if wo2 > wo1 else 0
     two = (Rr, Rz, Qi2 if ki else Qi1, Qo2 if ko else Qo1, di2 if ki else di1, do2 if ko else do1, ai, ao,
-           beta, wm, wR, Fc, Mg, lam_i, 1.0 if oc else 0.0, Fi, Fo)
+           bx, wm, wR, Fc, Mg, lam_i, 1.0 if oc else 0.0, Fi, Fo)
     four = (Qi1, Qi2, Qo1, Qo2, ai1, ai2, ao1, ao2, di1, di2, do1, do2, Fi1, Fi2, Fo1, Fo2, wi1, wi2, wo1, wo2,
             float(ki), float(ko))
-    return two, four
+    return two, four, by
 
 
 @hot(inline="always")
 def _ball_rq(xr, xz, j, Cr, Cz, omega, ocj, control, geo, tab_i, tab_o, dal):
     """(Rr, Rz, Qi, Qo) of ball j placed at (xr, xz) [m]."""
-    r = _ball4(xr, xz, Cr[j, 0], Cz[j, 0], Cr[j, 1], Cz[j, 1], omega, ocj, control, geo, tab_i, tab_o, dal)[0]
+    r = _ball4(xr, xz, Cr[j, 0], Cz[j, 0], Cr[j, 1], Cz[j, 1], omega, ocj, control, geo, tab_i, tab_o, dal,
+               False)[0]
     return r[0], r[1], r[2], r[3]
 
 
@@ -165,10 +186,11 @@ def _ball_rq(xr, xz, j, Cr, Cz, omega, ocj, control, geo, tab_i, tab_o, dal):
 def ball_states4(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S):
     """All balls' states into S (NS4, Z). X (Z, 2) [m]; Cr, Cz (Z, 2) [m]; oc (Z,) bool."""
     for j in range(X.shape[0]):
-        two, four = _ball4(X[j, 0], X[j, 1], Cr[j, 0], Cz[j, 0], Cr[j, 1], Cz[j, 1], omega, oc[j], control,
-                           geo, tab_i, tab_o, dal)
+        two, four, by = _ball4(X[j, 0], X[j, 1], Cr[j, 0], Cz[j, 0], Cr[j, 1], Cz[j, 1], omega, oc[j], control,
+                               geo, tab_i, tab_o, dal, True)
         for k in range(NS):
             S[k, j] = two[k]
+        S[S_BETA, j] = math.atan2(by, two[S_BETA])      # attitude angle from (bx, by)
         for k in range(NS4 - NS):
             S[NS + k, j] = four[k]
 

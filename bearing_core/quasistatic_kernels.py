@@ -84,6 +84,8 @@ def _coulomb(F, Fmax):
         x = F / Fmax
         x2 = x * x
         x4 = x2 * x2
+        if abs(x4) < 3e-9:              # x^8 < 1e-17: 1 + x^8 rounds to 1, F itself without the roots
+            return F
         return F / math.sqrt(math.sqrt(math.sqrt(1.0 + x4 * x4)))
     return 0.0
 
