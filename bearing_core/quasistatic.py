@@ -407,7 +407,7 @@ class FourPointQuasiStaticModel(QuasiStaticModel):
         S = np.empty((q4k.NS4, self.g.Z))
         q4k.ball_states4(np.ascontiguousarray(X, dtype=float), np.ascontiguousarray(Cr, dtype=float),
                          np.ascontiguousarray(Cz, dtype=float), float(omega), np.asarray(outer_ctrl, dtype=bool),
-                         ctrl, geo, ti, to, dal, S)
+                         ctrl, geo, q4k.k_table(ti, to), dal, S)
         return self._states(S)
 
     def _states(self, S):

@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from . import quasistatic_kernels as qk
-from .hertz import ROW_K_LOAD, hertz_lookup_alpha
+from .hertz import ROW_K_LOAD
 from .jit import hot
 from .quasistatic_kernels import (CTRL_HYBRID, CTRL_INNER, CTRL_OUTER, G_A, G_ALPHA0, G_D, G_DM, G_FI, G_FO, G_INERTIA,
                                   G_MASS, G_MU, G_RI, G_RIG, G_WOUT, K_REG, LINE_SEARCH_FAILED, NOT_CONVERGED,
@@ -43,10 +43,48 @@ PAIR_ROWS = {"Qi4": S4_QI1, "Qo4": S4_QO1, "ai4": S4_AI1, "ao4": S4_AO1, "di4": 
              "Fi4": S4_FI1, "Fo4": S4_FO1, "wi": S4_WI1, "wo": S4_WO1}
 
 
+@hot
+def k_table(tab_i, tab_o):
+    """(2, n) table of the Hertz load-deflection constant K(alpha) of the inner (row 0) and outer (row 1)
+    race, from the HertzTable arrays: the only row the ball kernel looks up, in one array (one reference
+    count per call of the ball kernel instead of three arrays)."""
+    n = tab_i.shape[1]
+    Kt = np.empty((2, n))
+    for k in range(n):
+        Kt[0, k] = tab_i[ROW_K_LOAD, k]
+        Kt[1, k] = tab_o[ROW_K_LOAD, k]
+    return Kt
+
+
+@hot(inline="always")
+def _k_of(Kt, race, dal, alpha):
+    """K [N/m^1.5] of race 0 (inner) / 1 (outer) at contact angle alpha: hertz.hertz_lookup_alpha on Kt
+    (linear in |alpha| on the grid from 0, clamped to its ends, NaN to the first node)."""
+    n = Kt.shape[1]
+    x = (abs(alpha) - 0.0) / dal
+    if not x > 0.0:
+        return Kt[race, 0]
+    if x >= n - 1:
+        return Kt[race, n - 1]
+    j = int(x)
+    w = x - j
+    return (1.0 - w) * Kt[race, j] + w * Kt[race, j + 1]
+
+
+@hot(inline="always")
+def _geo_tuple(geo):
+    """The geometry array as a tuple (passed by value to the ball kernel: no reference counting)."""
+    return (geo[0], geo[1], geo[2], geo[3], geo[4], geo[5], geo[6], geo[7], geo[8], geo[9], geo[10], geo[11],
+            geo[12], geo[13], geo[14])
+
+
 @hot(inline="always")
 def _exp_neg(x):
-    """exp(x) for x <= 0, 1 at x = 0 without the call (the deflection softmax of the most compressed arc)."""
-    return 1.0 if x == 0.0 else math.exp(x)
+    """exp(x) for x <= 0 (the deflection softmax): 1 at x = 0 and 0 below -746, where exp underflows to 0
+    (without the call and libm's underflow error path)."""
+    if x == 0.0:
+        return 1.0
+    return math.exp(x) if x > -746.0 else 0.0
 
 
 @hot(inline="always")
@@ -65,7 +103,7 @@ def _weights(v1, v2, Q1, Q2, d1, d2, D):
 
 
 @hot(inline="always")
-def _arc(vr, vz, rc, f, D, off, side, sg, tab, dal, full):
+def _arc(vr, vz, rc, f, D, off, side, sg, Kt, race, dal, full):
     """One arc: ball centre minus arc centre (vr, vz) [m], arc radius rc [m]. Returns (n_r, n_z, delta,
     alpha, valid, Q): unit normal from the arc centre, deflection, contact angle (atan2 of sg n; on an
     invalid arc computed only if full, else 0: it then enters nothing), whether the contact point lies
@@ -80,7 +118,7 @@ def _arc(vr, vz, rc, f, D, off, side, sg, tab, dal, full):
     a = math.atan2(sg * nz, sg * nr) if (valid or full) else 0.0
     Q = 0.0
     if valid:
-        Q = hertz_lookup_alpha(tab, 0.0, dal, a, ROW_K_LOAD) * d * math.sqrt(d) if d > 0.0 else K_REG * d
+        Q = _k_of(Kt, race, dal, a) * d * math.sqrt(d) if d > 0.0 else K_REG * d
     return nr, nz, d, a, valid, Q
 
 
@@ -97,7 +135,7 @@ def _mean_dir(w1, w2, a1, a2, c1, s1, c2, s2):
 
 
 @hot
-def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, tab_i, tab_o, dal, full):
+def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, Kt, dal, full):
     """State of one ball with centre (Xr, Xz) [m] relative to the centre of outer arc 1, inner arc
     centres (cr1, cz1), (cr2, cz2) [m]. Returns two tuples: the two-point state in the order of the rows
     S_* (Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, bx, wm, wR, Fc, Mg, lam_i, oc, Fi, Fo) and the per-contact
@@ -111,12 +149,12 @@ def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, tab_i, tab_o,
     fi = geo[G_FI]
     # outer arcs 1, 2: centres (0, 0), (0, 2 e_o); inner arcs: (cr_k, cz_k); normal n_i from the inner
     # centre, contact angle of an inner arc atan2(-n_iz, -n_ir)
-    nor1, noz1, do1, ao1, vo1, Qo1 = _arc(Xr, Xz, (fo - 0.5) * D, fo, D, eo, 1, 1.0, tab_o, dal, full)
-    nor2, noz2, do2, ao2, vo2, Qo2 = _arc(Xr, Xz - 2.0 * eo, (fo - 0.5) * D, fo, D, eo, -1, 1.0, tab_o, dal,
+    nor1, noz1, do1, ao1, vo1, Qo1 = _arc(Xr, Xz, (fo - 0.5) * D, fo, D, eo, 1, 1.0, Kt, 1, dal, full)
+    nor2, noz2, do2, ao2, vo2, Qo2 = _arc(Xr, Xz - 2.0 * eo, (fo - 0.5) * D, fo, D, eo, -1, 1.0, Kt, 1, dal,
                                           full)
-    nir1, niz1, di1, ai1, vi1, Qi1 = _arc(Xr - cr1, Xz - cz1, (fi - 0.5) * D, fi, D, ei, 1, -1.0, tab_i, dal,
+    nir1, niz1, di1, ai1, vi1, Qi1 = _arc(Xr - cr1, Xz - cz1, (fi - 0.5) * D, fi, D, ei, 1, -1.0, Kt, 0, dal,
                                           full)
-    nir2, niz2, di2, ai2, vi2, Qi2 = _arc(Xr - cr2, Xz - cz2, (fi - 0.5) * D, fi, D, ei, -1, -1.0, tab_i, dal,
+    nir2, niz2, di2, ai2, vi2, Qi2 = _arc(Xr - cr2, Xz - cz2, (fi - 0.5) * D, fi, D, ei, -1, -1.0, Kt, 0, dal,
                                           full)
     wi1, wi2 = _weights(vi1, vi2, Qi1, Qi2, di1, di2, D)
     wo1, wo2 = _weights(vo1, vo2, Qo1, Qo2, do1, do2, D)
@@ -175,19 +213,20 @@ def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, tab_i, tab_o,
 
 
 @hot(inline="always")
-def _ball_rq(xr, xz, j, Cr, Cz, omega, ocj, control, geo, tab_i, tab_o, dal):
+def _ball_rq(xr, xz, j, Cr, Cz, omega, ocj, control, geo, Kt, dal):
     """(Rr, Rz, Qi, Qo) of ball j placed at (xr, xz) [m]."""
-    r = _ball4(xr, xz, Cr[j, 0], Cz[j, 0], Cr[j, 1], Cz[j, 1], omega, ocj, control, geo, tab_i, tab_o, dal,
+    r = _ball4(xr, xz, Cr[j, 0], Cz[j, 0], Cr[j, 1], Cz[j, 1], omega, ocj, control, geo, Kt, dal,
                False)[0]
     return r[0], r[1], r[2], r[3]
 
 
 @hot
-def ball_states4(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S):
+def ball_states4(X, Cr, Cz, omega, oc, control, geo, Kt, dal, S):
     """All balls' states into S (NS4, Z). X (Z, 2) [m]; Cr, Cz (Z, 2) [m]; oc (Z,) bool."""
+    gt = _geo_tuple(geo)
     for j in range(X.shape[0]):
         two, four, by = _ball4(X[j, 0], X[j, 1], Cr[j, 0], Cz[j, 0], Cr[j, 1], Cz[j, 1], omega, oc[j], control,
-                               geo, tab_i, tab_o, dal, True)
+                               gt, Kt, dal, True)
         for k in range(NS):
             S[k, j] = two[k]
         S[S_BETA, j] = math.atan2(by, two[S_BETA])      # attitude angle from (bx, by)
@@ -223,7 +262,7 @@ def centres4(u, cpsi, spsi, geo):
 
 
 @hot
-def _x_start4(Cr, Cz, omega, control, geo, tab_i, tab_o, dal, X):
+def _x_start4(Cr, Cz, omega, control, geo, Kt, dal, X):
     """Initial ball positions (FourPointQuasiStaticModel._x_start): per ball the candidate with the
     smaller force residual among (a) the line of centres of the more compressed diagonal pair with equal
     deflections (the mean of both pairs when both are compressed; at speed a ball in the clearance on the
@@ -238,9 +277,10 @@ def _x_start4(Cr, Cz, omega, control, geo, tab_i, tab_o, dal, X):
     if omega > 0.0:
         wm = 0.5 * omega * (1.0 - D / geo[G_DM])
         Fc = 0.5 * geo[G_MASS] * geo[G_DM] * wm ** 2
-        K0 = hertz_lookup_alpha(tab_o, 0.0, dal, geo[G_ALPHA0], ROW_K_LOAD)
+        K0 = _k_of(Kt, 1, dal, geo[G_ALPHA0])
     lo = ro + (Fc / K0) ** (2.0 / 3.0)
     seat = omega > 0.0 and eo > 0.0
+    gt = _geo_tuple(geo)
     xs = 0.0
     if seat:
         sa = eo / ro                                     # sin of the arch contact angle of a seated ball
@@ -272,8 +312,8 @@ def _x_start4(Cr, Cz, omega, control, geo, tab_i, tab_o, dal, X):
                 X[j, 0] = lo * math.cos(ta)
                 X[j, 1] = oz + lo * math.sin(ta)
         if seat:
-            r1 = _ball_rq(X[j, 0], X[j, 1], j, Cr, Cz, omega, True, control, geo, tab_i, tab_o, dal)
-            r2 = _ball_rq(xs, eo, j, Cr, Cz, omega, True, control, geo, tab_i, tab_o, dal)
+            r1 = _ball_rq(X[j, 0], X[j, 1], j, Cr, Cz, omega, True, control, gt, Kt, dal)
+            r2 = _ball_rq(xs, eo, j, Cr, Cz, omega, True, control, gt, Kt, dal)
             if math.hypot(r2[0], r2[1]) < math.hypot(r1[0], r1[1]):
                 X[j, 0] = xs
                 X[j, 1] = eo
@@ -287,12 +327,12 @@ def x_start4(u, omega, control, cpsi, spsi, geo, tab_i, tab_o, dal):
     Cz = np.empty((Z, 2))
     _centres4(u, cpsi, spsi, geo, Cr, Cz)
     X = np.empty((Z, 2))
-    _x_start4(Cr, Cz, omega, control, geo, tab_i, tab_o, dal, X)
+    _x_start4(Cr, Cz, omega, control, geo, k_table(tab_i, tab_o), dal, X)
     return X
 
 
 @hot
-def _newton_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, maxit, S, Rr, Rz):
+def _newton_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, tol, maxit, S, Rr, Rz):
     """Newton per ball on the ball equilibrium, X (Z, 2) updated in place: the iteration of
     quasistatic_kernels._solve_balls (2x2 forward-difference Jacobians, step 1e-10 D, step limit 1e-3 D,
     per-ball backtracking on |R|, at most 12 halvings down to 1e-3; converged when max |R| <
@@ -303,6 +343,7 @@ def _newton_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, m
     scale = max(1.0, 0.5 * geo[G_MASS] * geo[G_DM] * omega ** 2)
     h = 1e-10 * D
     lim = 1e-3 * D
+    gt = _geo_tuple(geo)
     Qi = np.empty(Z)
     Qo = np.empty(Z)
     known = np.zeros(Z, dtype=np.bool_)      # residual at X kept from the line search
@@ -313,15 +354,15 @@ def _newton_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, m
         finite = True
         for j in range(Z):
             if not known[j]:
-                Rr[j], Rz[j], Qi[j], Qo[j] = _ball_rq(X[j, 0], X[j, 1], j, Cr, Cz, omega, oc[j], control, geo,
-                                                      tab_i, tab_o, dal)
+                Rr[j], Rz[j], Qi[j], Qo[j] = _ball_rq(X[j, 0], X[j, 1], j, Cr, Cz, omega, oc[j], control, gt,
+                                                      Kt, dal)
             if not (math.isfinite(Rr[j]) and math.isfinite(Rz[j]) and math.isfinite(Qi[j])
                     and math.isfinite(Qo[j])):
                 finite = False
             rmax = max(rmax, abs(Rr[j]), abs(Rz[j]))
             qmax = max(qmax, Qi[j], Qo[j])
         if finite and rmax < tol * (scale + qmax):
-            ball_states4(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S)
+            ball_states4(X, Cr, Cz, omega, oc, control, geo, Kt, dal, S)
             return True
         for j in range(Z):
             if frozen[j]:
@@ -330,8 +371,8 @@ def _newton_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, m
             x1 = X[j, 1]
             R0 = Rr[j]
             R1 = Rz[j]
-            p0, p1, _, _ = _ball_rq(x0 + h, x1, j, Cr, Cz, omega, oc[j], control, geo, tab_i, tab_o, dal)
-            q0, q1, _, _ = _ball_rq(x0, x1 + h, j, Cr, Cz, omega, oc[j], control, geo, tab_i, tab_o, dal)
+            p0, p1, _, _ = _ball_rq(x0 + h, x1, j, Cr, Cz, omega, oc[j], control, gt, Kt, dal)
+            q0, q1, _, _ = _ball_rq(x0, x1 + h, j, Cr, Cz, omega, oc[j], control, gt, Kt, dal)
             d0, d1 = qk.ball_newton_step((p0 - R0) / h, (q0 - R0) / h, (p1 - R1) / h, (q1 - R1) / h, R0, R1,
                                          D, lim)
             n0 = math.hypot(R0, R1)
@@ -340,7 +381,7 @@ def _newton_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, m
             xn1 = x1 + d1
             known[j] = False
             for _ in range(12):
-                t0, t1, t2, t3 = _ball_rq(xn0, xn1, j, Cr, Cz, omega, oc[j], control, geo, tab_i, tab_o, dal)
+                t0, t1, t2, t3 = _ball_rq(xn0, xn1, j, Cr, Cz, omega, oc[j], control, gt, Kt, dal)
                 if (math.hypot(t0, t1) <= n0 * (1.0 + 1e-9)) or not (lam > 1e-3):
                     known[j] = True
                     Rr[j], Rz[j], Qi[j], Qo[j] = t0, t1, t2, t3
@@ -352,7 +393,7 @@ def _newton_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, m
             X[j, 1] = xn1
             if xn0 == x0 and xn1 == x1:
                 frozen[j] = True
-    ball_states4(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S)
+    ball_states4(X, Cr, Cz, omega, oc, control, geo, Kt, dal, S)
     return False
 
 
@@ -381,14 +422,14 @@ def _potential(y0, y1, x0r, x0z, j, Cr, Cz, Fc, Ki, Ko, geo):
 
 
 @hot
-def _potential_minimum(x0r, x0z, j, Cr, Cz, Fc, geo, tab_i, tab_o, dal):
+def _potential_minimum(x0r, x0z, j, Cr, Cz, Fc, geo, Kt, dal):
     """Ball centre [m] minimising the contact + centrifugal potential of ball j from x0 (in units of
     1e-6 m): the Nelder-Mead simplex method as scipy.optimize.minimize(method='Nelder-Mead') runs it
     (reflection 1, expansion 2, contractions and shrink 1/2; Nelder & Mead 1965; Gao & Han 2012 for the
     standard coefficients) with initial simplex (0, 0), (20, 0), (0, 20), xatol 1e-4, fatol 1e-14,
     2000 iterations."""
-    Ki = hertz_lookup_alpha(tab_i, 0.0, dal, geo[G_ALPHA0], ROW_K_LOAD)
-    Ko = hertz_lookup_alpha(tab_o, 0.0, dal, geo[G_ALPHA0], ROW_K_LOAD)
+    Ki = _k_of(Kt, 0, dal, geo[G_ALPHA0])
+    Ko = _k_of(Kt, 1, dal, geo[G_ALPHA0])
     sim = np.zeros((3, 2))
     sim[1, 0] = 20.0
     sim[2, 1] = 20.0
@@ -461,12 +502,12 @@ def _sort_simplex(sim, fsim):
 
 
 @hot
-def _solve_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, maxit, S, Rr, Rz):
+def _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, tol, maxit, S, Rr, Rz):
     """Ball equilibrium (FourPointQuasiStaticModel._solve_balls): the per-ball Newton iteration; balls it
     leaves out of equilibrium (a lightly loaded ball whose equilibrium contact angles are far from its
     start) are restarted from the minimum of their contact + centrifugal potential and the iteration is
     run again. Returns converged."""
-    if _newton_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, maxit, S, Rr, Rz):
+    if _newton_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, tol, maxit, S, Rr, Rz):
         return True
     scale = max(1.0, 0.5 * geo[G_MASS] * geo[G_DM] * omega ** 2)
     qmax = 0.0
@@ -474,9 +515,8 @@ def _solve_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, ma
         qmax = max(qmax, S[S_QI, j], S[S_QO, j])
     for j in range(X.shape[0]):
         if math.hypot(S[S_RR, j], S[S_RZ, j]) >= tol * (scale + qmax):
-            X[j, 0], X[j, 1] = _potential_minimum(X[j, 0], X[j, 1], j, Cr, Cz, S[S_FC, j], geo, tab_i, tab_o,
-                                                  dal)
-    return _newton_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, maxit, S, Rr, Rz)
+            X[j, 0], X[j, 1] = _potential_minimum(X[j, 0], X[j, 1], j, Cr, Cz, S[S_FC, j], geo, Kt, dal)
+    return _newton_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, tol, maxit, S, Rr, Rz)
 
 
 @hot
@@ -509,16 +549,16 @@ def ring_forces4(cpsi, spsi, S, Ri, rig, ei, F):
 
 
 @hot
-def _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F):
+def _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F):
     """Ring force F of the balls at displacement u, balls re-equilibrated from X0 (retried from the
     geometric start with 200 iterations if that fails); X, S: final ball positions and states."""
     _centres4(u, cpsi, spsi, geo, Cr, Cz)
     qk._copy2(X0, X)
     n_it = max(60, Cr.shape[0] // 1000)          # 60 (typed int64, not a literal: one compilation)
-    ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, n_it, S, Rr, Rz)
+    ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, 1e-10, n_it, S, Rr, Rz)
     if not ok:
-        _x_start4(Cr, Cz, omega, control, geo, tab_i, tab_o, dal, X)
-        ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, n_it + 140, S, Rr,
+        _x_start4(Cr, Cz, omega, control, geo, Kt, dal, X)
+        ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, 1e-10, n_it + 140, S, Rr,
                            Rz)
     ring_forces4(cpsi, spsi, S, geo[G_RI], geo[G_RIG], geo[G_EI], F)
     return ok
@@ -536,7 +576,8 @@ def residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
     Rr = np.empty(Z)
     Rz = np.empty(Z)
     F = np.empty(5)
-    ok = _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F)
+    ok = _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, k_table(tab_i, tab_o), dal, X, S, Cr, Cz, Rr,
+                    Rz, F)
     return F, X, S, ok
 
 
@@ -552,6 +593,7 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     smax_div = np.empty(5)
     fs = np.empty(5)
     qk.ring_scales(loads, geo, fixed_tilt, u, us, smax_div, fs)
+    Kt = k_table(tab_i, tab_o)
     oc = np.ones(Z, dtype=np.bool_)
     new_oc = np.ones(Z, dtype=np.bool_)
     Cr = np.empty((Z, 2))
@@ -572,15 +614,15 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     step = np.empty(5)
     _centres4(u, cpsi, spsi, geo, Cr, Cz)
     X0 = np.empty((Z, 2))
-    _x_start4(Cr, Cz, omega, control, geo, tab_i, tab_o, dal, X0)
-    ok = _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F)
+    _x_start4(Cr, Cz, omega, control, geo, Kt, dal, X0)
+    ok = _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F)
     qk._scaled(loads, F, fs, u, us, fixed_tilt, r)
     it = 0
     converged = False
     for it in range(1, maxit + 1):
         if control == CTRL_HYBRID and it <= 15 and qk.hybrid_update(S, tab_i, tab_o, dal, new_oc, oc):
             qk._copy2(X, X0)
-            ok = _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz,
+            ok = _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz,
                             F)
             qk._scaled(loads, F, fs, u, us, fixed_tilt, r)
         if ok and qk.ring_converged(r, tol):
@@ -588,7 +630,7 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             break
         for k in range(5):
             qk.shifted(u, k, 1e-2 * us[k], up)
-            _residual4(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, F)
+            _residual4(up, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xp, Sp, Cr, Cz, Rr, Rz, F)
             qk._scaled(loads, F, fs, up, us, fixed_tilt, rp)
             qk.jacobian_column(J, k, rp, r)
         if not qk.ring_step(J, r, smax_div, step):
@@ -599,7 +641,7 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         okn = False
         for _ in range(16):
             qk.trial_point(u, lam, step, us, un)
-            okn = _residual4(un, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xn, Sn, Cr, Cz, Rr,
+            okn = _residual4(un, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xn, Sn, Cr, Cz, Rr,
                              Rz, F)
             qk._scaled(loads, F, fs, un, us, fixed_tilt, rn)
             if okn and qk.sufficient_decrease(rn, n0, lam):
@@ -627,6 +669,7 @@ def stiffness(u, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
     every ball re-equilibrated from X)."""
     Z = cpsi.shape[0]
     h = qk.stiffness_steps()
+    Kt = k_table(tab_i, tab_o)
     Kmat = np.empty((5, 5))
     up = np.empty(5)
     Fp = np.empty(5)
@@ -639,8 +682,8 @@ def stiffness(u, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
     Rz = np.empty(Z)
     for k in range(5):
         qk.shifted(u, k, h[k], up)
-        _residual4(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fp)
+        _residual4(up, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fp)
         qk.shifted(u, k, -h[k], up)
-        _residual4(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fm)
+        _residual4(up, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fm)
         qk.stiffness_column(Kmat, k, Fp, Fm, h[k])
     return Kmat
