@@ -28,11 +28,11 @@ import math
 import numpy as np
 
 from . import quasistatic_kernels as qk
-from .hertz import ROW_K_LOAD
+from .hertz import ROW_K_LOAD, hertz_lookup_alpha
 from .jit import hot
-from .quasistatic_kernels import (CTRL_HYBRID, CTRL_INNER, CTRL_OUTER, G_A, G_ALPHA0, G_D, G_DM, G_FI, G_FO, G_INERTIA,
-                                  G_MASS, G_MU, G_RI, G_RIG, G_WOUT, K_REG, LINE_SEARCH_FAILED, NOT_CONVERGED,
-                                  NS, OK, S_BETA, S_FC, S_QI, S_QO, S_RR, S_RZ)
+from .quasistatic_kernels import (CTRL_HYBRID, CTRL_INNER, G_A, G_ALPHA0, G_D, G_DM, G_FI, G_FO, G_MASS, G_RI,
+                                  G_RIG, K_REG, LINE_SEARCH_FAILED, NOT_CONVERGED, NS, OK, S_BETA, S_FC, S_QI,
+                                  S_QO, S_RR, S_RZ)
 
 G_EO, G_EI, N_GEO = qk.N_GEO, qk.N_GEO + 1, qk.N_GEO + 2
 # per-contact rows after the two-point rows: loads, angles, deflections, friction forces, weights of
@@ -46,29 +46,14 @@ PAIR_ROWS = {"Qi4": S4_QI1, "Qo4": S4_QO1, "ai4": S4_AI1, "ao4": S4_AO1, "di4": 
 @hot
 def k_table(tab_i, tab_o):
     """(2, n) table of the Hertz load-deflection constant K(alpha) of the inner (row 0) and outer (row 1)
-    race, from the HertzTable arrays: the only row the ball kernel looks up, in one array (one reference
-    count per call of the ball kernel instead of three arrays)."""
+    race, from the HertzTable arrays: the only row the ball kernel looks up (hertz_lookup_alpha with row
+    0 / 1), in one array (one reference count per call of the ball kernel instead of three arrays)."""
     n = tab_i.shape[1]
     Kt = np.empty((2, n))
     for k in range(n):
         Kt[0, k] = tab_i[ROW_K_LOAD, k]
         Kt[1, k] = tab_o[ROW_K_LOAD, k]
     return Kt
-
-
-@hot(inline="always")
-def _k_of(Kt, race, dal, alpha):
-    """K [N/m^1.5] of race 0 (inner) / 1 (outer) at contact angle alpha: hertz.hertz_lookup_alpha on Kt
-    (linear in |alpha| on the grid from 0, clamped to its ends, NaN to the first node)."""
-    n = Kt.shape[1]
-    x = (abs(alpha) - 0.0) / dal
-    if not x > 0.0:
-        return Kt[race, 0]
-    if x >= n - 1:
-        return Kt[race, n - 1]
-    j = int(x)
-    w = x - j
-    return (1.0 - w) * Kt[race, j] + w * Kt[race, j + 1]
 
 
 @hot(inline="always")
@@ -118,7 +103,7 @@ def _arc(vr, vz, rc, f, D, off, side, sg, Kt, race, dal, full):
     a = math.atan2(sg * nz, sg * nr) if (valid or full) else 0.0
     Q = 0.0
     if valid:
-        Q = _k_of(Kt, race, dal, a) * d * math.sqrt(d) if d > 0.0 else K_REG * d
+        Q = hertz_lookup_alpha(Kt, 0.0, dal, a, race) * d * math.sqrt(d) if d > 0.0 else K_REG * d
     return nr, nz, d, a, valid, Q
 
 
@@ -142,7 +127,6 @@ def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, Kt, dal, full
     values in the order of the rows S4_*, and by: the attitude angle is beta = atan2(by, bx) (ball_states4;
     the Newton iterations do not need it). full: also the angles of invalid arcs (recorded states)."""
     D = geo[G_D]
-    dm = geo[G_DM]
     eo = geo[G_EO]
     ei = geo[G_EI]
     fo = geo[G_FO]
@@ -175,29 +159,9 @@ def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, Kt, dal, full
     # angles from the normals where one arc of a ring carries all the weight
     cai, sai = _mean_dir(wi1, wi2, ai1, ai2, -nir1, -niz1, -nir2, -niz2)
     cao, sao = _mean_dir(wo1, wo2, ao1, ao2, nor1, noz1, nor2, noz2)
-    gam = D / dm
-    if control == CTRL_OUTER or (control == CTRL_HYBRID and oc):
-        bx = cao + gam
-        by = sao
-    else:
-        bx = cai - gam
-        by = sai
-    hb = math.sqrt(bx * bx + by * by)
-    cb = bx / hb                           # cos(beta), sin(beta)
-    sb = by / hb
-    gi = D * cai / dm
-    go = D * cao / dm
-    ci = cai * cb + sai * sb               # cos(ai - beta)
-    co = cao * cb + sao * sb               # cos(ao - beta)
-    wm = omega * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci / co)
-    wR = -wm * dm * (1.0 + go) / (D * co)
-    wma = wm + geo[G_WOUT]                 # absolute orbital speed
-    Fc = 0.5 * geo[G_MASS] * dm * wma * wma
-    Mg = geo[G_INERTIA] * wma * wR * sb * -1.0
-    lam_i = 0.0 if oc else 1.0
-    lam_o = 2.0 - lam_i
-    Fi = qk._coulomb(lam_i * Mg / D, geo[G_MU] * (max(Qi1, 0.0) + max(Qi2, 0.0)))
-    Fo = qk._coulomb(lam_o * Mg / D, geo[G_MU] * (max(Qo1, 0.0) + max(Qo2, 0.0)))
+    bx, by, wm, wR, Fc, Mg, lam_i, Fi, Fo = qk.ball_kinematics(cai, sai, cao, sao, oc, control, omega, geo,
+                                                               max(Qi1, 0.0) + max(Qi2, 0.0),
+                                                               max(Qo1, 0.0) + max(Qo2, 0.0))
     Fi1, Fi2, Fo1, Fo2 = wi1 * Fi, wi2 * Fi, wo1 * Fo, wo2 * Fo
     Rr = (-Qi1 * nir1 + Fi1 * niz1) + (-Qi2 * nir2 + Fi2 * niz2) \
         + ((-Qo1 * nor1 + Fo1 * noz1) + (-Qo2 * nor2 + Fo2 * noz2)) + Fc
@@ -277,7 +241,7 @@ def _x_start4(Cr, Cz, omega, control, geo, Kt, dal, X):
     if omega > 0.0:
         wm = 0.5 * omega * (1.0 - D / geo[G_DM])
         Fc = 0.5 * geo[G_MASS] * geo[G_DM] * wm ** 2
-        K0 = _k_of(Kt, 1, dal, geo[G_ALPHA0])
+        K0 = hertz_lookup_alpha(Kt, 0.0, dal, geo[G_ALPHA0], 1)
     lo = ro + (Fc / K0) ** (2.0 / 3.0)
     seat = omega > 0.0 and eo > 0.0
     gt = _geo_tuple(geo)
@@ -428,8 +392,8 @@ def _potential_minimum(x0r, x0z, j, Cr, Cz, Fc, geo, Kt, dal):
     (reflection 1, expansion 2, contractions and shrink 1/2; Nelder & Mead 1965; Gao & Han 2012 for the
     standard coefficients) with initial simplex (0, 0), (20, 0), (0, 20), xatol 1e-4, fatol 1e-14,
     2000 iterations."""
-    Ki = _k_of(Kt, 0, dal, geo[G_ALPHA0])
-    Ko = _k_of(Kt, 1, dal, geo[G_ALPHA0])
+    Ki = hertz_lookup_alpha(Kt, 0.0, dal, geo[G_ALPHA0], 0)
+    Ko = hertz_lookup_alpha(Kt, 0.0, dal, geo[G_ALPHA0], 1)
     sim = np.zeros((3, 2))
     sim[1, 0] = 20.0
     sim[2, 1] = 20.0
@@ -564,17 +528,25 @@ def _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz
     return ok
 
 
+@hot(inline="always")
+def _scratch4(Z):
+    """Work arrays of the ball solves: inner arc centres Cr, Cz (Z, 2) and ball residuals Rr, Rz (Z,)."""
+    return np.empty((Z, 2)), np.empty((Z, 2)), np.empty(Z), np.empty(Z)
+
+
+@hot(inline="always")
+def _balls4(Z):
+    """Ball positions X (Z, 2) and states S (NS4, Z)."""
+    return np.empty((Z, 2)), np.empty((NS4, Z))
+
+
 @hot
 def residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
     """(F (5,), X (Z, 2), S (NS4, Z), ok): ring force of the balls at displacement u [N, N m] with the
     balls in equilibrium, started from X0."""
     Z = cpsi.shape[0]
-    X = np.empty((Z, 2))
-    S = np.empty((NS4, Z))
-    Cr = np.empty((Z, 2))
-    Cz = np.empty((Z, 2))
-    Rr = np.empty(Z)
-    Rz = np.empty(Z)
+    X, S = _balls4(Z)
+    Cr, Cz, Rr, Rz = _scratch4(Z)
     F = np.empty(5)
     ok = _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, k_table(tab_i, tab_o), dal, X, S, Cr, Cz, Rr,
                     Rz, F)
@@ -596,18 +568,13 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     Kt = k_table(tab_i, tab_o)
     oc = np.ones(Z, dtype=np.bool_)
     new_oc = np.ones(Z, dtype=np.bool_)
-    Cr = np.empty((Z, 2))
-    Cz = np.empty((Z, 2))
-    Rr = np.empty(Z)
-    Rz = np.empty(Z)
+    Cr, Cz, Rr, Rz = _scratch4(Z)
     F = np.empty(5)
     r = np.empty(5)
     rn = np.empty(5)
     rp = np.empty(5)
-    Xn = np.empty((Z, 2))
-    Sn = np.empty((NS4, Z))
-    Xp = np.empty((Z, 2))
-    Sp = np.empty((NS4, Z))
+    Xn, Sn = _balls4(Z)
+    Xp, Sp = _balls4(Z)
     up = np.empty(5)
     un = np.empty(5)
     J = np.empty((5, 5))
@@ -674,12 +641,8 @@ def stiffness(u, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
     up = np.empty(5)
     Fp = np.empty(5)
     Fm = np.empty(5)
-    Xp = np.empty((Z, 2))
-    Sp = np.empty((NS4, Z))
-    Cr = np.empty((Z, 2))
-    Cz = np.empty((Z, 2))
-    Rr = np.empty(Z)
-    Rz = np.empty(Z)
+    Xp, Sp = _balls4(Z)
+    Cr, Cz, Rr, Rz = _scratch4(Z)
     for k in range(5):
         qk.shifted(u, k, h[k], up)
         _residual4(up, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fp)

@@ -90,6 +90,42 @@ def _coulomb(F, Fmax):
     return 0.0
 
 
+@hot(inline="always")
+def ball_kinematics(cai, sai, cao, sao, oc, control, omega, geo, Qi_pos, Qo_pos):
+    """Kinematics and gyroscopic friction of one ball from cos / sin of its inner and outer contact angles
+    and the compressive load on each race [N]: raceway control (kinematics.attitude_outer /
+    attitude_inner; oc: the outer race controls under hybrid control) and pure rolling
+    (kinematics.ball_speeds), centrifugal force and gyroscopic moment at the absolute orbital speed, the
+    friction forces resisting the moment (lambda_i = 0 / 1, lambda_o = 2 - lambda_i, Coulomb-bounded by
+    mu Q). Returns (bx, by, wm, wR, Fc, Mg, lam_i, Fi, Fo); beta = atan2(by, bx)."""
+    D = geo[G_D]
+    dm = geo[G_DM]
+    gam = D / dm
+    if control == CTRL_OUTER or (control == CTRL_HYBRID and oc):
+        bx = cao + gam
+        by = sao
+    else:
+        bx = cai - gam
+        by = sai
+    hb = math.sqrt(bx * bx + by * by)
+    cb = bx / hb                           # cos(beta), sin(beta)
+    sb = by / hb
+    gi = D * cai / dm
+    go = D * cao / dm
+    ci = cai * cb + sai * sb               # cos(ai - beta)
+    co = cao * cb + sao * sb               # cos(ao - beta)
+    wm = omega * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci / co)
+    wR = -wm * dm * (1.0 + go) / (D * co)
+    wma = wm + geo[G_WOUT]                 # absolute orbital speed
+    Fc = 0.5 * geo[G_MASS] * dm * wma * wma
+    Mg = geo[G_INERTIA] * wma * wR * sb * -1.0
+    lam_i = 0.0 if oc else 1.0
+    lam_o = 2.0 - lam_i
+    Fi = _coulomb(lam_i * Mg / D, geo[G_MU] * Qi_pos)
+    Fo = _coulomb(lam_o * Mg / D, geo[G_MU] * Qo_pos)
+    return bx, by, wm, wR, Fc, Mg, lam_i, Fi, Fo
+
+
 @hot
 def _ball(Xr, Xz, Cr, Cz, omega, oc_in, control, geo, tab_i, tab_o, dal):
     """State of one ball with centre (Xr, Xz) [m] relative to the outer groove centre and inner groove
@@ -98,7 +134,6 @@ def _ball(Xr, Xz, Cr, Cz, omega, oc_in, control, geo, tab_i, tab_o, dal):
     1.0 / 0.0), the attitude angle as beta = atan2(by, bx) (ball_states; the Newton iterations do not
     need it)."""
     D = geo[G_D]
-    dm = geo[G_DM]
     lo = math.sqrt(Xr * Xr + Xz * Xz)
     nor = Xr / lo
     noz = Xz / lo
@@ -124,33 +159,8 @@ def _ball(Xr, Xz, Cr, Cz, omega, oc_in, control, geo, tab_i, tab_o, dal):
     # raceway control (kinematics.attitude_outer / attitude_inner) and pure rolling (ball_speeds), with
     # cos / sin of the contact angles taken from the unit normals: (cos ao, sin ao) = n_o,
     # (cos ai, sin ai) = -n_i
-    cao = nor
-    sao = noz
-    cai = -nir
-    sai = -niz
-    gam = D / dm
-    if control == CTRL_OUTER or (control == CTRL_HYBRID and oc):
-        bx = cao + gam
-        by = sao
-    else:
-        bx = cai - gam
-        by = sai
-    hb = math.sqrt(bx * bx + by * by)
-    cb = bx / hb                           # cos(beta), sin(beta); beta = atan2(by, bx) (ball_states)
-    sb = by / hb
-    gi = D * cai / dm
-    go = D * cao / dm
-    ci = cai * cb + sai * sb               # cos(ai - beta)
-    co = cao * cb + sao * sb               # cos(ao - beta)
-    wm = omega * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci / co)
-    wR = -wm * dm * (1.0 + go) / (D * co)
-    wma = wm + geo[G_WOUT]                 # absolute orbital speed
-    Fc = 0.5 * geo[G_MASS] * dm * wma * wma
-    Mg = geo[G_INERTIA] * wma * wR * sb * -1.0
-    lam_i = 0.0 if oc else 1.0
-    lam_o = 2.0 - lam_i
-    Fi = _coulomb(lam_i * Mg / D, geo[G_MU] * max(Qi, 0.0))
-    Fo = _coulomb(lam_o * Mg / D, geo[G_MU] * max(Qo, 0.0))
+    bx, by, wm, wR, Fc, Mg, lam_i, Fi, Fo = ball_kinematics(-nir, -niz, nor, noz, oc, control, omega, geo,
+                                                            max(Qi, 0.0), max(Qo, 0.0))
     Rr = -Qi * nir - Qo * nor + Fi * niz + Fo * noz + Fc
     Rz = -Qi * niz - Qo * noz - Fi * nir - Fo * nor
     return Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, bx, wm, wR, Fc, Mg, lam_i, 1.0 if oc else 0.0, Fi, Fo, by
