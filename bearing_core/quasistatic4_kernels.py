@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from . import quasistatic_kernels as qk
-from .hertz import ROW_K_LOAD, hertz_lookup_alpha
+from .hertz import ROW_K_LOAD, hertz_lookup_alpha_inline
 from .jit import hot
 from .quasistatic_kernels import (CTRL_HYBRID, CTRL_INNER, G_A, G_ALPHA0, G_D, G_DM, G_FI, G_FO, G_MASS, G_RI,
                                   G_RIG, K_REG, LINE_SEARCH_FAILED, NOT_CONVERGED, NS, OK, S_BETA, S_FC, S_QI,
@@ -103,7 +103,7 @@ def _arc(vr, vz, rc, f, D, off, side, sg, Kt, race, dal, full):
     a = math.atan2(sg * nz, sg * nr) if (valid or full) else 0.0
     Q = 0.0
     if valid:
-        Q = hertz_lookup_alpha(Kt, 0.0, dal, a, race) * d * math.sqrt(d) if d > 0.0 else K_REG * d
+        Q = hertz_lookup_alpha_inline(Kt, 0.0, dal, a, race) * d * math.sqrt(d) if d > 0.0 else K_REG * d
     return nr, nz, d, a, valid, Q
 
 
@@ -119,7 +119,7 @@ def _mean_dir(w1, w2, a1, a2, c1, s1, c2, s2):
     return math.cos(a), math.sin(a)
 
 
-@hot
+@hot(nrt=False)                # called per ball evaluation: no reference counting of Kt
 def _ball4(Xr, Xz, cr1, cz1, cr2, cz2, omega, oc_in, control, geo, Kt, dal, full):
     """State of one ball with centre (Xr, Xz) [m] relative to the centre of outer arc 1, inner arc
     centres (cr1, cz1), (cr2, cz2) [m]. Returns two tuples: the two-point state in the order of the rows
@@ -241,7 +241,7 @@ def _x_start4(Cr, Cz, omega, control, geo, Kt, dal, X):
     if omega > 0.0:
         wm = 0.5 * omega * (1.0 - D / geo[G_DM])
         Fc = 0.5 * geo[G_MASS] * geo[G_DM] * wm ** 2
-        K0 = hertz_lookup_alpha(Kt, 0.0, dal, geo[G_ALPHA0], 1)
+        K0 = hertz_lookup_alpha_inline(Kt, 0.0, dal, geo[G_ALPHA0], 1)
     lo = ro + (Fc / K0) ** (2.0 / 3.0)
     seat = omega > 0.0 and eo > 0.0
     gt = _geo_tuple(geo)
@@ -392,8 +392,8 @@ def _potential_minimum(x0r, x0z, j, Cr, Cz, Fc, geo, Kt, dal):
     (reflection 1, expansion 2, contractions and shrink 1/2; Nelder & Mead 1965; Gao & Han 2012 for the
     standard coefficients) with initial simplex (0, 0), (20, 0), (0, 20), xatol 1e-4, fatol 1e-14,
     2000 iterations."""
-    Ki = hertz_lookup_alpha(Kt, 0.0, dal, geo[G_ALPHA0], 0)
-    Ko = hertz_lookup_alpha(Kt, 0.0, dal, geo[G_ALPHA0], 1)
+    Ki = hertz_lookup_alpha_inline(Kt, 0.0, dal, geo[G_ALPHA0], 0)
+    Ko = hertz_lookup_alpha_inline(Kt, 0.0, dal, geo[G_ALPHA0], 1)
     sim = np.zeros((3, 2))
     sim[1, 0] = 20.0
     sim[2, 1] = 20.0
