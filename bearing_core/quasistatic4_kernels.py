@@ -100,7 +100,11 @@ def _arc(vr, vz, rc, f, D, off, side, sg, Kt, race, dal, full):
     d = L - rc
     sn = sg * f * D * nz
     valid = sn >= off if side > 0 else sn < -off
-    a = math.atan2(sg * nz, sg * nr) if (valid or full) else 0.0
+    a = 0.0
+    if valid or full:
+        # atan2(sg n_z, sg n_r); as atan of the ratio where sg n_r > 0 (a contact angle within +-90 deg:
+        # the same angle to round-off, at half the cost of libm's atan2)
+        a = math.atan(nz / nr) if sg * nr > 0.0 else math.atan2(sg * nz, sg * nr)
     Q = 0.0
     if valid:
         Q = hertz_lookup_alpha_inline(Kt, 0.0, dal, a, race) * d * math.sqrt(d) if d > 0.0 else K_REG * d
