@@ -147,13 +147,25 @@ class QuasiStaticModel:
         self.hz = HertzInterp(geometry, n_table)
         Z = geometry.Z
         self.psi = 2.0 * np.pi * np.arange(Z) / Z
-        self._cpsi, self._spsi = np.cos(self.psi), np.sin(self.psi)
         self._omega = 0.0
         # outer-ring speed [rad/s] about +z: the problem is solved in the frame turning with the outer ring
         # (omega is then the inner ring's speed relative to it); the centrifugal force and the gyroscopic
         # moment take the absolute orbital speed omega_m + omega_outer (the spin relative to the cage is
         # frame-invariant). Harris & Kotzalas Vol. 2 Ch. 3 with both rings rotating.
         self.omega_outer = 0.0
+
+    @property
+    def psi(self) -> np.ndarray:
+        """Ball azimuths [rad] (default 2 pi j / Z; may be set, e.g. to the balls of a dynamic state)."""
+        return self._psi
+
+    @psi.setter
+    def psi(self, value):
+        psi = np.array(value, dtype=float).reshape(-1)
+        if psi.size != self.g.Z or not np.all(np.isfinite(psi)):
+            raise BearingInputError("psi", np.asarray(value).tolist(), f"{self.g.Z} finite ball azimuths [rad]")
+        self._psi = psi
+        self._cpsi, self._spsi = np.cos(psi), np.sin(psi)
 
     # ---- per-ball geometry and forces (numba kernels: bearing_core.quasistatic_kernels) ---------
     def _kargs(self):
@@ -383,8 +395,10 @@ class FourPointQuasiStaticModel(QuasiStaticModel):
 
     Speed effects as in the two-point model: centrifugal force on every ball; the ball kinematics (raceway
     control, attitude angle, gyroscopic moment) are those of the two-point model with, for each ring, the
-    load-weighted mean contact angle sum_k w_k alpha_k, w_k = Q_k / sum Q (see _weights), and the friction
-    force resisting the gyroscopic moment is shared between that ring's contacts by the same weights. With
+    load-weighted mean contact angle sum_k w_k alpha_k, w_k = Q_k / sum Q (quasistatic4_kernels._weights),
+    and the friction force resisting the gyroscopic moment is shared between that ring's contacts by the
+    same weights. The solve is quasistatic4_kernels.solve: the two-point algorithm with a restart of the
+    balls its per-ball Newton leaves out of equilibrium from the minimum of their potential. With
     one loaded contact per ring this is the two-point model exactly. With three or four loaded contacts a
     ball cannot roll without sliding on all of them; that sliding (Leblanc & Nelias 2007) and its friction
     are not resolved here (a stated simplification), only the contact loads and angles."""

@@ -57,7 +57,7 @@ def k_table(tab_i, tab_o):
 
 
 @hot(inline="always")
-def _geo_tuple(geo):
+def _geo_tuple(geo):                   # N_GEO = 15 entries
     """The geometry array as a tuple (passed by value to the ball kernel: no reference counting)."""
     return (geo[0], geo[1], geo[2], geo[3], geo[4], geo[5], geo[6], geo[7], geo[8], geo[9], geo[10], geo[11],
             geo[12], geo[13], geo[14])
@@ -65,7 +65,7 @@ def _geo_tuple(geo):
 
 @hot(inline="always")
 def _exp_neg(x):
-    """exp(x) for x <= 0 (the deflection softmax): 1 at x = 0 and 0 below -746, where exp underflows to 0
+    """exp(x) for x <= 0 (the deflection softmax of _weights): 1 at x = 0 and 0 below -746, where exp underflows to 0
     (without the call and libm's underflow error path)."""
     if x == 0.0:
         return 1.0
@@ -75,7 +75,8 @@ def _exp_neg(x):
 @hot(inline="always")
 def _weights(v1, v2, Q1, Q2, d1, d2, D):
     """Shares (w1, w2) of the two arcs of one ring: Q_k plus 1e-9 N times a softmax of the deflections
-    over 1e-6 D, 0 on invalid arcs, normalised (FourPointQuasiStaticModel._weights)."""
+    over 1e-6 D (which decides for unloaded balls and keeps w continuous), 0 on invalid arcs, normalised.
+    A ring with one loaded contact gets w = 1 there: the two-point model exactly."""
     dm_ = -np.inf
     if v1:
         dm_ = d1
@@ -471,7 +472,7 @@ def _sort_simplex(sim, fsim):
 
 @hot
 def _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, tol, maxit, S, Rr, Rz):
-    """Ball equilibrium (FourPointQuasiStaticModel._solve_balls): the per-ball Newton iteration; balls it
+    """Ball equilibrium: the per-ball Newton iteration; balls it
     leaves out of equilibrium (a lightly loaded ball whose equilibrium contact angles are far from its
     start) are restarted from the minimum of their contact + centrifugal potential and the iteration is
     run again. Returns converged."""
