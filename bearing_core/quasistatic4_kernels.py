@@ -244,8 +244,7 @@ def _x_start4(Cr, Cz, omega, control, geo, Kt, dal, X):
     Fc = 0.0
     K0 = 1.0
     if omega > 0.0:
-        wm = 0.5 * omega * (1.0 - D / geo[G_DM])
-        Fc = 0.5 * geo[G_MASS] * geo[G_DM] * wm ** 2
+        Fc = qk.rolling_fc(omega, geo)
         K0 = hertz_lookup_alpha_inline(Kt, 0.0, dal, geo[G_ALPHA0], 1)
     lo = ro + (Fc / K0) ** (2.0 / 3.0)
     seat = omega > 0.0 and eo > 0.0

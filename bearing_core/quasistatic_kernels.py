@@ -200,6 +200,14 @@ def ball_states(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S):
 
 
 @hot(inline="always")
+def rolling_fc(omega, geo):
+    """Centrifugal force [N] of a ball at the pure-rolling orbital speed omega (1 - D/dm) / 2 (zero
+    contact angle estimate, for starting positions)."""
+    wm = 0.5 * omega * (1.0 - geo[G_D] / geo[G_DM])
+    return 0.5 * geo[G_MASS] * geo[G_DM] * wm ** 2
+
+
+@hot(inline="always")
 def _x_start(Cr, Cz, omega, geo, tab_o, dal, X):
     """Initial ball positions: on the line of centres with equal deflections; at speed a ball in the
     clearance is put on the outer race, pressed by the pure-rolling centrifugal force."""
@@ -209,10 +217,8 @@ def _x_start(Cr, Cz, omega, geo, tab_o, dal, X):
     lo = 0.0
     ta = 0.0
     if omega > 0.0:
-        wm = 0.5 * omega * (1.0 - D / geo[G_DM])
-        Fc = 0.5 * geo[G_MASS] * geo[G_DM] * wm ** 2
         K0 = hertz_lookup_alpha(tab_o, 0.0, dal, geo[G_ALPHA0], ROW_K_LOAD)
-        lo = ro + (Fc / K0) ** (2.0 / 3.0)
+        lo = ro + (rolling_fc(omega, geo) / K0) ** (2.0 / 3.0)
     for j in range(Cr.shape[0]):
         L = math.hypot(Cr[j], Cz[j])
         d = 0.5 * (L - (ro + ri))
