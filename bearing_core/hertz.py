@@ -494,6 +494,13 @@ def hertz_lookup_alpha(table, alpha0, dalpha, alpha, row):
 
     The Hertz constants depend on cos(alpha) only, so |alpha| is used; then clamped to the grid.
     """
+    return hertz_lookup_alpha_inline(table, alpha0, dalpha, alpha, row)
+
+
+@njit(cache=True, inline="always")
+def hertz_lookup_alpha_inline(table, alpha0, dalpha, alpha, row):
+    """hertz_lookup_alpha inlined into the caller (no call, no reference counting of the table: for
+    kernels that look up per ball evaluation)."""
     n = table.shape[1]
     x = (abs(alpha) - alpha0) / dalpha
     if not x > 0.0:            # also catches NaN

@@ -33,11 +33,16 @@ if PLAIN_MATH:
         _nb_config.CACHE_DIR = os.path.join(_base, "plain_math")
 
 
-def hot(fn=None, *, inline: str = "never", nogil: bool = False):
+def hot(fn=None, *, inline: str = "never", nogil: bool = False, nrt: bool = True):
     """numba.njit with the module's flags and cache=True; use as @hot, @hot(inline='always') or
-    @hot(nogil=True) (integration loops that release the GIL for threaded batches)."""
+    @hot(nogil=True) (integration loops that release the GIL for threaded batches). nrt=False: compiled
+    without numba's reference-counting runtime, for a small kernel called very often that neither
+    allocates nor returns arrays (its array arguments stay owned by the caller): no atomic reference
+    count per call."""
     kw = dict(cache=True, error_model=ERROR_MODEL, fastmath=set(FASTMATH) if FASTMATH else False,
               inline=inline, nogil=nogil)
+    if not nrt:
+        kw["_nrt"] = False
     if fn is None:
         return lambda f: njit(**kw)(f)
     return njit(**kw)(fn)

@@ -23,9 +23,9 @@ a defined position; its force is < 1e-8 N for any real clearance and enters both
 Hybrid control follows Harris's criterion: the outer race controls a ball when
 Q_o a_o E(k_o) cos(alpha_i - alpha_o) > Q_i a_i E(k_i) (Harris & Kotzalas Vol. 2 Ch. 3).
 
-The two-point model's ball states, ball Newton solves, ring forces, 5-DOF Newton solve and stiffness
-matrix run as numba kernels (bearing_core.quasistatic_kernels); the four-point model runs the same
-algorithm with numpy (FourPointQuasiStaticModel).
+The ball states, ball Newton solves, ring forces, 5-DOF Newton solve and stiffness matrix run as numba
+kernels: bearing_core.quasistatic_kernels for the two-point model, bearing_core.quasistatic4_kernels
+(the same algorithm with the four-point ball) for FourPointQuasiStaticModel.
 """
 from __future__ import annotations
 
@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import kinematics as kin
+from . import quasistatic4_kernels as q4k
 from . import quasistatic_kernels as qsk
 from .errors import BearingInputError, ConvergenceError, check_range
 from .geometry import BearingGeometry
@@ -106,18 +107,6 @@ class QuasiStaticResult:
         return _ring_forces(self.geometry, self.psi, self.alpha_i, self.Q_i, self.F_i)
 
 
-def _lambda_i(control, outer_control):
-    """Share of the gyroscopic moment taken at the inner contact (lambda_i; lambda_o = 2 - lambda_i):
-    0 where the outer race controls, 1 under inner control (Harris & Kotzalas)."""
-    return np.where(outer_control, 0.0, 1.0)
-
-
-def _coulomb_bound(F, Fmax):
-    """Smooth |F| <= Fmax (F where Fmax = 0 is 0)."""
-    x = np.abs(F) / np.where(Fmax > 0, Fmax, 1.0)
-    return np.where(Fmax > 0, F / (1.0 + x ** 8) ** 0.125, 0.0)
-
-
 def _ring_forces(g, psi, alpha_i, Q_i_eff, Fi):
     """Force and moment of the balls on the inner ring; Q_i_eff includes the regularisation, Fi is the
     inner-contact gyroscopic friction force [N] (qsk.ring_forces)."""
@@ -139,6 +128,8 @@ class QuasiStaticModel:
     """Jones-Harris 5-DOF quasi-static model of one bearing (outer ring fixed, inner ring turning)."""
 
     FOUR_POINT = False      # FourPointQuasiStaticModel handles gothic-arch grooves
+    _KERNELS = qsk          # kernel module of the model: residual, solve, stiffness, N_GEO
+    _NS = qsk.NS            # rows of its ball-state array
 
     def __init__(self, geometry: BearingGeometry, control: str = "outer", n_table: int = 361,
                  mu_gyro: float = 0.1, fixed_tilt: bool = False):
@@ -156,7 +147,6 @@ class QuasiStaticModel:
         self.hz = HertzInterp(geometry, n_table)
         Z = geometry.Z
         self.psi = 2.0 * np.pi * np.arange(Z) / Z
-        self._cpsi, self._spsi = np.cos(self.psi), np.sin(self.psi)
         self._omega = 0.0
         # outer-ring speed [rad/s] about +z: the problem is solved in the frame turning with the outer ring
         # (omega is then the inner ring's speed relative to it); the centrifugal force and the gyroscopic
@@ -164,16 +154,31 @@ class QuasiStaticModel:
         # frame-invariant). Harris & Kotzalas Vol. 2 Ch. 3 with both rings rotating.
         self.omega_outer = 0.0
 
+    @property
+    def psi(self) -> np.ndarray:
+        """Ball azimuths [rad] (default 2 pi j / Z; may be set, e.g. to the balls of a dynamic state)."""
+        return self._psi
+
+    @psi.setter
+    def psi(self, value):
+        psi = np.array(value, dtype=float).reshape(-1)
+        if psi.size != self.g.Z or not np.all(np.isfinite(psi)):
+            raise BearingInputError("psi", np.asarray(value).tolist(), f"{self.g.Z} finite ball azimuths [rad]")
+        self._psi = psi
+        self._cpsi, self._spsi = np.cos(psi), np.sin(psi)
+
     # ---- per-ball geometry and forces (numba kernels: bearing_core.quasistatic_kernels) ---------
     def _kargs(self):
         """Geometry / parameter array, cos / sin of the azimuths, control code and Hertz tables of the
         kernels (built per call: omega_outer may be set after construction)."""
         g = self.g
-        geo = np.empty(qsk.N_GEO)
+        geo = np.empty(self._KERNELS.N_GEO)
         geo[qsk.G_D], geo[qsk.G_DM], geo[qsk.G_FO], geo[qsk.G_FI] = g.D, g.dm, g.fo, g.fi
         geo[qsk.G_A], geo[qsk.G_ALPHA0], geo[qsk.G_RI], geo[qsk.G_RIG] = g.A, g.alpha0, g.Ri, g.ri
         geo[qsk.G_MASS], geo[qsk.G_INERTIA] = g.ball_mass, g.ball_inertia
         geo[qsk.G_MU], geo[qsk.G_WOUT] = self.mu_gyro, self.omega_outer
+        if self.FOUR_POINT:
+            geo[q4k.G_EO], geo[q4k.G_EI] = g.outer_groove_offset, g.inner_groove_offset
         return geo, self._cpsi, self._spsi, _CTRL_CODE[self.control], self.hz.table.inner, self.hz.table.outer, \
             self.hz.table.dalpha
 
@@ -206,9 +211,13 @@ class QuasiStaticModel:
         if outer_ctrl is None:
             outer_ctrl = np.ones(self.g.Z, dtype=bool)
         geo, c, s, ctrl, ti, to, dal = self._kargs()
-        F, X, S, ok = qsk.residual(u, float(omega), np.ascontiguousarray(X0, dtype=float),
-                                   np.asarray(outer_ctrl, dtype=bool), ctrl, geo, c, s, ti, to, dal)
-        return F, X, _state_dict(S), bool(ok)
+        F, X, S, ok = self._KERNELS.residual(u, float(omega), np.ascontiguousarray(X0, dtype=float),
+                                             np.asarray(outer_ctrl, dtype=bool), ctrl, geo, c, s, ti, to, dal)
+        return F, X, self._states(S), bool(ok)
+
+    def _states(self, S):
+        """Ball-state dict of a kernel state array S (NS, Z)."""
+        return _state_dict(S)
 
     def _ring_force(self, st):
         """(Fx, Fy, Fz, Mx, My) of the balls on the inner ring from a ball state [N, N m]."""
@@ -266,16 +275,17 @@ class QuasiStaticModel:
         return u
 
     def _solve(self, omega, loads, u0, tol, maxit, stiffness):
-        """One Newton solve of the 5-DOF ring equilibrium (qsk.solve; algorithm in its docstring)."""
+        """One Newton solve of the 5-DOF ring equilibrium (kernel solve; algorithm in the docstring of
+        quasistatic_kernels.solve)."""
         g = self.g
         u = self._u_guess(loads) if u0 is None else np.array(u0, dtype=float)
         self._omega = omega
         geo, c, s, ctrl, ti, to, dal = self._kargs()
         X = np.empty((g.Z, 2))
-        S = np.empty((qsk.NS, g.Z))
+        S = np.empty((self._NS, g.Z))
         Kmat = np.empty((5, 5))
         info = np.zeros(2)
-        status, it = qsk.solve(float(omega), np.ascontiguousarray(loads, dtype=float), u, self.fixed_tilt, ctrl,
+        status, it = self._KERNELS.solve(float(omega), np.ascontiguousarray(loads, dtype=float), u, self.fixed_tilt, ctrl,
                                float(tol), int(maxit), bool(stiffness), geo, c, s, ti, to, dal, X, S, Kmat, info)
         if status == qsk.LINE_SEARCH_FAILED:
             raise ConvergenceError(f"quasi-static line search failed at omega={omega:.4g} rad/s, "
@@ -284,7 +294,7 @@ class QuasiStaticModel:
             raise ConvergenceError(f"quasi-static model did not converge in {maxit} iterations at "
                                    f"omega={omega:.4g} rad/s, loads={loads.tolist()}, "
                                    f"max scaled residual={info[1]:.3e}")
-        st = _state_dict(S)
+        st = self._states(S)
         res = self._result(omega, loads, u, X, st, st["outer_ctrl"], it)
         if stiffness:
             res.stiffness = Kmat
@@ -314,8 +324,9 @@ class QuasiStaticModel:
         [N/m, N/rad, N m/m, N m/rad]."""
         self._omega = res.omega
         geo, c, s, ctrl, ti, to, dal = self._kargs()
-        return qsk.stiffness(np.asarray(res.u, dtype=float), float(res.omega), np.ascontiguousarray(res.X),
-                             np.asarray(res.outer_control, dtype=bool), ctrl, geo, c, s, ti, to, dal)
+        return self._KERNELS.stiffness(np.asarray(res.u, dtype=float), float(res.omega),
+                                       np.ascontiguousarray(res.X), np.asarray(res.outer_control, dtype=bool),
+                                       ctrl, geo, c, s, ti, to, dal)
 
 
 # =============================================================================================
@@ -384,344 +395,50 @@ class FourPointQuasiStaticModel(QuasiStaticModel):
 
     Speed effects as in the two-point model: centrifugal force on every ball; the ball kinematics (raceway
     control, attitude angle, gyroscopic moment) are those of the two-point model with, for each ring, the
-    load-weighted mean contact angle sum_k w_k alpha_k, w_k = Q_k / sum Q (see _weights), and the friction
-    force resisting the gyroscopic moment is shared between that ring's contacts by the same weights. With
+    load-weighted mean contact angle sum_k w_k alpha_k, w_k = Q_k / sum Q (quasistatic4_kernels._weights),
+    and the friction force resisting the gyroscopic moment is shared between that ring's contacts by the
+    same weights. The solve is quasistatic4_kernels.solve: the two-point algorithm with a restart of the
+    balls its per-ball Newton leaves out of equilibrium from the minimum of their potential. With
     one loaded contact per ring this is the two-point model exactly. With three or four loaded contacts a
     ball cannot roll without sliding on all of them; that sliding (Leblanc & Nelias 2007) and its friction
     are not resolved here (a stated simplification), only the contact loads and angles."""
 
     FOUR_POINT = True
+    _KERNELS = q4k
+    _NS = q4k.NS4
 
     def _centres(self, u):
-        g = self.g
-        c, s = np.cos(self.psi), np.sin(self.psi)
-        tilt = u[3] * s - u[4] * c
-        dr = u[0] * c + u[1] * s
-        da = u[2] + g.Ri * tilt
-        ei = g.inner_groove_offset
-        Cr0 = g.A * math.cos(g.alpha0) + dr
-        Cz1 = g.A * math.sin(g.alpha0) + da
-        Cr = np.stack([Cr0 - ei * tilt, Cr0 + ei * tilt], axis=1)
-        Cz = np.stack([Cz1, Cz1 - 2.0 * ei], axis=1)
-        return Cr, Cz
+        """Centres of inner arcs 1, 2 of every ball, (Cr, Cz) each (Z, 2) [m]."""
+        geo, c, s, *_ = self._kargs()
+        return q4k.centres4(np.asarray(u, dtype=float), c, s, geo)
 
-    def _ball_state(self, X, Cr, Cz, omega, outer_ctrl, kin_frozen=None):
-        g = self.g
-        eo, ei = g.outer_groove_offset, g.inner_groove_offset
-        Xr, Xz = X[:, 0:1], X[:, 1:2]
-        # outer arcs 1, 2: centres (0, 0), (0, 2 e_o)
-        vz = np.concatenate([Xz, Xz - 2.0 * eo], axis=1)
-        vr = np.broadcast_to(Xr, vz.shape)
-        lo = np.hypot(vr, vz)
-        nor, noz = vr / lo, vz / lo
-        d_o = lo - (g.fo - 0.5) * g.D
-        ao = np.arctan2(noz, nor)
-        so = g.fo * g.D * noz
-        val_o = np.stack([so[:, 0] >= eo, so[:, 1] < -eo], axis=1)
-        # inner arcs 1, 2
-        dvr, dvz = Xr - Cr, Xz - Cz
-        li = np.hypot(dvr, dvz)
-        nir, niz = dvr / li, dvz / li
-        d_i = li - (g.fi - 0.5) * g.D
-        ai = np.arctan2(-niz, -nir)
-        si = -g.fi * g.D * niz
-        val_i = np.stack([si[:, 0] >= ei, si[:, 1] < -ei], axis=1)
-        Ki = self.hz.K(ai, inner=True)
-        Ko = self.hz.K(ao, inner=False)
-        Qi = np.where(val_i, np.where(d_i > 0, Ki * np.abs(d_i) ** 1.5, K_REG * d_i), 0.0)
-        Qo = np.where(val_o, np.where(d_o > 0, Ko * np.abs(d_o) ** 1.5, K_REG * d_o), 0.0)
-        wi, wo = self._weights(Qi, d_i, val_i), self._weights(Qo, d_o, val_o)
-        ai_e, ao_e = np.sum(wi * ai, axis=1), np.sum(wo * ao, axis=1)
-        di_e = np.max(np.where(val_i, d_i, -np.inf), axis=1)
-        if self.control == "inner":
-            outer_ctrl = np.zeros(g.Z, dtype=bool)
-        elif self.control == "hybrid":
-            outer_ctrl = outer_ctrl | (di_e <= 0)
-        if kin_frozen is None:
-            beta, wm, wR = kin.kinematics(omega, ai_e, ao_e, g.D, g.dm, self.control, outer_ctrl)
-        else:
-            beta, wm, wR = kin_frozen
-        wma = wm + self.omega_outer          # absolute orbital speed
-        Fc = 0.5 * g.ball_mass * g.dm * wma ** 2
-        Mg = g.ball_inertia * wma * wR * np.sin(beta) * -1.0
-        lam_i = _lambda_i(self.control, outer_ctrl)
-        lam_o = 2.0 - lam_i
-        Qi_s = np.sum(np.maximum(Qi, 0.0), axis=1)
-        Qo_s = np.sum(np.maximum(Qo, 0.0), axis=1)
-        Fi = _coulomb_bound(lam_i * Mg / g.D, self.mu_gyro * Qi_s)
-        Fo = _coulomb_bound(lam_o * Mg / g.D, self.mu_gyro * Qo_s)
-        Fi4, Fo4 = wi * Fi[:, None], wo * Fo[:, None]
-        Rr = np.sum(-Qi * nir + Fi4 * niz, axis=1) + np.sum(-Qo * nor + Fo4 * noz, axis=1) + Fc
-        Rz = np.sum(-Qi * niz - Fi4 * nir, axis=1) + np.sum(-Qo * noz - Fo4 * nor, axis=1)
-        rows = np.arange(g.Z)
-        ki, ko = np.argmax(wi, axis=1), np.argmax(wo, axis=1)
-        return dict(Rr=Rr, Rz=Rz, Qi=Qi[rows, ki], Qo=Qo[rows, ko], d_i=d_i[rows, ki], d_o=d_o[rows, ko],
-                    ai=ai_e, ao=ao_e, beta=beta, wm=wm, wR=wR, Fc=Fc, Mg=Mg, lam_i=lam_i, outer_ctrl=outer_ctrl,
-                    Fi=Fi, Fo=Fo, Qi4=Qi, Qo4=Qo, ai4=ai, ao4=ao, di4=d_i, do4=d_o, ki=ki, ko=ko, Fi4=Fi4,
-                    Fo4=Fo4, wi=wi, wo=wo)
+    def _ball_state(self, X, Cr, Cz, omega, outer_ctrl):
+        """Per-ball state dict at ball centres X (Z, 2) [m], inner arc centres Cr, Cz (Z, 2) [m]: the keys
+        of the two-point model (Qi, Qo, d_i, d_o of each ring's dominant contact, ai, ao the weighted
+        contact angles) and the per-contact arrays (Z, 2) Qi4, Qo4, ai4, ao4, di4, do4, Fi4, Fo4, wi, wo,
+        dominant arcs ki, ko."""
+        geo, _, _, ctrl, ti, to, dal = self._kargs()
+        S = np.empty((q4k.NS4, self.g.Z))
+        q4k.ball_states4(np.ascontiguousarray(X, dtype=float), np.ascontiguousarray(Cr, dtype=float),
+                         np.ascontiguousarray(Cz, dtype=float), float(omega), np.asarray(outer_ctrl, dtype=bool),
+                         ctrl, geo, q4k.k_table(ti, to), dal, S)
+        return self._states(S)
 
-    # ---- Newton drivers of the four-point model (numpy; the two-point model runs them as numba kernels,
-    # bearing_core.quasistatic_kernels, with the same algorithm) ---------------------------------
-    def _newton_balls(self, u, omega, X0, outer_ctrl, tol=1e-10, maxit=60):
-        """Newton per ball (vectorised, 2x2 finite-difference Jacobians) for the ball equilibrium
-        (algorithm of quasistatic_kernels._solve_balls)."""
-        g = self.g
-        Cr, Cz = self._centres(u)
-        X = X0.copy()
-        scale = max(1.0, 0.5 * g.ball_mass * g.dm * omega ** 2)
-        h = 1e-10 * g.D
-        for it in range(maxit):
-            st = self._ball_state(X, Cr, Cz, omega, outer_ctrl)
-            R = np.stack([st["Rr"], st["Rz"]], axis=1)
-            if np.max(np.abs(R)) < tol * (scale + max(st["Qi"].max(), st["Qo"].max(), 0.0)):
-                return X, st, True
-            J = np.empty((g.Z, 2, 2))
-            for k in range(2):
-                Xp = X.copy()
-                Xp[:, k] += h
-                sp = self._ball_state(Xp, Cr, Cz, omega, outer_ctrl)
-                J[:, 0, k] = (sp["Rr"] - st["Rr"]) / h
-                J[:, 1, k] = (sp["Rz"] - st["Rz"]) / h
-            det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
-            det = np.where(np.abs(det) > 0, det, 1e-300)
-            dX0 = -(J[:, 1, 1] * R[:, 0] - J[:, 0, 1] * R[:, 1]) / det
-            dX1 = -(-J[:, 1, 0] * R[:, 0] + J[:, 0, 0] * R[:, 1]) / det
-            dX = np.stack([dX0, dX1], axis=1)
-            bad = ~np.all(np.isfinite(dX), axis=1)
-            if bad.any():  # singular 2x2 (e.g. degenerate kinematics): small steepest-descent step
-                dX[bad] = -1e-4 * g.D * np.sign(np.nan_to_num(R[bad]))
-            # limit a step to 1e-3 D (~ contact deflections) and backtrack per ball on |R|
-            lim = 1e-3 * g.D
-            mag = np.max(np.abs(dX), axis=1, keepdims=True)
-            dX = np.where(mag > lim, dX * lim / np.maximum(mag, 1e-300), dX)
-            n0 = np.hypot(R[:, 0], R[:, 1])
-            lam = np.ones(g.Z)
-            Xn = X + dX
-            for _ in range(12):
-                sn = self._ball_state(Xn, Cr, Cz, omega, outer_ctrl)
-                nn = np.hypot(sn["Rr"], sn["Rz"])
-                worse = ~(nn <= n0 * (1.0 + 1e-9)) & (lam > 1e-3)
-                if not worse.any():
-                    break
-                lam = np.where(worse, 0.5 * lam, lam)
-                Xn = X + lam[:, None] * dX
-            X = Xn
-        st = self._ball_state(X, Cr, Cz, omega, outer_ctrl)
-        return X, st, False
+    def _states(self, S):
+        st = _state_dict(S[:qsk.NS])
+        for k, row in q4k.PAIR_ROWS.items():
+            st[k] = S[row:row + 2].T.copy()
+        st["ki"] = S[q4k.S4_KI].astype(np.int64)
+        st["ko"] = S[q4k.S4_KO].astype(np.int64)
+        return st
 
-    def residual(self, u, omega, X0=None, outer_ctrl=None):
-        """Force of the balls on the inner ring at displacement u (balls re-equilibrated from X0)."""
-        self._omega = omega
-        if X0 is None:
-            X0 = self._x_start(u)
-        if outer_ctrl is None:
-            outer_ctrl = np.ones(self.g.Z, dtype=bool)
-        X, st, ok = self._solve_balls(u, omega, X0, outer_ctrl)
-        if not ok:
-            # retry from the geometric start (the warm start may sit in a bad basin)
-            X, st, ok = self._solve_balls(u, omega, self._x_start(u), outer_ctrl, maxit=200)
-        return self._ring_force(st), X, st, ok
-
-    def _solve(self, omega, loads, u0, tol, maxit, stiffness):
-        """Newton solve of the ring equilibrium (algorithm of quasistatic_kernels.solve)."""
-        g = self.g
-        # scales: displacement ~ 1 um, tilt ~ 1e-5 rad; force scale from the load
-        us = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5])
-        Fscale = max(np.linalg.norm(loads[:3]), np.linalg.norm(loads[3:]) / (0.5 * g.dm), 1.0)
-        fs = np.array([Fscale, Fscale, Fscale, Fscale * 0.5 * g.dm, Fscale * 0.5 * g.dm])
-        u = self._u_guess(loads) if u0 is None else np.array(u0, dtype=float)
-        if self.fixed_tilt:
-            u[3:5] = 0.0
-        self._omega = omega
-        outer_ctrl = np.ones(g.Z, dtype=bool)
-        X = self._x_start(u)
-
-        def R_of(uu, Xw, oc):
-            Fb, Xn, st, ok = self.residual(uu, omega, Xw, oc)
-            r = (loads + Fb) / fs
-            if self.fixed_tilt:
-                r[3:5] = uu[3:5] / us[3:5]
-            return r, Xn, st, ok
-
-        r, X, st, ok = R_of(u, X, outer_ctrl)
-        it = 0
-        converged = False
-        for it in range(1, maxit + 1):
-            if self.control == "hybrid" and it <= 15:
-                new_oc = self._hybrid_criterion(st)
-                if np.any(new_oc != outer_ctrl):
-                    outer_ctrl = new_oc
-                    r, X, st, ok = R_of(u, X, outer_ctrl)
-            if ok and np.max(np.abs(r)) < tol:
-                converged = True
-                break
-            J = np.empty((5, 5))
-            for k in range(5):
-                up = u.copy()
-                up[k] += 1e-2 * us[k]
-                rp, _, _, _ = R_of(up, X, outer_ctrl)
-                J[:, k] = (rp - r) / (1e-2)
-            try:
-                step = -np.linalg.lstsq(J, r, rcond=1e-12)[0]
-            except np.linalg.LinAlgError:
-                break
-            # backtracking line search on |r|, step limited to 20 um / 1 mrad scaled units
-            smax = np.max(np.abs(step) / np.array([20.0, 20.0, 20.0, 100.0, 100.0]))
-            if smax > 1:
-                step /= smax
-            lam = 1.0
-            n0 = np.linalg.norm(r)
-            for _ in range(16):
-                un = u + lam * step * us
-                rn, Xn, stn, okn = R_of(un, X, outer_ctrl)
-                if okn and np.linalg.norm(rn) < (1 - 1e-4 * lam) * n0:
-                    break
-                lam *= 0.5
-            else:
-                raise ConvergenceError(f"quasi-static line search failed at omega={omega:.4g} rad/s, "
-                                       f"loads={loads.tolist()}, |residual|={n0:.3e}")
-            u, r, X, st, ok = un, rn, Xn, stn, okn
-        if not converged:
-            raise ConvergenceError(f"quasi-static model did not converge in {maxit} iterations at "
-                                   f"omega={omega:.4g} rad/s, loads={loads.tolist()}, "
-                                   f"max scaled residual={np.max(np.abs(r)):.3e}")
-        res = self._result(omega, loads, u, X, st, st["outer_ctrl"], it)
-        if stiffness:
-            res.stiffness = self.stiffness_matrix(res)
-        return res
-
-    def _hybrid_criterion(self, st):
-        """Harris: outer control where Q_o a_o E(k_o) cos(ai - ao) > Q_i a_i E(k_i)."""
-        ai, ao = st["ai"], st["ao"]
-        Qi, Qo = np.maximum(st["Qi"], 0), np.maximum(st["Qo"], 0)
-        a_i, _, _, Ei = self.hz.ab_E(ai, Qi, inner=True)
-        a_o, _, _, Eo = self.hz.ab_E(ao, Qo, inner=False)
-        return Qo * a_o * Eo * np.cos(ai - ao) > Qi * a_i * Ei
-
-    def stiffness_matrix(self, res: QuasiStaticResult) -> np.ndarray:
-        """5x5 bearing stiffness K_kl = d(load_k)/d(u_l) at the solution, by central differences
-        of the ring force with every ball re-equilibrated [N/m, N/rad, N m/m, N m/rad]."""
-        h = np.array([1e-8, 1e-8, 1e-8, 1e-7, 1e-7])
-        Kmat = np.empty((5, 5))
-        for k in range(5):
-            up = res.u.copy()
-            um = res.u.copy()
-            up[k] += h[k]
-            um[k] -= h[k]
-            Fp, _, _, _ = self.residual(up, res.omega, res.X, res.outer_control)
-            Fm, _, _, _ = self.residual(um, res.omega, res.X, res.outer_control)
-            Kmat[:, k] = -(Fp - Fm) / (2 * h[k])
-        return Kmat
-
-    def _weights(self, Q, d, valid):
-        """Share w_k of each arc of one ring in the ball kinematics and the gyroscopic friction: the
-        contact loads Q_k (plus 1e-9 N times a softmax of the deflections over 1e-6 D, which decides for
-        unloaded balls and keeps w continuous); 0 on invalid arcs. A ring with one loaded contact gets
-        w = 1 there: the two-point model exactly."""
-        g = self.g
-        dm_ = np.max(np.where(valid, d, -np.inf), axis=1, keepdims=True)
-        soft = np.where(valid, np.exp(np.minimum(0.0, d - dm_) / (1e-6 * g.D)), 0.0)
-        w = np.where(valid, np.maximum(Q, 0.0), 0.0) + 1e-9 * soft
-        return w / np.sum(w, axis=1, keepdims=True)
+    def _x_start(self, u):
+        """Initial ball positions X (Z, 2) [m] (quasistatic4_kernels._x_start4)."""
+        geo, c, s, ctrl, ti, to, dal = self._kargs()
+        return q4k.x_start4(np.asarray(u, dtype=float), float(self._omega), ctrl, c, s, geo, ti, to, dal)
 
     def _ring_force(self, st):
         return _ring_forces4(self.g, self.psi, st["ai4"], st["Qi4"], st["Fi4"])
-
-    def _solve_balls(self, u, omega, X0, outer_ctrl, tol=1e-10, maxit=60):
-        """As QuasiStaticModel._solve_balls; balls that the Newton iteration leaves out of equilibrium
-        (a lightly loaded ball whose equilibrium contact angles are far from its start) are restarted
-        from the minimum of their contact + centrifugal potential."""
-        X, st, ok = self._newton_balls(u, omega, X0, outer_ctrl, tol, maxit)
-        if ok:
-            return X, st, ok
-        scale = max(1.0, 0.5 * self.g.ball_mass * self.g.dm * omega ** 2)
-        bad = np.hypot(st["Rr"], st["Rz"]) >= tol * (scale + max(st["Qi"].max(), st["Qo"].max(), 0.0))
-        Xe = X.copy()
-        Cr, Cz = self._centres(u)
-        for j in np.flatnonzero(bad):
-            Xe[j] = self._potential_minimum(X[j], Cr[j], Cz[j], float(st["Fc"][j]))
-        return self._newton_balls(u, omega, Xe, outer_ctrl, tol, maxit)
-
-    def _potential_minimum(self, x0, Cr, Cz, Fc):
-        """Ball centre [m] minimising sum_k (2/5) K_k delta_k^2.5 - Fc Xr over the valid arcs (Hertz
-        contacts of one ball; K at the free contact angle), from x0 (scipy Nelder-Mead, 1e-4 um)."""
-        from scipy.optimize import minimize
-
-        g = self.g
-        eo, ei = g.outer_groove_offset, g.inner_groove_offset
-        Ki = float(self.hz.K(np.array([g.alpha0]), inner=True)[0])
-        Ko = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
-        cen = [(0.0, 0.0, Ko, g.fo, 1, eo), (0.0, 2 * eo, Ko, g.fo, 2, eo),
-               (Cr[0], Cz[0], Ki, g.fi, -1, ei), (Cr[1], Cz[1], Ki, g.fi, -2, ei)]
-        um = 1e-6
-
-        def pot(y):
-            xr, xz = x0[0] + y[0] * um, x0[1] + y[1] * um
-            e = -Fc * (xr - x0[0])
-            for cr, cz, K, f, kind, off in cen:
-                vr, vz = xr - cr, xz - cz
-                L = math.hypot(vr, vz)
-                sn = vz / L if kind > 0 else -vz / L        # sin of the contact angle
-                valid = f * g.D * sn >= off if abs(kind) == 1 else f * g.D * sn < -off
-                d = L - (f - 0.5) * g.D
-                if valid and d > 0:
-                    e += 0.4 * K * d ** 2.5
-            return e
-
-        res = minimize(pot, np.zeros(2), method="Nelder-Mead",
-                       options={"xatol": 1e-4, "fatol": 1e-14, "initial_simplex": [[0, 0], [20, 0], [0, 20]],
-                                "maxiter": 2000})
-        return x0 + res.x * um
-
-    def _x_start(self, u):
-        """Initial ball positions: per ball the candidate with the smaller force residual among (a) the
-        line of centres of the more compressed diagonal pair with equal deflections (the mean of both
-        pairs when both are compressed) and, at speed, (b) the seat in the outer arch: on the outer groove
-        mid-plane, pressed into both outer arcs by the centrifugal force."""
-        X = self._x_start_pairs(u)
-        g = self.g
-        if self._omega > 0 and g.outer_groove_offset > 0:
-            wm = 0.5 * self._omega * (1.0 - g.D / g.dm)
-            Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
-            eo, ro = g.outer_groove_offset, (g.fo - 0.5) * g.D
-            K0 = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
-            sa = eo / ro                                     # sin of the arch contact angle of a seated ball
-            lo = ro + (Fc / (2.0 * K0 * math.sqrt(max(1.0 - sa * sa, 1e-6)))) ** (2.0 / 3.0)
-            Xs = np.tile([math.sqrt(max(lo * lo - eo * eo, 0.0)), eo], (g.Z, 1))
-            Cr, Cz = self._centres(u)
-            oc = np.ones(g.Z, dtype=bool)
-            s1 = self._ball_state(X, Cr, Cz, self._omega, oc)
-            s2 = self._ball_state(Xs, Cr, Cz, self._omega, oc)
-            better = np.hypot(s2["Rr"], s2["Rz"]) < np.hypot(s1["Rr"], s1["Rz"])
-            X[better] = Xs[better]
-        return X
-
-    def _x_start_pairs(self, u):
-        g = self.g
-        Cr, Cz = self._centres(u)
-        Oz = np.array([0.0, 2.0 * g.outer_groove_offset])
-        vr, vz = Cr, Cz - Oz
-        L = np.hypot(vr, vz)
-        ro, ri = (g.fo - 0.5) * g.D, (g.fi - 0.5) * g.D
-        d = 0.5 * (L - (ro + ri))
-        t = (ro + d) / np.maximum(L, 1e-300)
-        Xr, Xz = vr * t, Oz + vz * t
-        both = np.all(d > 0, axis=1)
-        k = np.argmax(d, axis=1)
-        rows = np.arange(g.Z)
-        X = np.stack([np.where(both, 0.5 * (Xr[:, 0] + Xr[:, 1]), Xr[rows, k]),
-                      np.where(both, 0.5 * (Xz[:, 0] + Xz[:, 1]), Xz[rows, k])], axis=1)
-        free = d[rows, k] < 0
-        if self._omega > 0 and free.any():
-            wm = 0.5 * self._omega * (1.0 - g.D / g.dm)
-            Fc = 0.5 * g.ball_mass * g.dm * wm ** 2
-            K0 = float(self.hz.K(np.array([g.alpha0]), inner=False)[0])
-            kf = k[free]
-            ao = np.arctan2(vz[free, kf], vr[free, kf])
-            lo = ro + (Fc / K0) ** (2.0 / 3.0)
-            X[free, 0] = lo * np.cos(ao)
-            X[free, 1] = Oz[kf] + lo * np.sin(ao)
-        return X
 
     def _u_guess(self, loads):
         u = super()._u_guess(loads)

@@ -84,8 +84,46 @@ def _coulomb(F, Fmax):
         x = F / Fmax
         x2 = x * x
         x4 = x2 * x2
+        if abs(x4) < 3e-9:              # x^8 < 1e-17: 1 + x^8 rounds to 1, F itself without the roots
+            return F
         return F / math.sqrt(math.sqrt(math.sqrt(1.0 + x4 * x4)))
     return 0.0
+
+
+@hot(inline="always")
+def ball_kinematics(cai, sai, cao, sao, oc, control, omega, geo, Qi_pos, Qo_pos):
+    """Kinematics and gyroscopic friction of one ball from cos / sin of its inner and outer contact angles
+    and the compressive load on each race [N]: raceway control (kinematics.attitude_outer /
+    attitude_inner; oc: the outer race controls under hybrid control) and pure rolling
+    (kinematics.ball_speeds), centrifugal force and gyroscopic moment at the absolute orbital speed, the
+    friction forces resisting the moment (lambda_i = 0 / 1, lambda_o = 2 - lambda_i, Coulomb-bounded by
+    mu Q). Returns (bx, by, wm, wR, Fc, Mg, lam_i, Fi, Fo); beta = atan2(by, bx)."""
+    D = geo[G_D]
+    dm = geo[G_DM]
+    gam = D / dm
+    if control == CTRL_OUTER or (control == CTRL_HYBRID and oc):
+        bx = cao + gam
+        by = sao
+    else:
+        bx = cai - gam
+        by = sai
+    hb = math.sqrt(bx * bx + by * by)
+    cb = bx / hb                           # cos(beta), sin(beta)
+    sb = by / hb
+    gi = D * cai / dm
+    go = D * cao / dm
+    ci = cai * cb + sai * sb               # cos(ai - beta)
+    co = cao * cb + sao * sb               # cos(ao - beta)
+    wm = omega * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci / co)
+    wR = -wm * dm * (1.0 + go) / (D * co)
+    wma = wm + geo[G_WOUT]                 # absolute orbital speed
+    Fc = 0.5 * geo[G_MASS] * dm * wma * wma
+    Mg = geo[G_INERTIA] * wma * wR * sb * -1.0
+    lam_i = 0.0 if oc else 1.0
+    lam_o = 2.0 - lam_i
+    Fi = _coulomb(lam_i * Mg / D, geo[G_MU] * Qi_pos)
+    Fo = _coulomb(lam_o * Mg / D, geo[G_MU] * Qo_pos)
+    return bx, by, wm, wR, Fc, Mg, lam_i, Fi, Fo
 
 
 @hot
@@ -96,7 +134,6 @@ def _ball(Xr, Xz, Cr, Cz, omega, oc_in, control, geo, tab_i, tab_o, dal):
     1.0 / 0.0), the attitude angle as beta = atan2(by, bx) (ball_states; the Newton iterations do not
     need it)."""
     D = geo[G_D]
-    dm = geo[G_DM]
     lo = math.sqrt(Xr * Xr + Xz * Xz)
     nor = Xr / lo
     noz = Xz / lo
@@ -122,33 +159,8 @@ def _ball(Xr, Xz, Cr, Cz, omega, oc_in, control, geo, tab_i, tab_o, dal):
     # raceway control (kinematics.attitude_outer / attitude_inner) and pure rolling (ball_speeds), with
     # cos / sin of the contact angles taken from the unit normals: (cos ao, sin ao) = n_o,
     # (cos ai, sin ai) = -n_i
-    cao = nor
-    sao = noz
-    cai = -nir
-    sai = -niz
-    gam = D / dm
-    if control == CTRL_OUTER or (control == CTRL_HYBRID and oc):
-        bx = cao + gam
-        by = sao
-    else:
-        bx = cai - gam
-        by = sai
-    hb = math.sqrt(bx * bx + by * by)
-    cb = bx / hb                           # cos(beta), sin(beta); beta = atan2(by, bx) (ball_states)
-    sb = by / hb
-    gi = D * cai / dm
-    go = D * cao / dm
-    ci = cai * cb + sai * sb               # cos(ai - beta)
-    co = cao * cb + sao * sb               # cos(ao - beta)
-    wm = omega * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci / co)
-    wR = -wm * dm * (1.0 + go) / (D * co)
-    wma = wm + geo[G_WOUT]                 # absolute orbital speed
-    Fc = 0.5 * geo[G_MASS] * dm * wma * wma
-    Mg = geo[G_INERTIA] * wma * wR * sb * -1.0
-    lam_i = 0.0 if oc else 1.0
-    lam_o = 2.0 - lam_i
-    Fi = _coulomb(lam_i * Mg / D, geo[G_MU] * max(Qi, 0.0))
-    Fo = _coulomb(lam_o * Mg / D, geo[G_MU] * max(Qo, 0.0))
+    bx, by, wm, wR, Fc, Mg, lam_i, Fi, Fo = ball_kinematics(-nir, -niz, nor, noz, oc, control, omega, geo,
+                                                            max(Qi, 0.0), max(Qo, 0.0))
     Rr = -Qi * nir - Qo * nor + Fi * niz + Fo * noz + Fc
     Rz = -Qi * niz - Qo * noz - Fi * nir - Fo * nor
     return Rr, Rz, Qi, Qo, d_i, d_o, ai, ao, bx, wm, wR, Fc, Mg, lam_i, 1.0 if oc else 0.0, Fi, Fo, by
@@ -188,6 +200,14 @@ def ball_states(X, Cr, Cz, omega, oc, control, geo, tab_i, tab_o, dal, S):
 
 
 @hot(inline="always")
+def rolling_fc(omega, geo):
+    """Centrifugal force [N] of a ball at the pure-rolling orbital speed omega (1 - D/dm) / 2 (zero
+    contact angle estimate, for starting positions)."""
+    wm = 0.5 * omega * (1.0 - geo[G_D] / geo[G_DM])
+    return 0.5 * geo[G_MASS] * geo[G_DM] * wm ** 2
+
+
+@hot(inline="always")
 def _x_start(Cr, Cz, omega, geo, tab_o, dal, X):
     """Initial ball positions: on the line of centres with equal deflections; at speed a ball in the
     clearance is put on the outer race, pressed by the pure-rolling centrifugal force."""
@@ -197,10 +217,8 @@ def _x_start(Cr, Cz, omega, geo, tab_o, dal, X):
     lo = 0.0
     ta = 0.0
     if omega > 0.0:
-        wm = 0.5 * omega * (1.0 - D / geo[G_DM])
-        Fc = 0.5 * geo[G_MASS] * geo[G_DM] * wm ** 2
         K0 = hertz_lookup_alpha(tab_o, 0.0, dal, geo[G_ALPHA0], ROW_K_LOAD)
-        lo = ro + (Fc / K0) ** (2.0 / 3.0)
+        lo = ro + (rolling_fc(omega, geo) / K0) ** (2.0 / 3.0)
     for j in range(Cr.shape[0]):
         L = math.hypot(Cr[j], Cz[j])
         d = 0.5 * (L - (ro + ri))
@@ -223,6 +241,27 @@ def x_start(u, omega, cpsi, spsi, geo, tab_o, dal):
     X = np.empty((Z, 2))
     _x_start(Cr, Cz, omega, geo, tab_o, dal, X)
     return X
+
+
+@hot(inline="always")
+def ball_newton_step(J00, J01, J10, J11, R0, R1, D, lim):
+    """Newton step (d0, d1) [m] of one ball's 2x2 equilibrium J d = -R, a small steepest-descent step
+    (1e-4 D) where J is singular, limited to lim in the max norm."""
+    det = J00 * J11 - J01 * J10
+    if not abs(det) > 0.0:
+        det = 1e-300
+    d0 = -(J11 * R0 - J01 * R1) / det
+    d1 = -(-J10 * R0 + J00 * R1) / det
+    if not (math.isfinite(d0) and math.isfinite(d1)):
+        # singular 2x2 (e.g. degenerate kinematics): small steepest-descent step
+        d0 = -1e-4 * D * _sign(R0)
+        d1 = -1e-4 * D * _sign(R1)
+    mag = max(abs(d0), abs(d1))
+    if mag > lim:
+        f = lim / max(mag, 1e-300)
+        d0 *= f
+        d1 *= f
+    return d0, d1
 
 
 @hot
@@ -275,20 +314,7 @@ def _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, tol, max
             p = _ball(x0, x1 + h, Cr[j], Cz[j], omega, oc[j], control, geo, tab_i, tab_o, dal)
             J01 = (p[0] - R0) / h
             J11 = (p[1] - R1) / h
-            det = J00 * J11 - J01 * J10
-            if not abs(det) > 0.0:
-                det = 1e-300
-            d0 = -(J11 * R0 - J01 * R1) / det
-            d1 = -(-J10 * R0 + J00 * R1) / det
-            if not (math.isfinite(d0) and math.isfinite(d1)):
-                # singular 2x2 (e.g. degenerate kinematics): small steepest-descent step
-                d0 = -1e-4 * D * _sign(R0)
-                d1 = -1e-4 * D * _sign(R1)
-            mag = max(abs(d0), abs(d1))
-            if mag > lim:
-                f = lim / max(mag, 1e-300)
-                d0 *= f
-                d1 *= f
+            d0, d1 = ball_newton_step(J00, J01, J10, J11, R0, R1, D, lim)
             n0 = math.hypot(R0, R1)
             lam = 1.0
             xn0 = x0 + d0
@@ -451,6 +477,144 @@ def _hybrid_oc(S, tab_i, tab_o, dal, oc):
         oc[j] = Qo * a_o * Eo * math.cos(ai - ao) > Qi * a_i * Ei
 
 
+@hot(inline="always")
+def ring_scales(loads, geo, fixed_tilt, u, us, smax_div, fs):
+    """Scales of the 5-DOF Newton solve: unknowns us (1 um, 1e-5 rad), step limits smax_div (20 um,
+    1 mrad in units of us), residual scales fs (the load, moments over dm/2, at least 1 N); with a fixed
+    tilt the start u gets tx = ty = 0."""
+    for k in range(5):
+        us[k] = 1e-6 if k < 3 else 1e-5
+        smax_div[k] = 20.0 if k < 3 else 100.0
+    n3 = math.sqrt(loads[0] ** 2 + loads[1] ** 2 + loads[2] ** 2)
+    nm = math.sqrt(loads[3] ** 2 + loads[4] ** 2)
+    Fscale = max(n3, nm / (0.5 * geo[G_DM]), 1.0)
+    for k in range(5):
+        fs[k] = Fscale if k < 3 else Fscale * 0.5 * geo[G_DM]
+    if fixed_tilt:
+        u[3] = 0.0
+        u[4] = 0.0
+
+
+@hot(inline="always")
+def hybrid_update(S, tab_i, tab_o, dal, new_oc, oc):
+    """Harris's criterion on the ball states S into oc; returns whether any ball changed its controlling
+    race (new_oc: work array)."""
+    _hybrid_oc(S, tab_i, tab_o, dal, new_oc)
+    changed = False
+    for j in range(oc.shape[0]):
+        if new_oc[j] != oc[j]:
+            changed = True
+    if changed:
+        _copy1(new_oc, oc)
+    return changed
+
+
+@hot(inline="always")
+def ring_converged(r, tol):
+    """max |r| < tol with every scaled residual finite."""
+    rmax = 0.0
+    rfin = True
+    for k in range(5):
+        if not math.isfinite(r[k]):
+            rfin = False
+        rmax = max(rmax, abs(r[k]))
+    return rfin and rmax < tol
+
+
+@hot(inline="always")
+def ring_step(J, r, smax_div, step):
+    """Newton step of the 5-DOF solve into step (scaled units): least squares J step = -r (rcond 1e-12),
+    scaled down to the limits smax_div. False (no step) where J or r is not finite."""
+    fin = True
+    for i in range(5):
+        if not math.isfinite(r[i]):
+            fin = False
+        for k in range(5):
+            if not math.isfinite(J[i, k]):
+                fin = False
+    if not fin:
+        return False
+    x = lstsq_svd(J, r, 1e-12)
+    smax = 0.0
+    for k in range(5):
+        step[k] = -x[k]
+        smax = max(smax, abs(step[k]) / smax_div[k])
+    if smax > 1.0:
+        for k in range(5):
+            step[k] /= smax
+    return True
+
+
+@hot(inline="always")
+def max_abs_or_nan(r):
+    """max |r_k| of a 5-vector, NaN if any r_k is not finite."""
+    m = 0.0
+    for k in range(5):
+        m = max(m, abs(r[k])) if math.isfinite(r[k]) and math.isfinite(m) else np.nan
+    return m
+
+
+@hot(inline="always")
+def shifted(u, k, du, out):
+    """out = u with out[k] = u[k] + du."""
+    _copy1(u, out)
+    out[k] += du
+
+
+@hot(inline="always")
+def jacobian_column(J, k, rp, r):
+    """Column k of the forward-difference Jacobian in scaled units (step 1e-2)."""
+    for i in range(5):
+        J[i, k] = (rp[i] - r[i]) / 1e-2
+
+
+@hot(inline="always")
+def trial_point(u, lam, step, us, un):
+    """Line-search point un = u + lam step us [m, rad]."""
+    for k in range(5):
+        un[k] = u[k] + lam * step[k] * us[k]
+
+
+@hot(inline="always")
+def sufficient_decrease(rn, n0, lam):
+    """Armijo-type acceptance of the line search: |rn| < (1 - 1e-4 lam) n0."""
+    return _norm5(rn) < (1.0 - 1e-4 * lam) * n0
+
+
+@hot(inline="always")
+def accept(un, u, rn, r, Xn, X, Sn, S):
+    """Take the accepted line-search point: u, r, ball positions X and states S."""
+    _copy1(un, u)
+    _copy1(rn, r)
+    _copy2(Xn, X)
+    _copy2(Sn, S)
+
+
+@hot(inline="always")
+def outer_controls(S):
+    """Raceway control per ball (True: outer) from the state rows S_OC."""
+    ocs = np.empty(S.shape[1], dtype=np.bool_)
+    for j in range(S.shape[1]):
+        ocs[j] = S[S_OC, j] != 0.0
+    return ocs
+
+
+@hot(inline="always")
+def stiffness_steps():
+    """Central-difference steps of the stiffness matrix: 1e-8 m, 1e-7 rad."""
+    h = np.empty(5)
+    for k in range(5):
+        h[k] = 1e-8 if k < 3 else 1e-7
+    return h
+
+
+@hot(inline="always")
+def stiffness_column(Kmat, k, Fp, Fm, hk):
+    """Column k of K = -dF/du from the ring forces at u +- hk e_k."""
+    for i in range(5):
+        Kmat[i, k] = -(Fp[i] - Fm[i]) / (2.0 * hk)
+
+
 @hot
 def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, spsi, tab_i, tab_o, dal,
           X, S, Kmat, info):
@@ -464,18 +628,8 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     Z = cpsi.shape[0]
     us = np.empty(5)
     smax_div = np.empty(5)
-    for k in range(5):
-        us[k] = 1e-6 if k < 3 else 1e-5
-        smax_div[k] = 20.0 if k < 3 else 100.0
-    n3 = math.sqrt(loads[0] ** 2 + loads[1] ** 2 + loads[2] ** 2)
-    nm = math.sqrt(loads[3] ** 2 + loads[4] ** 2)
-    Fscale = max(n3, nm / (0.5 * geo[G_DM]), 1.0)
     fs = np.empty(5)
-    for k in range(5):
-        fs[k] = Fscale if k < 3 else Fscale * 0.5 * geo[G_DM]
-    if fixed_tilt:
-        u[3] = 0.0
-        u[4] = 0.0
+    ring_scales(loads, geo, fixed_tilt, u, us, smax_div, fs)
     oc = np.ones(Z, dtype=np.bool_)
     new_oc = np.ones(Z, dtype=np.bool_)
     Cr = np.empty(Z)
@@ -493,6 +647,7 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     up = np.empty(5)
     un = np.empty(5)
     J = np.empty((5, 5))
+    step = np.empty(5)
     _centres(u, cpsi, spsi, geo, Cr, Cz)
     X0 = np.empty((Z, 2))
     _x_start(Cr, Cz, omega, geo, tab_o, dal, X0)
@@ -501,79 +656,44 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     it = 0
     converged = False
     for it in range(1, maxit + 1):
-        if control == CTRL_HYBRID and it <= 15:
-            _hybrid_oc(S, tab_i, tab_o, dal, new_oc)
-            changed = False
-            for j in range(Z):
-                if new_oc[j] != oc[j]:
-                    changed = True
-            if changed:
-                _copy1(new_oc, oc)
-                _copy2(X, X0)
-                ok = _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz,
-                               Rr, Rz, F)
-                _scaled(loads, F, fs, u, us, fixed_tilt, r)
-        rmax = 0.0
-        rfin = True
-        for k in range(5):
-            if not math.isfinite(r[k]):
-                rfin = False
-            rmax = max(rmax, abs(r[k]))
-        if ok and rfin and rmax < tol:
+        if control == CTRL_HYBRID and it <= 15 and hybrid_update(S, tab_i, tab_o, dal, new_oc, oc):
+            _copy2(X, X0)
+            ok = _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz,
+                           Rr, Rz, F)
+            _scaled(loads, F, fs, u, us, fixed_tilt, r)
+        if ok and ring_converged(r, tol):
             converged = True
             break
         for k in range(5):
-            _copy1(u, up)
-            up[k] += 1e-2 * us[k]
+            shifted(u, k, 1e-2 * us[k], up)
             _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, F)
             _scaled(loads, F, fs, up, us, fixed_tilt, rp)
-            for i in range(5):
-                J[i, k] = (rp[i] - r[i]) / 1e-2
-        jfin = True
-        for i in range(5):
-            for k in range(5):
-                if not math.isfinite(J[i, k]):
-                    jfin = False
-        if not (jfin and rfin):
+            jacobian_column(J, k, rp, r)
+        if not ring_step(J, r, smax_div, step):
             break                   # no least-squares step
-        step = -lstsq_svd(J, r, 1e-12)
-        smax = 0.0
-        for k in range(5):
-            smax = max(smax, abs(step[k]) / smax_div[k])
-        if smax > 1.0:
-            step /= smax
         lam = 1.0
         n0 = _norm5(r)
         accepted = False
         okn = False
         for _ in range(16):
-            for k in range(5):
-                un[k] = u[k] + lam * step[k] * us[k]
+            trial_point(u, lam, step, us, un)
             okn = _residual(un, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xn, Sn, Cr, Cz, Rr,
                             Rz, F)
             _scaled(loads, F, fs, un, us, fixed_tilt, rn)
-            if okn and _norm5(rn) < (1.0 - 1e-4 * lam) * n0:
+            if okn and sufficient_decrease(rn, n0, lam):
                 accepted = True
                 break
             lam *= 0.5
         if not accepted:
             info[0] = n0
             return LINE_SEARCH_FAILED, it
-        _copy1(un, u)
-        _copy1(rn, r)
-        _copy2(Xn, X)
-        _copy2(Sn, S)
+        accept(un, u, rn, r, Xn, X, Sn, S)
         ok = okn
     if not converged:
-        info[1] = 0.0
-        for k in range(5):
-            info[1] = max(info[1], abs(r[k])) if math.isfinite(r[k]) and math.isfinite(info[1]) else np.nan
+        info[1] = max_abs_or_nan(r)
         return NOT_CONVERGED, it
     if want_K:
-        ocs = np.empty(Z, dtype=np.bool_)
-        for j in range(Z):
-            ocs[j] = S[S_OC, j] != 0.0
-        _copy2(stiffness(u, omega, X, ocs, control, geo, cpsi, spsi, tab_i, tab_o, dal), Kmat)
+        _copy2(stiffness(u, omega, X, outer_controls(S), control, geo, cpsi, spsi, tab_i, tab_o, dal), Kmat)
     return OK, it
 
 
@@ -583,9 +703,7 @@ def stiffness(u, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
     with balls X (Z, 2) and raceway control oc: central differences (steps 1e-8 m, 1e-7 rad) of the ring
     force, every ball re-equilibrated from X."""
     Z = cpsi.shape[0]
-    h = np.empty(5)
-    for k in range(5):
-        h[k] = 1e-8 if k < 3 else 1e-7
+    h = stiffness_steps()
     Kmat = np.empty((5, 5))
     up = np.empty(5)
     Fp = np.empty(5)
@@ -597,12 +715,9 @@ def stiffness(u, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
     Rr = np.empty(Z)
     Rz = np.empty(Z)
     for k in range(5):
-        _copy1(u, up)
-        up[k] += h[k]
+        shifted(u, k, h[k], up)
         _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fp)
-        _copy1(u, up)
-        up[k] -= h[k]
+        shifted(u, k, -h[k], up)
         _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, Fm)
-        for i in range(5):
-            Kmat[i, k] = -(Fp[i] - Fm[i]) / (2.0 * h[k])
+        stiffness_column(Kmat, k, Fp, Fm, h[k])
     return Kmat

@@ -3,12 +3,17 @@ with and without the 5x5 stiffness matrix, and of the tribological quasi-static 
 (bearing_core.quasistatic_tribo), which starts from it (7218B, lubricated, 3000 rpm, Fx 1 kN, Fz 3 kN;
 tribo_jones_harris_start_ms: the Jones-Harris solve with stiffness inside it).
 
-    python bench/bench_quasistatic.py [--quick] [--repeat N] [--save ref.npz] [--compare ref.npz] [--json]
+    python bench/bench_quasistatic.py [--quick] [--repeat N] [--matrix all|two-point|four-point]
+                                      [--clock wall|thread] [--save ref.npz] [--compare ref.npz] [--json]
 
 Matrix: the two-point presets 7218B, 7008-ma2023, wan-105; speeds 0, 3000, 10,000, 20,000 rpm; loads pure
-axial, combined, radial-heavy, with moments; raceway control outer / inner / hybrid. Each solve is run
-once to compile and warm up, then timed as the best of --repeat runs (the machine is shared: the best run
-is the cost of the solve, the others add other jobs' time slices).
+axial, combined, radial-heavy, with moments; raceway control outer / inner / hybrid. Four-point matrix
+(FourPointQuasiStaticModel, preset QJ1044, outer control): 0, 3000, 10,000 rpm; loads radial (Fx 10 kN),
+combined (Fx 2 kN, Fz 10 kN) and light combined (Fx 1 kN, Fz 3 kN); its summary keys start with
+'fourpoint_', the other summary keys cover the two-point matrix only. Each solve is run once to compile
+and warm up, then timed as the best of --repeat runs (the machine is shared: the best run is the cost of
+the solve, the others add other jobs' time slices); --clock thread times the thread's CPU time instead of
+the wall time.
 
 --save writes every case's results (u, ball loads, contact angles, deflections, orbital speed, stiffness)
 to an .npz file; --compare reads such a file (e.g. written by another version of the code) and prints the
@@ -25,13 +30,19 @@ import numpy as np
 
 from bearing_core.errors import ConvergenceError
 from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import QuasiStaticModel
+from bearing_core.quasistatic import FourPointQuasiStaticModel, QuasiStaticModel
 
 RPM = math.pi / 30
 PRESETS = ("7218B", "7008-ma2023", "wan-105")
 SPEEDS_RPM = (0.0, 3000.0, 10000.0, 20000.0)
 FIELDS = ("u", "Q_i", "Q_o", "alpha_i", "alpha_o", "delta_i", "delta_o", "omega_m", "omega_R", "beta", "F_i",
           "F_o", "p_i", "stiffness")
+FIELDS4 = FIELDS + ("Q_c", "alpha_c", "delta_c", "F_c")
+FOURPOINT_PRESET = "QJ1044"
+FOURPOINT_SPEEDS_RPM = (0.0, 3000.0, 10000.0)
+FOURPOINT_LOADS = (("radial", (10000.0, 0.0, 0.0, 0.0, 0.0)),
+                   ("combined", (2000.0, 0.0, 10000.0, 0.0, 0.0)),
+                   ("light-combined", (1000.0, 0.0, 3000.0, 0.0, 0.0)))
 
 
 def load_cases(g):
@@ -56,13 +67,34 @@ def cases(quick):
                     yield p, g, ctrl, n, lname, loads
 
 
-def timed(fn, repeat):
+def fourpoint_cases():
+    g = load_preset(FOURPOINT_PRESET)
+    for n in FOURPOINT_SPEEDS_RPM:
+        for lname, loads in FOURPOINT_LOADS:
+            yield FOURPOINT_PRESET, g, "outer", n, lname, loads
+
+
+CLOCK = {"wall": time.perf_counter, "thread": time.thread_time}
+
+
+def timed(fn, repeat, clock=time.perf_counter):
     ts = []
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0 = clock()
         fn()
-        ts.append(time.perf_counter() - t0)
+        ts.append(clock() - t0)
     return float(np.min(ts))
+
+
+def _summary(rows, prefix=""):
+    ok = [r for r in rows if r["ok"]]
+    out = {f"{prefix}cases": len(rows), f"{prefix}failed": len(rows) - len(ok)}
+    if ok:
+        out.update({f"{prefix}median_ms_without": float(np.median([r["ms_without"] for r in ok])),
+                    f"{prefix}max_ms_without": float(np.max([r["ms_without"] for r in ok])),
+                    f"{prefix}median_ms_with_stiffness": float(np.median([r["ms_with_stiffness"] for r in ok])),
+                    f"{prefix}max_ms_with_stiffness": float(np.max([r["ms_with_stiffness"] for r in ok]))})
+    return out
 
 
 def main():
@@ -73,46 +105,60 @@ def main():
     ap.add_argument("--compare")
     ap.add_argument("--json", action="store_true")
     ap.add_argument("--no-tribo", action="store_true", help="skip the tribological solve timing")
+    ap.add_argument("--matrix", choices=("all", "two-point", "four-point"), default="all",
+                    help="which matrix of cases to time (default: both)")
+    ap.add_argument("--clock", choices=tuple(CLOCK), default="wall",
+                    help="wall time (perf_counter) or the thread's CPU time (thread_time)")
     a = ap.parse_args()
+    clock = CLOCK[a.clock]
     t0 = time.perf_counter()
-    m0 = QuasiStaticModel(load_preset("7218B"))
-    m0.solve(3000 * RPM, (1000.0, 0, 3000.0, 0, 0))
+    if a.matrix != "four-point":
+        m0 = QuasiStaticModel(load_preset("7218B"))
+        m0.solve(3000 * RPM, (1000.0, 0, 3000.0, 0, 0))
     first_s = time.perf_counter() - t0
-    rows, saved = [], {}
+    summary = dict(first_solve_s=first_s)
+    if a.matrix != "two-point":
+        t0 = time.perf_counter()
+        FourPointQuasiStaticModel(load_preset(FOURPOINT_PRESET)).solve(3000 * RPM, (1000.0, 0, 3000.0, 0, 0))
+        summary["fourpoint_first_solve_s"] = time.perf_counter() - t0
+    rows, rows4, saved = [], [], {}
     ref = np.load(a.compare) if a.compare else None
     worst = {}
-    for p, g, ctrl, n, lname, loads in cases(a.quick):
+    matrix = []
+    if a.matrix != "four-point":
+        matrix += [(c, QuasiStaticModel, FIELDS, rows) for c in cases(a.quick)]
+    if a.matrix != "two-point":
+        matrix += [(c, FourPointQuasiStaticModel, FIELDS4, rows4) for c in fourpoint_cases()]
+    for (p, g, ctrl, n, lname, loads), cls, fields, out in matrix:
         key = f"{p}|{ctrl}|{n:g}|{lname}"
-        m = QuasiStaticModel(g, ctrl)
+        m = cls(g, ctrl)
         w = n * RPM
         try:
             r = m.solve(w, loads, stiffness=True)
         except ConvergenceError as e:
             print(f"{key:40s} FAIL {str(e)[:100]}")
-            rows.append(dict(case=key, ok=False))
+            out.append(dict(case=key, ok=False))
             continue
-        t_k = timed(lambda: m.solve(w, loads, stiffness=True), a.repeat)
-        t_n = timed(lambda: m.solve(w, loads, stiffness=False), a.repeat)
-        rows.append(dict(case=key, ok=True, ms_with_stiffness=1e3 * t_k, ms_without=1e3 * t_n,
-                         iterations=r.iterations))
+        t_k = timed(lambda: m.solve(w, loads, stiffness=True), a.repeat, clock)
+        t_n = timed(lambda: m.solve(w, loads, stiffness=False), a.repeat, clock)
+        out.append(dict(case=key, ok=True, ms_with_stiffness=1e3 * t_k, ms_without=1e3 * t_n,
+                        iterations=r.iterations))
         msg = ""
-        for f in FIELDS:
+        for f in fields:
             v = np.asarray(getattr(r, f), dtype=float)
             saved[f"{key}|{f}"] = v
             if ref is not None and f"{key}|{f}" in ref:
                 o = ref[f"{key}|{f}"]
                 d = float(np.max(np.abs(v - o)) / max(np.max(np.abs(o)), 1e-300))
                 worst[f] = max(worst.get(f, 0.0), d)
-                msg = f"  max rel diff {max(worst.get(f, 0) for f in FIELDS):.1e}"
+                msg = f"  max rel diff {max(worst.get(f, 0) for f in fields):.1e}"
         print(f"{key:40s} {1e3 * t_n:8.2f} ms  {1e3 * t_k:8.2f} ms with stiffness  it {r.iterations:3d}{msg}",
               flush=True)
-    ok = [r for r in rows if r["ok"]]
-    summary = dict(first_solve_s=first_s, cases=len(rows), failed=len(rows) - len(ok),
-                   median_ms_without=float(np.median([r["ms_without"] for r in ok])),
-                   max_ms_without=float(np.max([r["ms_without"] for r in ok])),
-                   median_ms_with_stiffness=float(np.median([r["ms_with_stiffness"] for r in ok])),
-                   max_ms_with_stiffness=float(np.max([r["ms_with_stiffness"] for r in ok])))
-    if not a.no_tribo:
+    if a.matrix != "four-point":
+        summary.update(_summary(rows))
+    if a.matrix != "two-point":
+        summary.update(_summary(rows4, "fourpoint_"))
+    if not a.no_tribo and a.matrix != "four-point":
         from bearing_core.dynamics import DynamicsOptions
         from bearing_core.quasistatic_tribo import solve_tribo_quasistatic
         g = load_preset("7218B")
@@ -131,7 +177,7 @@ def main():
     print(json.dumps(summary, indent=1) if a.json else
           "\n".join(f"{k}: {v}" for k, v in summary.items()))
     if a.json:
-        print(json.dumps(rows))
+        print(json.dumps(rows + rows4))
 
 
 if __name__ == "__main__":
