@@ -1166,6 +1166,16 @@ ROSW_B = np.array([2.4212380706095346e-01, -1.2232505839045147e+00, 1.5452602553
 ROSW_BH = np.array([3.7810903145819369e-01, -9.6042292212423178e-02, 0.5, 2.1793326075422950e-01])
 ROSW_C = np.array([0.0, 8.7173304301691801e-01, 7.3157995778885238e-01, 1.0])
 JAC_EVERY = 20
+# The stages are solved for u_s = sum_{q<=s} Gamma_sq k_s (Gamma = ROSW_GAM + g I) instead of k_s, which
+# removes the product W sum gamma_sq k_q from every stage (Hairer & Wanner II, Sec. IV.7, Eq. 7.25):
+#   (I - h g W) u_s = g (f(y + h sum_q A'_sq u_q) + sum_{q<s} C_sq u_q),
+#   y1 = y + h sum_s m_s u_s, error h sum_s e_s u_s,
+# with A' = A Gamma^-1, C = diag(1/g) - Gamma^-1, m = b Gamma^-1, e = (b - b^) Gamma^-1.
+_ROSW_GINV = np.linalg.inv(ROSW_GAM + ROSW_G * np.eye(4))
+ROSW_TA = ROSW_A @ _ROSW_GINV
+ROSW_TC = np.diag(np.full(4, 1.0 / ROSW_G)) - _ROSW_GINV
+ROSW_TM = ROSW_B @ _ROSW_GINV
+ROSW_TE = (ROSW_B - ROSW_BH) @ _ROSW_GINV
 
 
 @hot
@@ -1196,7 +1206,7 @@ def _lu_factor(M, piv):
 
 @hot
 def _lu_solve(M, piv, x):
-    """Solve (LU) z = x in place (x: 1-D view of length m)."""
+    """Solve (LU) z = x in place on x[:m] (M: m x m)."""
     m = M.shape[0]
     for k in range(m):
         p = piv[k]
@@ -1282,109 +1292,139 @@ def _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx
 
 
 @hot
-def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs):
-    """Factor I - hg W: ball blocks LUb, X_j = (I - hg Wbb_j)^-1 (-hg Wbf_j), Schur complement
-    S = I - hg Wff + hg sum_j Wfb_j X_j on the fixed states."""
+def _lu_block(LUb, pivb, j):
+    """In-place LU with partial pivoting of the NSB x NSB ball block LUb[j] (Golub & Van Loan
+    Alg. 3.4.1; loops of constant length, no array views)."""
+    for k in range(NSB):
+        p = k
+        big = abs(LUb[j, k, k])
+        for i in range(k + 1, NSB):
+            if abs(LUb[j, i, k]) > big:
+                big = abs(LUb[j, i, k]); p = i
+        pivb[j, k] = p
+        if p != k:
+            for c in range(NSB):
+                tmp = LUb[j, k, c]; LUb[j, k, c] = LUb[j, p, c]; LUb[j, p, c] = tmp
+        d = LUb[j, k, k]
+        if d == 0.0:
+            d = 1e-300
+            LUb[j, k, k] = d
+        for i in range(k + 1, NSB):
+            LUb[j, i, k] /= d
+            f = LUb[j, i, k]
+            if f != 0.0:
+                for c in range(k + 1, NSB):
+                    LUb[j, i, c] -= f * LUb[j, k, c]
+
+
+@hot
+def _lu_block_solve(LUb, pivb, j, x, o):
+    """x[o:o+NSB] <- (LU of block j)^-1 x[o:o+NSB] in place."""
+    for k in range(NSB):
+        p = pivb[j, k]
+        if p != k:
+            tmp = x[o + k]; x[o + k] = x[o + p]; x[o + p] = tmp
+    for i in range(1, NSB):
+        s = x[o + i]
+        for c in range(i):
+            s -= LUb[j, i, c] * x[o + c]
+        x[o + i] = s
+    for i in range(NSB - 1, -1, -1):
+        s = x[o + i]
+        for c in range(i + 1, NSB):
+            s -= LUb[j, i, c] * x[o + c]
+        x[o + i] = s / LUb[j, i, i]
+
+
+@hot
+def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, Z, S, pivs):
+    """Factor M = I - hg W in arrow form: ball blocks M_j = I - hg Wbb_j (LUb, pivb), the row blocks
+    Z_j = Wfb_j M_j^-1 (nf x NSB; rows of Wfb_j that are zero stay zero) and the Schur complement on the
+    fixed states S = I - hg Wff - hg^2 sum_j Z_j Wbf_j (LU in place, pivs). No allocation."""
     nb = Wbb.shape[0]
     nf = NSTATE_FIXED
+    hg2 = hg * hg
     for r in range(nf):
         for c in range(nf):
             S[r, c] = -hg * Wff[r, c]
         S[r, r] += 1.0
-    col = np.empty(NSB)
     for j in range(nb):
         for a in range(NSB):
             for c in range(NSB):
                 LUb[j, a, c] = -hg * Wbb[j, a, c]
             LUb[j, a, a] += 1.0
-        _lu_factor(LUb[j], pivb[j])
-        for c in range(nf):
+        _lu_block(LUb, pivb, j)
+        for r in range(nf):
             nz = False
             for a in range(NSB):
-                col[a] = -hg * Wbf[j, a, c]
-                if col[a] != 0.0:
+                Z[j, r, a] = Wfb[j, r, a]
+                if Wfb[j, r, a] != 0.0:
                     nz = True
-            if nz:
-                _lu_solve(LUb[j], pivb[j], col)
+            if not nz:
+                continue
+            # z M_j = w with P M_j = L U: solve a U = w, then b L = a, then z = b P (row vector)
+            for c in range(NSB):
+                sacc = Z[j, r, c]
+                for k in range(c):
+                    sacc -= Z[j, r, k] * LUb[j, k, c]
+                Z[j, r, c] = sacc / LUb[j, c, c]
+            for c in range(NSB - 2, -1, -1):
+                sacc = Z[j, r, c]
+                for k in range(c + 1, NSB):
+                    sacc -= Z[j, r, k] * LUb[j, k, c]
+                Z[j, r, c] = sacc
+            for k in range(NSB - 1, -1, -1):
+                p = pivb[j, k]
+                if p != k:
+                    tmp = Z[j, r, k]; Z[j, r, k] = Z[j, r, p]; Z[j, r, p] = tmp
             for a in range(NSB):
-                X[j, a, c] = col[a]
-        for r in range(nf):
-            for a in range(NSB):
-                w = Wfb[j, r, a]
-                if w != 0.0:
-                    w *= hg
+                za = hg2 * Z[j, r, a]
+                if za != 0.0:
                     for c in range(nf):
-                        S[r, c] += w * X[j, a, c]
+                        S[r, c] -= za * Wbf[j, a, c]
     _lu_factor(S, pivs)
 
 
 @hot
-def _w_solve(hg, x, Wfb, LUb, pivb, X, S, pivs, tmp):
-    """x <- (I - hg W)^-1 x with the factors of _w_factor (tmp: nb x 9 work array)."""
+def _w_solve(hg, x, Wbf, Z, LUb, pivb, S, pivs):
+    """x <- (I - hg W)^-1 x with the factors of _w_factor (same hg): eliminate the ball blocks
+    (x_f += hg sum_j Z_j x_j), solve S on the fixed states, then x_j <- M_j^-1 (x_j + hg Wbf_j x_f)."""
     nb = LUb.shape[0]
     nf = NSTATE_FIXED
     for j in range(nb):
         o = nf + NSB * j
-        for a in range(NSB):
-            tmp[j, a] = x[o + a]
-        _lu_solve(LUb[j], pivb[j], tmp[j])
-        # r_f <- r_f - A_fb y_b with A_fb = -hg Wfb
         for r in range(nf):
             acc = 0.0
             for a in range(NSB):
-                acc += Wfb[j, r, a] * tmp[j, a]
+                acc += Z[j, r, a] * x[o + a]
             x[r] += hg * acc
-    _lu_solve(S, pivs, x[:nf])
+    _lu_solve(S, pivs, x)         # acts on x[:nf] (S is nf x nf)
     for j in range(nb):
         o = nf + NSB * j
         for a in range(NSB):
-            acc = tmp[j, a]
-            for c in range(nf):
-                acc -= X[j, a, c] * x[c]
-            x[o + a] = acc
-
-
-@hot
-def _w_matvec(v, out, Wff, Wbf, Wfb, Wbb):
-    """out <- W v (arrow structure)."""
-    nb = Wbb.shape[0]
-    nf = NSTATE_FIXED
-    for r in range(nf):
-        acc = 0.0
-        for c in range(nf):
-            acc += Wff[r, c] * v[c]
-        out[r] = acc
-    for j in range(nb):
-        o = nf + NSB * j
-        for r in range(nf):
             acc = 0.0
-            for a in range(NSB):
-                acc += Wfb[j, r, a] * v[o + a]
-            out[r] += acc
-        for a in range(NSB):
-            acc = 0.0
-            for c in range(NSB):
-                acc += Wbb[j, a, c] * v[o + c]
             for c in range(nf):
-                acc += Wbf[j, a, c] * v[c]
-            out[o + a] = acc
+                acc += Wbf[j, a, c] * x[c]
+            x[o + a] += hg * acc
+        _lu_block_solve(LUb, pivb, j, x, o)
 
 
 @hot
 def rosw_workspace(nb):
     """Jacobian and factorisation arrays of integrate_rosw, kept between calls so that consecutive
     intervals (FMU communication steps, 'auto' chunks) reuse W and its LU factors (a W-method keeps its
-    order with any W, so a lagged W from the previous interval is legitimate). jst = [age of W in
-    accepted steps (>= JAC_EVERY: rebuild), h g of the current factorisation (< 0: none)]."""
+    order with any W, so a lagged W from the previous interval is legitimate): Wff, Wbf, Wfb, Wbb (the
+    Jacobian in arrow form), LUb, pivb, Z, S, pivs (_w_factor), jst = [age of W in accepted steps
+    (>= JAC_EVERY: rebuild), h of the current factorisation (< 0: none)]."""
     nf = NSTATE_FIXED
     return (np.zeros((nf, nf)), np.zeros((nb, NSB, nf)), np.zeros((nb, nf, NSB)), np.zeros((nb, NSB, NSB)),
-            np.zeros((nb, NSB, NSB)), np.zeros((nb, NSB), dtype=np.int64), np.zeros((nb, NSB, nf)),
+            np.zeros((nb, NSB, NSB)), np.zeros((nb, NSB), dtype=np.int64), np.zeros((nb, nf, NSB)),
             np.zeros((nf, nf)), np.zeros(nf, dtype=np.int64), np.array([float(JAC_EVERY), -1.0]))
 
 
 @hot(nogil=True)
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                   rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs,
+                   rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out, Wff, Wbf, Wfb, Wbb, LUb, pivb, Z, S, pivs,
                    jst):
     """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate() (diag_out,
     bd_out included). The W
@@ -1393,14 +1433,11 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     nb = int(P[P_NB])
     nf = NSTATE_FIXED
     f0 = np.empty(n)
-    ks = np.empty((4, n))
+    us = np.empty((4, n))     # transformed stages u_s (see ROSW_TA ..)
     yt = np.empty(n)
     ft = np.empty(n)
     r = np.empty(n)
-    v = np.empty(n)
-    wv = np.empty(n)
     ynew = np.empty(n)
-    tmp = np.empty((nb, NSB))
     diag = np.empty(NOUT)
     d0 = np.empty(NOUT)       # channels at the accepted point (t, y) (diag is scratch for the stages)
     dq = np.empty(NOUT)
@@ -1429,34 +1466,33 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
         hmax = _step_cap(t, t1, next_rec, rec_dt)
         hs = min(h, hmax)
         if hs != h_lu:
-            _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs)
+            _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, Z, S, pivs)
             h_lu = hs
-        hg = hs * ROSW_G
+        hg = h_lu * ROSW_G
         ok = True
         _quad_stage(dq, ROSW_B[0], d0, True)
         for s in range(4):
             if s == 0:
                 for i in range(n):
-                    r[i] = f0[i]
+                    r[i] = ROSW_G * f0[i]
             else:
                 for i in range(n):
                     acc = 0.0
-                    acg = 0.0
                     for q in range(s):
-                        acc += ROSW_A[s, q] * ks[q, i]
-                        acg += ROSW_GAM[s, q] * ks[q, i]
+                        acc += ROSW_TA[s, q] * us[q, i]
                     yt[i] = y[i] + hs * acc
-                    v[i] = acg
                 rhs(t + ROSW_C[s] * hs, yt, r, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd,
                     False)
                 # integrals: the W-method on q' = p(y) with zero Jacobian rows gives q += h sum b_s p(Y_s)
                 _quad_stage(dq, ROSW_B[s], diag, False)
-                _w_matvec(v, wv, Wff, Wbf, Wfb, Wbb)
                 for i in range(n):
-                    r[i] += hs * wv[i]
-            _w_solve(hg, r, Wfb, LUb, pivb, X, S, pivs, tmp)
+                    acc = r[i]
+                    for q in range(s):
+                        acc += ROSW_TC[s, q] * us[q, i]
+                    r[i] = ROSW_G * acc
+            _w_solve(hg, r, Wbf, Z, LUb, pivb, S, pivs)
             for i in range(n):
-                ks[s, i] = r[i]
+                us[s, i] = r[i]
                 if not math.isfinite(r[i]):
                     ok = False
         stats[2] += 3
@@ -1466,8 +1502,8 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
                 e = 0.0
                 yn = y[i]
                 for s in range(4):
-                    yn += hs * ROSW_B[s] * ks[s, i]
-                    e += hs * (ROSW_B[s] - ROSW_BH[s]) * ks[s, i]
+                    yn += hs * ROSW_TM[s] * us[s, i]
+                    e += hs * ROSW_TE[s] * us[s, i]
                 ynew[i] = yn
                 at = atol_scale[i]
                 sc = -at if at < 0.0 else at + rtol * max(abs(y[i]), abs(yn))
