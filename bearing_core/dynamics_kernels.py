@@ -1149,7 +1149,8 @@ def contact_films(bd, D, dm, fi, fo, eta0, alpha, Ep, s_ball, s_race, out):
 # states (the cage pocket contacts are as stiff as the balls). Column k of every ball block comes from ONE
 # right-hand side call that perturbs state k of all balls at once; the rhs reports each ball's share of
 # the ring / cage loads (bd columns BD_C*), which gives the fixed-state rows of those columns per ball.
-# 20 more calls give the fixed-state columns: 29 calls + 1 per Jacobian. The linear systems are solved
+# 20 more calls give the fixed-state columns: 29 calls per Jacobian (f and the details at the point itself
+# come from the integrator's last call there). The linear systems are solved
 # by eliminating the ball blocks (Schur complement on the 20 fixed states). t is treated as a state with
 # a zero column in W (allowed for a W-method), so no df/dt term appears.
 ROSW_G = 4.3586652150845900e-01
@@ -1250,12 +1251,12 @@ def _cb_rows(P):
 def _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, atol_scale,
               yt, ft, diag, bd, bd0):
     """Finite-difference W in arrow form: Wff (20 x 20), Wbf (nb x 9 x 20: ball rows, fixed columns),
-    Wfb (nb x 20 x 9: fixed rows, ball columns), Wbb (nb x 9 x 9). Refreshes f0 and diag at (t, y).
-    Returns the number of rhs calls (30)."""
+    Wfb (nb x 20 x 9: fixed rows, ball columns), Wbb (nb x 9 x 9). f0 and bd0 must hold f and the
+    per-ball details at (t, y) (the caller's last right-hand side there); diag and bd are scratch.
+    Returns the number of rhs calls (NSTATE_FIXED + NSB)."""
     n = y.size
     nb = Wbb.shape[0]
     rows, fac = _cb_rows(P)
-    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
     for k in range(NSTATE_FIXED):
         for i in range(n):
             yt[i] = y[i]
@@ -1286,9 +1287,7 @@ def _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx
                 Wfb[j, r, k] = 0.0
             for c in range(NCB):
                 Wfb[j, rows[c], k] = fac[c] * (bd[j, BD_CFRX + c] - bd0[j, BD_CFRX + c]) / d
-    # diag must describe (t, y) for the records
-    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-    return NSTATE_FIXED + NSB + 2
+    return NSTATE_FIXED + NSB
 
 
 @hot
@@ -1451,7 +1450,8 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     h_lu = jst[1] if jac_age < JAC_EVERY else -1.0
     nrej = 0
     err_prev = 1e-4
-    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
+    # f0, d0 and bd0 always describe the accepted point (t, y); bd0 feeds the Jacobian's fixed-state rows
+    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
     _quad_point(quad, t, diag)
     for k in range(NOUT):
         d0[k] = diag[k]
@@ -1519,7 +1519,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
             stats[0] += 1
             jac_age += 1
             nrej = 0
-            rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t >= t1 - 1e-15)
+            rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
             _quad_step(quad, hs, dq, t, diag)
             for k in range(NOUT):
                 d0[k] = diag[k]
@@ -1553,5 +1553,5 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
         diag_out[k] = diag[k]
     for j in range(nb):
         for k in range(NBD):
-            bd_out[j, k] = bd[j, k]
+            bd_out[j, k] = bd0[j, k]
     return nrec
