@@ -1167,6 +1167,13 @@ ROSW_B = np.array([2.4212380706095346e-01, -1.2232505839045147e+00, 1.5452602553
 ROSW_BH = np.array([3.7810903145819369e-01, -9.6042292212423178e-02, 0.5, 2.1793326075422950e-01])
 ROSW_C = np.array([0.0, 8.7173304301691801e-01, 7.3157995778885238e-01, 1.0])
 JAC_EVERY = 20
+# The factorisation of I - h_lu g W is kept for a step hs with 0.8 <= h_lu / hs <= 2: that is the W-method
+# with W' = (h_lu / hs) W, which keeps order 3 (any W) and, for W = alpha J with 0.7 <= alpha <= 2, an
+# A-stable stability function R(z, alpha z) (|R| <= 1 on the left half-plane, checked numerically on a
+# polar grid to |z| = 1e7; |R(-inf)| <= 0.71 instead of 0 at alpha = 1). Refactorising at every change of
+# h (controller, rejections, steps shortened to a record) took 6 of 10 step attempts (Kalker, 1000 rpm).
+ROSW_REUSE_LO = 0.8
+ROSW_REUSE_HI = 2.0
 # The stages are solved for u_s = sum_{q<=s} Gamma_sq k_s (Gamma = ROSW_GAM + g I) instead of k_s, which
 # removes the product W sum gamma_sq k_q from every stage (Hairer & Wanner II, Sec. IV.7, Eq. 7.25):
 #   (I - h g W) u_s = g (f(y + h sum_q A'_sq u_q) + sum_{q<s} C_sq u_q),
@@ -1465,7 +1472,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
         nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
         hmax = _step_cap(t, t1, next_rec, rec_dt)
         hs = min(h, hmax)
-        if hs != h_lu:
+        if h_lu <= 0.0 or hs * ROSW_REUSE_LO > h_lu or hs * ROSW_REUSE_HI < h_lu:
             _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, Z, S, pivs)
             h_lu = hs
         hg = h_lu * ROSW_G
@@ -1531,7 +1538,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
             if hs < h:
                 pass                      # a step shortened to hit a record/interval end: keep h
                                           # (growing it from a short step let h run away, to 1e70)
-            elif fac < 1.0 or fac > 1.25:  # small changes keep h (and the factorisation)
+            elif fac < 1.0 or fac > 1.25:  # small increases keep h
                 h = hs * fac
         else:
             stats[1] += 1
