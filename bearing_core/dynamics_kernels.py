@@ -121,6 +121,7 @@ for _i, _n in enumerate(OUT_NAMES):   # O_<NAME> integer constants, compile-time
  # (BD_QI / BD_AI ... hold the more loaded one; 0 load for two-point bearings)
  BD_QI2, BD_AI2, BD_QO2, BD_AO2, NBD) = range(40)
 NCB = 10
+CB_ROWS = np.array([5, 6, 7, 8, 9, 14, 15, 11, 18, 19])   # rows of dy that the channels BD_CFRX.. enter
 
 
 @hot
@@ -1236,7 +1237,7 @@ def _lu_solve(M, piv, x):
 def _cb_rows(P):
     """Rows of dy that the ball contribution channels BD_CFRX..BD_CFOY enter, and their factors
     (mirrors the end of rhs: masses, multiplicity and the zeroed rows of each configuration)."""
-    rows = np.array([5, 6, 7, 8, 9, 14, 15, 11, 18, 19])
+    rows = CB_ROWS.copy()
     fac = np.zeros(NCB)
     axisym = P[P_AXISYM] > 0.5
     mult = P[P_MULT]
@@ -1324,29 +1325,11 @@ def _lu_block(LUb, pivb, j):
 
 
 @hot
-def _lu_block_solve(LUb, pivb, j, x, o):
-    """x[o:o+NSB] <- (LU of block j)^-1 x[o:o+NSB] in place."""
-    for k in range(NSB):
-        p = pivb[j, k]
-        if p != k:
-            tmp = x[o + k]; x[o + k] = x[o + p]; x[o + p] = tmp
-    for i in range(1, NSB):
-        s = x[o + i]
-        for c in range(i):
-            s -= LUb[j, i, c] * x[o + c]
-        x[o + i] = s
-    for i in range(NSB - 1, -1, -1):
-        s = x[o + i]
-        for c in range(i + 1, NSB):
-            s -= LUb[j, i, c] * x[o + c]
-        x[o + i] = s / LUb[j, i, i]
-
-
-@hot
-def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, Z, S, pivs):
-    """Factor M = I - hg W in arrow form: ball blocks M_j = I - hg Wbb_j (LUb, pivb), the row blocks
-    Z_j = Wfb_j M_j^-1 (nf x NSB; rows of Wfb_j that are zero stay zero) and the Schur complement on the
-    fixed states S = I - hg Wff - hg^2 sum_j Z_j Wbf_j (LU in place, pivs). No allocation."""
+def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, Minv, Z, S, pivs):
+    """Factor M = I - hg W in arrow form: ball blocks M_j = I - hg Wbb_j (LU in LUb, pivb, and the
+    explicit inverse Minv_j, whose product with a vector has no dependency chain), the row blocks
+    Z_j = Wfb_j M_j^-1 on the NCB rows CB_ROWS that Wfb can fill (NCB x NSB), and the Schur complement on
+    the fixed states S = I - hg Wff - hg^2 sum_j Z_j Wbf_j (LU in place, pivs). No allocation."""
     nb = Wbb.shape[0]
     nf = NSTATE_FIXED
     hg2 = hg * hg
@@ -1360,31 +1343,33 @@ def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, Z, S, pivs):
                 LUb[j, a, c] = -hg * Wbb[j, a, c]
             LUb[j, a, a] += 1.0
         _lu_block(LUb, pivb, j)
-        for r in range(nf):
-            nz = False
-            for a in range(NSB):
-                Z[j, r, a] = Wfb[j, r, a]
-                if Wfb[j, r, a] != 0.0:
-                    nz = True
-            if not nz:
-                continue
-            # z M_j = w with P M_j = L U: solve a U = w, then b L = a, then z = b P (row vector)
+        # row r of M_j^-1: z M_j = e_r with P M_j = L U: solve a U = e_r, then b L = a, then z = b P
+        for r in range(NSB):
             for c in range(NSB):
-                sacc = Z[j, r, c]
+                sacc = 1.0 if c == r else 0.0
                 for k in range(c):
-                    sacc -= Z[j, r, k] * LUb[j, k, c]
-                Z[j, r, c] = sacc / LUb[j, c, c]
+                    sacc -= Minv[j, r, k] * LUb[j, k, c]
+                Minv[j, r, c] = sacc / LUb[j, c, c]
             for c in range(NSB - 2, -1, -1):
-                sacc = Z[j, r, c]
+                sacc = Minv[j, r, c]
                 for k in range(c + 1, NSB):
-                    sacc -= Z[j, r, k] * LUb[j, k, c]
-                Z[j, r, c] = sacc
+                    sacc -= Minv[j, r, k] * LUb[j, k, c]
+                Minv[j, r, c] = sacc
             for k in range(NSB - 1, -1, -1):
                 p = pivb[j, k]
                 if p != k:
-                    tmp = Z[j, r, k]; Z[j, r, k] = Z[j, r, p]; Z[j, r, p] = tmp
+                    tmp = Minv[j, r, k]; Minv[j, r, k] = Minv[j, r, p]; Minv[j, r, p] = tmp
+        for q in range(NCB):
+            r = CB_ROWS[q]
+            for c in range(NSB):
+                Z[j, q, c] = 0.0
             for a in range(NSB):
-                za = hg2 * Z[j, r, a]
+                w = Wfb[j, r, a]
+                if w != 0.0:
+                    for c in range(NSB):
+                        Z[j, q, c] += w * Minv[j, a, c]
+            for a in range(NSB):
+                za = hg2 * Z[j, q, a]
                 if za != 0.0:
                     for c in range(nf):
                         S[r, c] -= za * Wbf[j, a, c]
@@ -1392,18 +1377,19 @@ def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, Z, S, pivs):
 
 
 @hot
-def _w_solve(hg, x, Wbf, Z, LUb, pivb, S, pivs):
+def _w_solve(hg, x, Wbf, Minv, Z, S, pivs, tmp):
     """x <- (I - hg W)^-1 x with the factors of _w_factor (same hg): eliminate the ball blocks
-    (x_f += hg sum_j Z_j x_j), solve S on the fixed states, then x_j <- M_j^-1 (x_j + hg Wbf_j x_f)."""
-    nb = LUb.shape[0]
+    (x_f += hg sum_j Z_j x_j), solve S on the fixed states, then x_j <- M_j^-1 (x_j + hg Wbf_j x_f)
+    (tmp: NSB scratch)."""
+    nb = Minv.shape[0]
     nf = NSTATE_FIXED
     for j in range(nb):
         o = nf + NSB * j
-        for r in range(nf):
+        for q in range(NCB):
             acc = 0.0
             for a in range(NSB):
-                acc += Z[j, r, a] * x[o + a]
-            x[r] += hg * acc
+                acc += Z[j, q, a] * x[o + a]
+            x[CB_ROWS[q]] += hg * acc
     _lu_solve(S, pivs, x)         # acts on x[:nf] (S is nf x nf)
     for j in range(nb):
         o = nf + NSB * j
@@ -1411,8 +1397,12 @@ def _w_solve(hg, x, Wbf, Z, LUb, pivb, S, pivs):
             acc = 0.0
             for c in range(nf):
                 acc += Wbf[j, a, c] * x[c]
-            x[o + a] += hg * acc
-        _lu_block_solve(LUb, pivb, j, x, o)
+            tmp[a] = x[o + a] + hg * acc
+        for a in range(NSB):
+            acc = 0.0
+            for c in range(NSB):
+                acc += Minv[j, a, c] * tmp[c]
+            x[o + a] = acc
 
 
 @hot
@@ -1420,18 +1410,19 @@ def rosw_workspace(nb):
     """Jacobian and factorisation arrays of integrate_rosw, kept between calls so that consecutive
     intervals (FMU communication steps, 'auto' chunks) reuse W and its LU factors (a W-method keeps its
     order with any W, so a lagged W from the previous interval is legitimate): Wff, Wbf, Wfb, Wbb (the
-    Jacobian in arrow form), LUb, pivb, Z, S, pivs (_w_factor), jst = [age of W in accepted steps
+    Jacobian in arrow form), LUb, pivb, Minv, Z, S, pivs (_w_factor), jst = [age of W in accepted steps
     (>= JAC_EVERY: rebuild), h of the current factorisation (< 0: none)]."""
     nf = NSTATE_FIXED
     return (np.zeros((nf, nf)), np.zeros((nb, NSB, nf)), np.zeros((nb, nf, NSB)), np.zeros((nb, NSB, NSB)),
-            np.zeros((nb, NSB, NSB)), np.zeros((nb, NSB), dtype=np.int64), np.zeros((nb, nf, NSB)),
-            np.zeros((nf, nf)), np.zeros(nf, dtype=np.int64), np.array([float(JAC_EVERY), -1.0]))
+            np.zeros((nb, NSB, NSB)), np.zeros((nb, NSB), dtype=np.int64), np.zeros((nb, NSB, NSB)),
+            np.zeros((nb, NCB, NSB)), np.zeros((nf, nf)), np.zeros(nf, dtype=np.int64),
+            np.array([float(JAC_EVERY), -1.0]))
 
 
 @hot(nogil=True)
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                   rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out, Wff, Wbf, Wfb, Wbb, LUb, pivb, Z, S, pivs,
-                   jst):
+                   rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out, Wff, Wbf, Wfb, Wbb, LUb, pivb, Minv, Z, S,
+                   pivs, jst):
     """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate() (diag_out,
     bd_out included). The W
     arrays and their factors (Wff .. pivs, jst: rosw_workspace) carry over between calls."""
@@ -1444,6 +1435,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     ft = np.empty(n)
     r = np.empty(n)
     ynew = np.empty(n)
+    tmp9 = np.empty(NSB)
     diag = np.empty(NOUT)
     d0 = np.empty(NOUT)       # channels at the accepted point (t, y) (diag is scratch for the stages)
     dq = np.empty(NOUT)
@@ -1473,7 +1465,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
         hmax = _step_cap(t, t1, next_rec, rec_dt)
         hs = min(h, hmax)
         if h_lu <= 0.0 or hs * ROSW_REUSE_LO > h_lu or hs * ROSW_REUSE_HI < h_lu:
-            _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, Z, S, pivs)
+            _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, Minv, Z, S, pivs)
             h_lu = hs
         hg = h_lu * ROSW_G
         ok = True
@@ -1497,7 +1489,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
                     for q in range(s):
                         acc += ROSW_TC[s, q] * us[q, i]
                     r[i] = ROSW_G * acc
-            _w_solve(hg, r, Wbf, Z, LUb, pivb, S, pivs)
+            _w_solve(hg, r, Wbf, Minv, Z, S, pivs, tmp9)
             for i in range(n):
                 us[s, i] = r[i]
                 if not math.isfinite(r[i]):
