@@ -1150,8 +1150,9 @@ def contact_films(bd, D, dm, fi, fo, eta0, alpha, Ep, s_ball, s_race, out):
 # states (the cage pocket contacts are as stiff as the balls). Column k of every ball block comes from ONE
 # right-hand side call that perturbs state k of all balls at once; the rhs reports each ball's share of
 # the ring / cage loads (bd columns BD_C*), which gives the fixed-state rows of those columns per ball.
-# 20 more calls give the fixed-state columns: 29 calls per Jacobian (f and the details at the point itself
-# come from the integrator's last call there). The linear systems are solved
+# 20 more calls give the fixed-state columns (fewer when the configuration freezes some of them, e.g. a
+# rigid outer ring): 29 calls per Jacobian at most (f and the details at the point itself come from the
+# integrator's last call there). The linear systems are solved
 # by eliminating the ball blocks (Schur complement on the 20 fixed states). t is treated as a state with
 # a zero column in W (allowed for a W-method), so no df/dt term appears.
 ROSW_G = 4.3586652150845900e-01
@@ -1259,16 +1260,52 @@ def _cb_rows(P):
 
 
 @hot
+def _frozen_fixed(P):
+    """Fixed states whose derivative the rhs sets to zero in this configuration (mirrors its end:
+    prescribed inner-ring motion, fixed tilt, the reduced axisymmetric model, a rigid outer ring). Such a
+    state's row of I - h g W is a unit row and its right-hand sides are zero, so its component of every
+    stage solution is 0 and its Jacobian column never enters: the Jacobian skips those columns."""
+    fr = np.zeros(NSTATE_FIXED, dtype=np.bool_)
+    axisym = P[P_AXISYM] > 0.5
+    if P[P_COUPLING] > 0.5:
+        for k in range(10):
+            fr[k] = True
+    else:
+        if P[P_FIXTILT] > 0.5:
+            fr[3] = True; fr[4] = True; fr[8] = True; fr[9] = True
+        if axisym:
+            for k in (0, 1, 3, 4, 5, 6, 8, 9):
+                fr[k] = True
+    if axisym:
+        for k in range(12, 16):
+            fr[k] = True
+    if not (P[P_OUTER_ELASTIC] > 0.5 and not axisym):
+        for k in range(16, 20):
+            fr[k] = True
+    return fr
+
+
+@hot
 def _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, atol_scale,
               yt, ft, diag, bd, bd0):
     """Finite-difference W in arrow form: Wff (20 x 20), Wbf (nb x 9 x 20: ball rows, fixed columns),
     Wfb (nb x 20 x 9: fixed rows, ball columns), Wbb (nb x 9 x 9). f0 and bd0 must hold f and the
     per-ball details at (t, y) (the caller's last right-hand side there); diag and bd are scratch.
-    Returns the number of rhs calls (NSTATE_FIXED + NSB)."""
+    Returns the number of rhs calls (NSTATE_FIXED + NSB less the frozen fixed states, _frozen_fixed)."""
     n = y.size
     nb = Wbb.shape[0]
     rows, fac = _cb_rows(P)
+    frozen = _frozen_fixed(P)
+    ncall = NSB
     for k in range(NSTATE_FIXED):
+        if frozen[k]:
+            for r in range(NSTATE_FIXED):
+                Wff[r, k] = 0.0
+            for j in range(nb):
+                for r in range(NSB):
+                    Wbf[j, r, k] = 0.0
+            continue
+        ncall += 1
         for i in range(n):
             yt[i] = y[i]
         d = 1.5e-8 * max(abs(y[k]), abs(atol_scale[k]) * 1e2)
@@ -1298,7 +1335,7 @@ def _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx
                 Wfb[j, r, k] = 0.0
             for c in range(NCB):
                 Wfb[j, rows[c], k] = fac[c] * (bd[j, BD_CFRX + c] - bd0[j, BD_CFRX + c]) / d
-    return NSTATE_FIXED + NSB
+    return ncall
 
 
 @hot
