@@ -34,6 +34,7 @@ METHOD_CODE = {"rk4": 0, "adaptive": 1, "implicit": 2, "adaptive-rk4": 3}
 # equivalents / simulated s], intervals since the last probe, last step of each adaptive method (1, 2, 3)
 ST_CUR, ST_C1, ST_C2, ST_AGE, ST_H1, ST_H2, ST_H3, NSTATS = 5, 6, 7, 8, 9, 10, 11, 12
 ST_H = {1: ST_H1, 2: ST_H2, 3: ST_H3}
+ROSW_LA_RHS = 1.0   # linear algebra of one Rosenbrock-W step attempt, in right-hand-side calls ('auto')
 # The Rosenbrock-W method runs at 10x tighter absolute tolerances than the explicit ones on the balls'
 # translational velocities. Its steps (5-7e-5 s at 1000 rpm) are set by atol alone, not by stability, and at
 # the explicit methods' atol the window-mean friction torque came out 0.8 % low, which opened the energy
@@ -932,8 +933,9 @@ class DynamicModel:
             self.stats[ST_H[method]] = self.stats[3]
             d = self.stats[:3] - before
             # cost in right-hand-side equivalents per simulated second (deterministic, unlike wall time):
-            # the implicit step adds its linear algebra, measured as ~4 rhs calls per step (7218B, 16 balls)
-            cost = (d[2] + (4.0 * (d[0] + d[1]) if method == 2 else 0.0)) / (t_end - t_start)
+            # the implicit step adds its linear algebra, 12-17 us per step attempt (7218B, 16 balls), about
+            # one right-hand side under Kalker traction and half of one under EHL traction: counted as 1
+            cost = (d[2] + (ROSW_LA_RHS * (d[0] + d[1]) if method == 2 else 0.0)) / (t_end - t_start)
             k = ST_C2 if method == 2 else ST_C1
             self.stats[k] = cost if self.stats[k] <= 0 else 0.5 * (self.stats[k] + cost)
         return n

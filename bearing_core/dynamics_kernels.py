@@ -121,6 +121,7 @@ for _i, _n in enumerate(OUT_NAMES):   # O_<NAME> integer constants, compile-time
  # (BD_QI / BD_AI ... hold the more loaded one; 0 load for two-point bearings)
  BD_QI2, BD_AI2, BD_QO2, BD_AO2, NBD) = range(40)
 NCB = 10
+CB_ROWS = np.array([5, 6, 7, 8, 9, 14, 15, 11, 18, 19])   # rows of dy that the channels BD_CFRX.. enter
 
 
 @hot
@@ -1151,7 +1152,9 @@ def contact_films(bd, D, dm, fi, fo, eta0, alpha, Ep, s_ball, s_race, out):
 # states (the cage pocket contacts are as stiff as the balls). Column k of every ball block comes from ONE
 # right-hand side call that perturbs state k of all balls at once; the rhs reports each ball's share of
 # the ring / cage loads (bd columns BD_C*), which gives the fixed-state rows of those columns per ball.
-# 20 more calls give the fixed-state columns: 29 calls + 1 per Jacobian. The linear systems are solved
+# 20 more calls give the fixed-state columns (fewer when the configuration freezes some of them, e.g. a
+# rigid outer ring): 29 calls per Jacobian at most (f and the details at the point itself come from the
+# integrator's last call there). The linear systems are solved
 # by eliminating the ball blocks (Schur complement on the 20 fixed states). t is treated as a state with
 # a zero column in W (allowed for a W-method), so no df/dt term appears.
 ROSW_G = 4.3586652150845900e-01
@@ -1168,6 +1171,26 @@ ROSW_B = np.array([2.4212380706095346e-01, -1.2232505839045147e+00, 1.5452602553
 ROSW_BH = np.array([3.7810903145819369e-01, -9.6042292212423178e-02, 0.5, 2.1793326075422950e-01])
 ROSW_C = np.array([0.0, 8.7173304301691801e-01, 7.3157995778885238e-01, 1.0])
 JAC_EVERY = 20
+# The factorisation of I - h_lu g W is kept for a step hs with 0.8 <= h_lu / hs <= 1.25: that is the
+# W-method with W' = (h_lu / hs) W, which keeps order 3 (any W) and, for W = alpha J with 0.7 <= alpha <= 2,
+# an A-stable stability function R(z, alpha z) (|R| <= 1 on the left half-plane, checked numerically on a
+# polar grid to |z| = 1e7), but not an L-stable one: |R(-inf)| = 0.29 / 0.40 at alpha = 0.8 / 1.25 (0 at
+# alpha = 1), so stiff components are damped less. Refactorising at every change of h took 6 of 10 step
+# attempts (Kalker, 1000 rpm). Against refactorising at every change, over 0.2 s of Kalker / 0.5 s of EHL
+# traction at 1000 rpm: the band 0.8..1.25 took -2 % / +4 % right-hand sides and -7 % / +2 % CPU time;
+# a band 0.8..2 took -5 % / +14 % right-hand sides (the less damped stiff modes cost rejected steps).
+ROSW_REUSE_LO = 0.8
+ROSW_REUSE_HI = 1.25
+# The stages are solved for u_s = sum_{q<=s} Gamma_sq k_s (Gamma = ROSW_GAM + g I) instead of k_s, which
+# removes the product W sum gamma_sq k_q from every stage (Hairer & Wanner II, Sec. IV.7, Eq. 7.25):
+#   (I - h g W) u_s = g (f(y + h sum_q A'_sq u_q) + sum_{q<s} C_sq u_q),
+#   y1 = y + h sum_s m_s u_s, error h sum_s e_s u_s,
+# with A' = A Gamma^-1, C = diag(1/g) - Gamma^-1, m = b Gamma^-1, e = (b - b^) Gamma^-1.
+_ROSW_GINV = np.linalg.inv(ROSW_GAM + ROSW_G * np.eye(4))
+ROSW_TA = ROSW_A @ _ROSW_GINV
+ROSW_TC = np.diag(np.full(4, 1.0 / ROSW_G)) - _ROSW_GINV
+ROSW_TM = ROSW_B @ _ROSW_GINV
+ROSW_TE = (ROSW_B - ROSW_BH) @ _ROSW_GINV
 
 
 @hot
@@ -1198,7 +1221,7 @@ def _lu_factor(M, piv):
 
 @hot
 def _lu_solve(M, piv, x):
-    """Solve (LU) z = x in place (x: 1-D view of length m)."""
+    """Solve (LU) z = x in place on x[:m] (M: m x m)."""
     m = M.shape[0]
     for k in range(m):
         p = piv[k]
@@ -1220,7 +1243,7 @@ def _lu_solve(M, piv, x):
 def _cb_rows(P):
     """Rows of dy that the ball contribution channels BD_CFRX..BD_CFOY enter, and their factors
     (mirrors the end of rhs: masses, multiplicity and the zeroed rows of each configuration)."""
-    rows = np.array([5, 6, 7, 8, 9, 14, 15, 11, 18, 19])
+    rows = CB_ROWS.copy()
     fac = np.zeros(NCB)
     axisym = P[P_AXISYM] > 0.5
     mult = P[P_MULT]
@@ -1239,16 +1262,52 @@ def _cb_rows(P):
 
 
 @hot
+def _frozen_fixed(P):
+    """Fixed states whose derivative the rhs sets to zero in this configuration (mirrors its end:
+    prescribed inner-ring motion, fixed tilt, the reduced axisymmetric model, a rigid outer ring). Such a
+    state's row of I - h g W is a unit row and its right-hand sides are zero, so its component of every
+    stage solution is 0 and its Jacobian column never enters: the Jacobian skips those columns."""
+    fr = np.zeros(NSTATE_FIXED, dtype=np.bool_)
+    axisym = P[P_AXISYM] > 0.5
+    if P[P_COUPLING] > 0.5:
+        for k in range(10):
+            fr[k] = True
+    else:
+        if P[P_FIXTILT] > 0.5:
+            fr[3] = True; fr[4] = True; fr[8] = True; fr[9] = True
+        if axisym:
+            for k in (0, 1, 3, 4, 5, 6, 8, 9):
+                fr[k] = True
+    if axisym:
+        for k in range(12, 16):
+            fr[k] = True
+    if not (P[P_OUTER_ELASTIC] > 0.5 and not axisym):
+        for k in range(16, 20):
+            fr[k] = True
+    return fr
+
+
+@hot
 def _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, atol_scale,
               yt, ft, diag, bd, bd0):
     """Finite-difference W in arrow form: Wff (20 x 20), Wbf (nb x 9 x 20: ball rows, fixed columns),
-    Wfb (nb x 20 x 9: fixed rows, ball columns), Wbb (nb x 9 x 9). Refreshes f0 and diag at (t, y).
-    Returns the number of rhs calls (30)."""
+    Wfb (nb x 20 x 9: fixed rows, ball columns), Wbb (nb x 9 x 9). f0 and bd0 must hold f and the
+    per-ball details at (t, y) (the caller's last right-hand side there); diag and bd are scratch.
+    Returns the number of rhs calls (NSTATE_FIXED + NSB less the frozen fixed states, _frozen_fixed)."""
     n = y.size
     nb = Wbb.shape[0]
     rows, fac = _cb_rows(P)
-    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
+    frozen = _frozen_fixed(P)
+    ncall = NSB
     for k in range(NSTATE_FIXED):
+        if frozen[k]:
+            for r in range(NSTATE_FIXED):
+                Wff[r, k] = 0.0
+            for j in range(nb):
+                for r in range(NSB):
+                    Wbf[j, r, k] = 0.0
+            continue
+        ncall += 1
         for i in range(n):
             yt[i] = y[i]
         d = 1.5e-8 * max(abs(y[k]), abs(atol_scale[k]) * 1e2)
@@ -1278,116 +1337,134 @@ def _jacobian(t, y, f0, Wff, Wbf, Wfb, Wbb, P, U, tab_i, tab_o, ta0, tda, tp, qx
                 Wfb[j, r, k] = 0.0
             for c in range(NCB):
                 Wfb[j, rows[c], k] = fac[c] * (bd[j, BD_CFRX + c] - bd0[j, BD_CFRX + c]) / d
-    # diag must describe (t, y) for the records
-    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-    return NSTATE_FIXED + NSB + 2
+    return ncall
 
 
 @hot
-def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs):
-    """Factor I - hg W: ball blocks LUb, X_j = (I - hg Wbb_j)^-1 (-hg Wbf_j), Schur complement
-    S = I - hg Wff + hg sum_j Wfb_j X_j on the fixed states."""
+def _lu_block(LUb, pivb, j):
+    """In-place LU with partial pivoting of the NSB x NSB ball block LUb[j] (Golub & Van Loan
+    Alg. 3.4.1; loops of constant length, no array views)."""
+    for k in range(NSB):
+        p = k
+        big = abs(LUb[j, k, k])
+        for i in range(k + 1, NSB):
+            if abs(LUb[j, i, k]) > big:
+                big = abs(LUb[j, i, k]); p = i
+        pivb[j, k] = p
+        if p != k:
+            for c in range(NSB):
+                tmp = LUb[j, k, c]; LUb[j, k, c] = LUb[j, p, c]; LUb[j, p, c] = tmp
+        d = LUb[j, k, k]
+        if d == 0.0:
+            d = 1e-300
+            LUb[j, k, k] = d
+        for i in range(k + 1, NSB):
+            LUb[j, i, k] /= d
+            f = LUb[j, i, k]
+            if f != 0.0:
+                for c in range(k + 1, NSB):
+                    LUb[j, i, c] -= f * LUb[j, k, c]
+
+
+@hot
+def _w_factor(hg, Wff, Wbf, Wfb, Wbb, LUb, pivb, Minv, Z, S, pivs):
+    """Factor M = I - hg W in arrow form: ball blocks M_j = I - hg Wbb_j (LU in LUb, pivb, and the
+    explicit inverse Minv_j, whose product with a vector has no dependency chain), the row blocks
+    Z_j = Wfb_j M_j^-1 on the NCB rows CB_ROWS that Wfb can fill (NCB x NSB), and the Schur complement on
+    the fixed states S = I - hg Wff - hg^2 sum_j Z_j Wbf_j (LU in place, pivs). No allocation."""
     nb = Wbb.shape[0]
     nf = NSTATE_FIXED
+    hg2 = hg * hg
     for r in range(nf):
         for c in range(nf):
             S[r, c] = -hg * Wff[r, c]
         S[r, r] += 1.0
-    col = np.empty(NSB)
     for j in range(nb):
         for a in range(NSB):
             for c in range(NSB):
                 LUb[j, a, c] = -hg * Wbb[j, a, c]
             LUb[j, a, a] += 1.0
-        _lu_factor(LUb[j], pivb[j])
-        for c in range(nf):
-            nz = False
-            for a in range(NSB):
-                col[a] = -hg * Wbf[j, a, c]
-                if col[a] != 0.0:
-                    nz = True
-            if nz:
-                _lu_solve(LUb[j], pivb[j], col)
-            for a in range(NSB):
-                X[j, a, c] = col[a]
-        for r in range(nf):
+        _lu_block(LUb, pivb, j)
+        # row r of M_j^-1: z M_j = e_r with P M_j = L U: solve a U = e_r, then b L = a, then z = b P
+        for r in range(NSB):
+            for c in range(NSB):
+                sacc = 1.0 if c == r else 0.0
+                for k in range(c):
+                    sacc -= Minv[j, r, k] * LUb[j, k, c]
+                Minv[j, r, c] = sacc / LUb[j, c, c]
+            for c in range(NSB - 2, -1, -1):
+                sacc = Minv[j, r, c]
+                for k in range(c + 1, NSB):
+                    sacc -= Minv[j, r, k] * LUb[j, k, c]
+                Minv[j, r, c] = sacc
+            for k in range(NSB - 1, -1, -1):
+                p = pivb[j, k]
+                if p != k:
+                    tmp = Minv[j, r, k]; Minv[j, r, k] = Minv[j, r, p]; Minv[j, r, p] = tmp
+        for q in range(NCB):
+            r = CB_ROWS[q]
+            for c in range(NSB):
+                Z[j, q, c] = 0.0
             for a in range(NSB):
                 w = Wfb[j, r, a]
                 if w != 0.0:
-                    w *= hg
+                    for c in range(NSB):
+                        Z[j, q, c] += w * Minv[j, a, c]
+            for a in range(NSB):
+                za = hg2 * Z[j, q, a]
+                if za != 0.0:
                     for c in range(nf):
-                        S[r, c] += w * X[j, a, c]
+                        S[r, c] -= za * Wbf[j, a, c]
     _lu_factor(S, pivs)
 
 
 @hot
-def _w_solve(hg, x, Wfb, LUb, pivb, X, S, pivs, tmp):
-    """x <- (I - hg W)^-1 x with the factors of _w_factor (tmp: nb x 9 work array)."""
-    nb = LUb.shape[0]
+def _w_solve(hg, x, Wbf, Minv, Z, S, pivs, tmp):
+    """x <- (I - hg W)^-1 x with the factors of _w_factor (same hg): eliminate the ball blocks
+    (x_f += hg sum_j Z_j x_j), solve S on the fixed states, then x_j <- M_j^-1 (x_j + hg Wbf_j x_f)
+    (tmp: NSB scratch)."""
+    nb = Minv.shape[0]
     nf = NSTATE_FIXED
     for j in range(nb):
         o = nf + NSB * j
-        for a in range(NSB):
-            tmp[j, a] = x[o + a]
-        _lu_solve(LUb[j], pivb[j], tmp[j])
-        # r_f <- r_f - A_fb y_b with A_fb = -hg Wfb
-        for r in range(nf):
+        for q in range(NCB):
             acc = 0.0
             for a in range(NSB):
-                acc += Wfb[j, r, a] * tmp[j, a]
-            x[r] += hg * acc
-    _lu_solve(S, pivs, x[:nf])
+                acc += Z[j, q, a] * x[o + a]
+            x[CB_ROWS[q]] += hg * acc
+    _lu_solve(S, pivs, x)         # acts on x[:nf] (S is nf x nf)
     for j in range(nb):
         o = nf + NSB * j
         for a in range(NSB):
-            acc = tmp[j, a]
+            acc = 0.0
             for c in range(nf):
-                acc -= X[j, a, c] * x[c]
-            x[o + a] = acc
-
-
-@hot
-def _w_matvec(v, out, Wff, Wbf, Wfb, Wbb):
-    """out <- W v (arrow structure)."""
-    nb = Wbb.shape[0]
-    nf = NSTATE_FIXED
-    for r in range(nf):
-        acc = 0.0
-        for c in range(nf):
-            acc += Wff[r, c] * v[c]
-        out[r] = acc
-    for j in range(nb):
-        o = nf + NSB * j
-        for r in range(nf):
-            acc = 0.0
-            for a in range(NSB):
-                acc += Wfb[j, r, a] * v[o + a]
-            out[r] += acc
+                acc += Wbf[j, a, c] * x[c]
+            tmp[a] = x[o + a] + hg * acc
         for a in range(NSB):
             acc = 0.0
             for c in range(NSB):
-                acc += Wbb[j, a, c] * v[o + c]
-            for c in range(nf):
-                acc += Wbf[j, a, c] * v[c]
-            out[o + a] = acc
+                acc += Minv[j, a, c] * tmp[c]
+            x[o + a] = acc
 
 
 @hot
 def rosw_workspace(nb):
     """Jacobian and factorisation arrays of integrate_rosw, kept between calls so that consecutive
     intervals (FMU communication steps, 'auto' chunks) reuse W and its LU factors (a W-method keeps its
-    order with any W, so a lagged W from the previous interval is legitimate). jst = [age of W in
-    accepted steps (>= JAC_EVERY: rebuild), h g of the current factorisation (< 0: none)]."""
+    order with any W, so a lagged W from the previous interval is legitimate): Wff, Wbf, Wfb, Wbb (the
+    Jacobian in arrow form), LUb, pivb, Minv, Z, S, pivs (_w_factor), jst = [age of W in accepted steps
+    (>= JAC_EVERY: rebuild), h of the current factorisation (< 0: none)]."""
     nf = NSTATE_FIXED
     return (np.zeros((nf, nf)), np.zeros((nb, NSB, nf)), np.zeros((nb, nf, NSB)), np.zeros((nb, NSB, NSB)),
-            np.zeros((nb, NSB, NSB)), np.zeros((nb, NSB), dtype=np.int64), np.zeros((nb, NSB, nf)),
-            np.zeros((nf, nf)), np.zeros(nf, dtype=np.int64), np.array([float(JAC_EVERY), -1.0]))
+            np.zeros((nb, NSB, NSB)), np.zeros((nb, NSB), dtype=np.int64), np.zeros((nb, NSB, NSB)),
+            np.zeros((nb, NCB, NSB)), np.zeros((nf, nf)), np.zeros(nf, dtype=np.int64),
+            np.array([float(JAC_EVERY), -1.0]))
 
 
 @hot(nogil=True)
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                   rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs,
-                   jst):
+                   rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out, Wff, Wbf, Wfb, Wbb, LUb, pivb, Minv, Z, S,
+                   pivs, jst):
     """Adaptive ROS34PW2 with the arrow-structured W (see above); same contract as integrate() (diag_out,
     bd_out included). The W
     arrays and their factors (Wff .. pivs, jst: rosw_workspace) carry over between calls."""
@@ -1395,14 +1472,12 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     nb = int(P[P_NB])
     nf = NSTATE_FIXED
     f0 = np.empty(n)
-    ks = np.empty((4, n))
+    us = np.empty((4, n))     # transformed stages u_s (see ROSW_TA ..)
     yt = np.empty(n)
     ft = np.empty(n)
     r = np.empty(n)
-    v = np.empty(n)
-    wv = np.empty(n)
     ynew = np.empty(n)
-    tmp = np.empty((nb, NSB))
+    tmp9 = np.empty(NSB)
     diag = np.empty(NOUT)
     d0 = np.empty(NOUT)       # channels at the accepted point (t, y) (diag is scratch for the stages)
     dq = np.empty(NOUT)
@@ -1416,7 +1491,8 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     h_lu = jst[1] if jac_age < JAC_EVERY else -1.0
     nrej = 0
     err_prev = 1e-4
-    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
+    # f0, d0 and bd0 always describe the accepted point (t, y); bd0 feeds the Jacobian's fixed-state rows
+    rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
     _quad_point(quad, t, diag)
     for k in range(NOUT):
         d0[k] = diag[k]
@@ -1430,35 +1506,34 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
         nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
         hmax = _step_cap(t, t1, next_rec, rec_dt)
         hs = min(h, hmax)
-        if hs != h_lu:
-            _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, X, S, pivs)
+        if h_lu <= 0.0 or hs * ROSW_REUSE_LO > h_lu or hs * ROSW_REUSE_HI < h_lu:
+            _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, Minv, Z, S, pivs)
             h_lu = hs
-        hg = hs * ROSW_G
+        hg = h_lu * ROSW_G
         ok = True
         _quad_stage(dq, ROSW_B[0], d0, True)
         for s in range(4):
             if s == 0:
                 for i in range(n):
-                    r[i] = f0[i]
+                    r[i] = ROSW_G * f0[i]
             else:
                 for i in range(n):
                     acc = 0.0
-                    acg = 0.0
                     for q in range(s):
-                        acc += ROSW_A[s, q] * ks[q, i]
-                        acg += ROSW_GAM[s, q] * ks[q, i]
+                        acc += ROSW_TA[s, q] * us[q, i]
                     yt[i] = y[i] + hs * acc
-                    v[i] = acg
                 rhs(t + ROSW_C[s] * hs, yt, r, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd,
                     False)
                 # integrals: the W-method on q' = p(y) with zero Jacobian rows gives q += h sum b_s p(Y_s)
                 _quad_stage(dq, ROSW_B[s], diag, False)
-                _w_matvec(v, wv, Wff, Wbf, Wfb, Wbb)
                 for i in range(n):
-                    r[i] += hs * wv[i]
-            _w_solve(hg, r, Wfb, LUb, pivb, X, S, pivs, tmp)
+                    acc = r[i]
+                    for q in range(s):
+                        acc += ROSW_TC[s, q] * us[q, i]
+                    r[i] = ROSW_G * acc
+            _w_solve(hg, r, Wbf, Minv, Z, S, pivs, tmp9)
             for i in range(n):
-                ks[s, i] = r[i]
+                us[s, i] = r[i]
                 if not math.isfinite(r[i]):
                     ok = False
         stats[2] += 3
@@ -1468,8 +1543,8 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
                 e = 0.0
                 yn = y[i]
                 for s in range(4):
-                    yn += hs * ROSW_B[s] * ks[s, i]
-                    e += hs * (ROSW_B[s] - ROSW_BH[s]) * ks[s, i]
+                    yn += hs * ROSW_TM[s] * us[s, i]
+                    e += hs * ROSW_TE[s] * us[s, i]
                 ynew[i] = yn
                 at = atol_scale[i]
                 sc = -at if at < 0.0 else at + rtol * max(abs(y[i]), abs(yn))
@@ -1485,7 +1560,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
             stats[0] += 1
             jac_age += 1
             nrej = 0
-            rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t >= t1 - 1e-15)
+            rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
             _quad_step(quad, hs, dq, t, diag)
             for k in range(NOUT):
                 d0[k] = diag[k]
@@ -1497,7 +1572,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
             if hs < h:
                 pass                      # a step shortened to hit a record/interval end: keep h
                                           # (growing it from a short step let h run away, to 1e70)
-            elif fac < 1.0 or fac > 1.25:  # small changes keep h (and the factorisation)
+            elif fac < 1.0 or fac > 1.25:  # small increases keep h
                 h = hs * fac
         else:
             stats[1] += 1
@@ -1519,5 +1594,5 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
         diag_out[k] = diag[k]
     for j in range(nb):
         for k in range(NBD):
-            bd_out[j, k] = bd[j, k]
+            bd_out[j, k] = bd0[j, k]
     return nrec
