@@ -129,6 +129,10 @@ class TriboQuasiStaticModel:
     #: first stage of the solve: pseudo-transient continuation on a kept Jacobian (False: start with the
     #: per-step Jacobian, as the fallback does)
     lazy_jacobian = True
+    #: near-Newton first attempt of the kept-Jacobian continuation: initial pseudo-time step (scaled) and
+    #: residual evaluations (0: none)
+    fast_dtau0 = 1.0e4
+    fast_budget = 120
 
     def __init__(self, geometry: BearingGeometry, options=None):
         from .dynamics import DynamicModel, DynamicsOptions
@@ -279,20 +283,35 @@ class TriboQuasiStaticModel:
         bd0 = wk["bd"]
         loaded0 = (bd0[:, K.BD_QI] > 0.0) | (bd0[:, K.BD_QO] > 0.0)
 
-        def ptc(lazy, budget):
+        def ptc(lazy, budget, dtau0=1.0):
             v = v0.copy()
-            r, nf, _ = TK.ptc(t, y, v, xs_l, xs_g, act, float(omega), float(ftol), int(budget), lazy, iF, iM,
-                              P, U, *tabs)
+            r, nf, _ = TK.ptc(t, y, v, xs_l, xs_g, act, float(omega), float(ftol), int(budget), lazy,
+                              float(dtau0), iF, iM, P, U, *tabs)
             return v, r, nf
 
-        v1, r1, nfev = ptc(True, max(maxit // 3, 1)) if self.lazy_jacobian else (v0, np.inf, 0)
-        if r1 <= ftol:
-            fun(v1)
+        def spurious(v):
+            fun(v)
             bd1 = wk["bd"]
             lost = loaded0 & (bd1[:, K.BD_QI] <= 0.0) & (bd1[:, K.BD_QO] <= 0.0)
             stopped = np.abs(wk["xl"][:, 5]) < 0.1 * abs(jh.cage_speed)
-            if np.any(lost | stopped):
-                r1 = np.inf
+            return bool(np.any(lost | stopped))
+
+        nfev = 0
+        v1, r1 = v0, np.inf
+        if self.lazy_jacobian:
+            # near-Newton steps first (dtau0 >> 1: the pseudo-time term is a small shift of the diagonal) on a
+            # small budget; then the continuation from dtau 1, which a kept Jacobian carries through where
+            # Newton's steps stall (nearly singular spin directions at low friction, the lubricated
+            # traction's kinks at high speed)
+            for dtau0, budget in ((self.fast_dtau0, min(self.fast_budget, maxit // 3)), (1.0, max(maxit // 3, 1))):
+                if budget < 1:
+                    continue
+                v1, r1, n1 = ptc(True, budget, dtau0)
+                nfev += n1
+                if r1 <= ftol and spurious(v1):
+                    r1 = np.inf
+                if r1 <= ftol:
+                    break
         if not r1 <= ftol:
             v1, r1, n1 = ptc(False, maxit)
             nfev += n1

@@ -101,8 +101,44 @@ def jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i, tab_
     (6 x 6). Steps: positions 1e-10 m, speeds 1e-7 of their size (at least 0.1 omega for the ball's
     angular velocity), ring tilts 1e-9 rad."""
     Z = xl.shape[0]
-    xp = xl.copy()
     gp = xg.copy()
+    Rl2 = np.empty((Z, NLOC))
+    Rg2 = np.empty(NGLOB)
+    sh2 = np.empty((Z, NGLOB))
+    ball_jacobian(t, y0, xl, xg, Rl, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
+                  qx, qwx, qy, qwy, yy, dy, diag, bd, A, C)
+    hg = np.array([1e-10, 1e-10, 1e-10, 1e-9, 1e-9, 1e-7 * max(abs(xg[5]), 1.0)])
+    for k in range(NGLOB):
+        if act[k]:
+            gp[k] = xg[k] + hg[k]
+            residual(t, y0, xl, gp, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
+                     yy, dy, diag, bd, Rl2, Rg2, sh2)
+            gp[k] = xg[k]
+            for j in range(Z):
+                for i in range(NLOC):
+                    B[j, i, k] = (Rl2[j, i] - Rl[j, i]) / hg[k]
+            for i in range(NGLOB):
+                Dg[i, k] = (Rg2[i] - Rg[i]) / hg[k] if act[i] else 0.0
+        else:
+            for j in range(Z):
+                for i in range(NLOC):
+                    B[j, i, k] = 0.0
+            for i in range(NGLOB):
+                Dg[i, k] = 0.0
+    for i in range(NGLOB):
+        if not act[i]:
+            Dg[i, i] = -1.0
+
+
+@hot
+def ball_jacobian(t, y0, xl, xg, Rl, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
+                  qx, qwx, qy, qwy, yy, dy, diag, bd, A, C):
+    """Ball blocks A and global-ball blocks C of the arrow Jacobian at (xl, xg) with residuals (Rl, share)
+    there, by forward differences: column k of every ball's blocks from ONE rhs call that perturbs unknown
+    k of all balls (6 calls). Steps: positions 1e-10 m, speeds 1e-7 of their size (at least 0.1 omega for
+    the ball's angular velocity)."""
+    Z = xl.shape[0]
+    xp = xl.copy()
     Rl2 = np.empty((Z, NLOC))
     Rg2 = np.empty(NGLOB)
     sh2 = np.empty((Z, NGLOB))
@@ -128,27 +164,6 @@ def jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i, tab_
                 A[j, i, k] = (Rl2[j, i] - Rl[j, i]) / h
             for i in range(NGLOB):
                 C[j, i, k] = (sh2[j, i] - share[j, i]) / h if act[i] else 0.0
-    hg = np.array([1e-10, 1e-10, 1e-10, 1e-9, 1e-9, 1e-7 * max(abs(xg[5]), 1.0)])
-    for k in range(NGLOB):
-        if act[k]:
-            gp[k] = xg[k] + hg[k]
-            residual(t, y0, xl, gp, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                     yy, dy, diag, bd, Rl2, Rg2, sh2)
-            gp[k] = xg[k]
-            for j in range(Z):
-                for i in range(NLOC):
-                    B[j, i, k] = (Rl2[j, i] - Rl[j, i]) / hg[k]
-            for i in range(NGLOB):
-                Dg[i, k] = (Rg2[i] - Rg[i]) / hg[k] if act[i] else 0.0
-        else:
-            for j in range(Z):
-                for i in range(NLOC):
-                    B[j, i, k] = 0.0
-            for i in range(NGLOB):
-                Dg[i, k] = 0.0
-    for i in range(NGLOB):
-        if not act[i]:
-            Dg[i, i] = -1.0
 
 
 @hot(inline="always")
@@ -369,8 +384,8 @@ def scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, 
 
 
 @hot
-def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
-        qx, qwx, qy, qwy):
+def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, iF, iM, P, U, tab_i, tab_o, ta0, tda,
+        tp, qx, qwx, qy, qwy):
     """Pseudo-transient continuation from the scaled unknowns v (overwritten with the end point): implicit
     Euler steps (diag(|J_ii|) / dtau - J) dv = R of the pseudo-dynamics dx/dtau = diag(|J_ii|)^-1 R(x),
     dtau from 1 by switched evolution relaxation (dtau *= |R_old| / |R_new|, factor in [0.3, 10],
@@ -413,7 +428,7 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, iF, iM, P, U, tab_
     r = scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                         xl, xg, yy, dy, diag, bd, Rl, Rg, share, R)
     nfev = 1
-    dtau = 1.0
+    dtau = dtau0
     fresh = False          # Jacobian up to date at v
     age = 0                # accepted steps on the current Jacobian
     dtau_ref = dtau
@@ -480,3 +495,4 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, iF, iM, P, U, tab_
             fresh = False
         r = r2
     return r, nfev, PTC_CONVERGED if r <= ftol else PTC_BUDGET
+
