@@ -286,7 +286,7 @@ class TriboQuasiStaticModel:
         def ptc(lazy, budget, dtau0=1.0):
             v = v0.copy()
             r, nf, _ = TK.ptc(t, y, v, xs_l, xs_g, act, float(omega), float(ftol), int(budget), lazy,
-                              float(dtau0), iF, iM, P, U, *tabs)
+                              float(dtau0), dtau0 >= TK.DTAU_NEWTON, iF, iM, P, U, *tabs)
             return v, r, nf
 
         def spurious(v):

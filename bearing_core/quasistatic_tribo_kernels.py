@@ -35,6 +35,12 @@ PTC_CONVERGED, PTC_BUDGET = 0, 1
 # lazy Jacobian of ptc: rebuilt after this many accepted chord steps, or when dtau grew this much
 LAZY_AGE = 20
 LAZY_DTAU = 10.0
+# near-Newton mode of ptc (newton=True): dtau beyond which the pseudo-time term is a small shift of the
+# diagonal (no rebuild for its growth); accepted capped steps on one Jacobian before a residual growth
+# forces a rebuild; chord steps that polish a converged point
+DTAU_NEWTON = 1.0e3
+NEWTON_CAPPED_AGE = 5
+NEWTON_POLISH = 4
 
 
 @hot
@@ -384,8 +390,8 @@ def scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, 
 
 
 @hot
-def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, iF, iM, P, U, tab_i, tab_o, ta0, tda,
-        tp, qx, qwx, qy, qwy):
+def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF, iM, P, U, tab_i, tab_o, ta0,
+        tda, tp, qx, qwx, qy, qwy):
     """Pseudo-transient continuation from the scaled unknowns v (overwritten with the end point): implicit
     Euler steps (diag(|J_ii|) / dtau - J) dv = R of the pseudo-dynamics dx/dtau = diag(|J_ii|)^-1 R(x),
     dtau from 1 by switched evolution relaxation (dtau *= |R_old| / |R_new|, factor in [0.3, 10],
@@ -433,13 +439,20 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, iF, iM, P, 
     age = 0                # accepted steps on the current Jacobian
     dtau_ref = dtau
     polish = False
+    npol = 0               # chord polishing steps taken (newton)
+    ratio = 1.0            # residual ratio of the last accepted step
     at_v = True            # (xl, xg), (Rl, Rg, share) hold v and its residual blocks
     while nfev < budget:
         if r <= ftol:
             if not (lazy and age > 0) or polish:
                 break
-            polish = True      # converged on a kept Jacobian: one step on a new one
-            fresh = False
+            if newton:         # converged on a kept Jacobian: chord steps while they contract well
+                if npol >= NEWTON_POLISH or ratio > 0.5 or r <= 1e-3 * ftol:
+                    break
+                npol += 1
+            else:
+                polish = True  # converged on a kept Jacobian: one step on a new one
+                fresh = False
         if not fresh:
             if not at_v:       # the last residual call was a rejected trial: the blocks at v again
                 scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx,
@@ -479,6 +492,8 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, iF, iM, P, 
                     v[i] = v2[i]
                 r = r2
             break
+        if npol > 0 and not r2 < r:
+            break              # a polishing step that does not lower the residual is discarded
         if not math.isfinite(r2) or r2 > 4.0 * r:
             if lazy and age > 0:
                 fresh = False          # a kept Jacobian: rebuild it before shrinking dtau
@@ -489,9 +504,15 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, iF, iM, P, 
             v[i] = v2[i]
             R[i] = R2[i]
         at_v = True
+        ratio = r2 / r if r > 0.0 else 0.0
         dtau = min(dtau * min(max(r / max(r2, 1e-300), 0.3), 10.0), 1e15)
         age += 1
-        if not lazy or r2 > r or age >= LAZY_AGE or dtau > LAZY_DTAU * dtau_ref:
+        if newton:
+            rebuild = ((r2 > r and not (f > 1.0 and age < NEWTON_CAPPED_AGE)) or (f == 1.0 and ratio > 0.5)
+                       or age >= LAZY_AGE or (dtau > LAZY_DTAU * dtau_ref and dtau_ref < DTAU_NEWTON))
+            if rebuild and not r2 <= ftol:
+                fresh = False
+        elif not lazy or r2 > r or age >= LAZY_AGE or dtau > LAZY_DTAU * dtau_ref:
             fresh = False
         r = r2
     return r, nfev, PTC_CONVERGED if r <= ftol else PTC_BUDGET
