@@ -30,19 +30,29 @@ the contact angles, the attitude and yaw of the spin axis and the orbital speed 
 Solution: 6 Z + 5 unknowns, with a finite-difference Jacobian of the bearing's arrow structure (balls do not
 touch each other: a 6 x 6 block per ball coupled to the ring; column k of every ball block comes from ONE
 rhs call that perturbs unknown k of all balls, and the rhs reports each ball's share of the ring loads:
-12 calls per Jacobian). First pseudo-transient continuation (implicit Euler steps of a dissipative
-pseudo-dynamics that grow into Newton steps) on a Jacobian kept over the steps while they make progress
-(each step then costs one rhs call), finished by one step on a new Jacobian; if that fails or ends at a
-spurious root (a ball that stopped orbiting or lost its contacts), the same continuation with a new
-Jacobian at every step from the start; then, if needed, a trust-region least-squares solve
-(scipy.optimize.least_squares 'trf'). Residuals, Jacobian, the block-arrow linear solves and the
-continuation loop run in numba (quasistatic_tribo_kernels). Start: the Jones-Harris solution (outer
-raceway control), as DynamicModel.initialize; if that fails, continuation in speed from 100 rpm. Residuals
-are forces [N] (moments over D/2 or dm/2). Measured on 7218B (bench/bench_tribo_qs.py, rheology-based EHL
-traction): 29 of 36 cases (Kalker 0.1 / 0.001, Coulomb, lubricated; 1000 / 3000 / 10,000 rpm; pure thrust
-and two combined loads) converge to 1e-7 of the load, at 1000 and 3000 rpm in 90-600 rhs calls (4-22 ms); the rest
-raise ConvergenceError (Kalker 0.1 at 1000 rpm under combined load and at 3000 rpm under the radial-heavy
-load, Kalker 0.001 and Coulomb at 10,000 rpm under combined load).
+12 calls per Jacobian). Pseudo-transient continuation (implicit Euler steps of a dissipative pseudo-dynamics
+that grow into Newton steps; Kelley & Keyes, SIAM J. Numer. Anal. 35 (1998) 508) on a Jacobian kept over
+the steps while they make progress (each step then costs one rhs call), in up to four stages:
+  1. near-Newton: a large first pseudo-time step (the pseudo-time term only a small shift of the diagonal),
+     steps capped at 2 um / 0.3 omega, the Jacobian rebuilt when an uncapped step contracts the residual
+     less than two-fold or a capped one lets it grow after 5 steps on one Jacobian; a point converged on a
+     kept Jacobian is polished by up to 4 more chord steps while they contract. Budget 120 evaluations;
+  2. the continuation from a small pseudo-time step (dtau 1), rebuilt also when dtau grew ten-fold, finished
+     by one step on a new Jacobian (it gets through where the near-Newton steps stall: measured at
+     Kalker mu 0.001 and in the lubricated cases at 10,000 rpm);
+  3. the same with a new Jacobian at every step;
+  4. a trust-region least-squares solve (scipy.optimize.least_squares 'trf').
+A stage ends at a spurious root when a ball that carried load at the start has lost both raceway contacts
+or a ball has (nearly) stopped orbiting; the next stage then starts again from the start. Residuals,
+Jacobian, the block-arrow linear solves and the continuation loop run in numba (quasistatic_tribo_kernels).
+Start: the Jones-Harris solution (outer raceway control), as DynamicModel.initialize; if that fails,
+continuation in speed from 100 rpm. Residuals are forces [N] (moments over D/2 or dm/2). Measured on 7218B
+(bench/bench_tribo_qs.py, rheology-based EHL traction): 30 of 36 cases (Kalker 0.1 / 0.001, Coulomb,
+lubricated; 1000 / 3000 / 10,000 rpm; pure thrust and two combined loads) converge to 1e-7 of the load;
+the Coulomb and lubricated cases at 1000 and 3000 rpm in 34-117 rhs calls (stage 1), Kalker mu 0.001 at
+1000 / 3000 rpm in 350-550 (stage 2); the rest raise ConvergenceError (Kalker 0.1 at 1000 rpm under
+Fx 1 kN / Fz 3 kN and at 3000 rpm under Fx 3 kN / Fz 2 kN, Kalker 0.001 and Coulomb at 10,000 rpm under
+combined load).
 """
 from __future__ import annotations
 
@@ -273,13 +283,13 @@ class TriboQuasiStaticModel:
         v0 = np.concatenate([(xl / xs_l).ravel(), xg / xs_g])
         if not np.all(np.abs(fun(v0)) < 1e12):
             raise ConvergenceError("quasi-static tribological model: non-finite residual at the start")
-        # pseudo-transient continuation with a kept Jacobian first (a third of the budget). If it does not
-        # converge, or converges to a state in which a ball that carried load at the start has lost both
+        # stages of the solve (module docstring): near-Newton kept-Jacobian continuation (fast_budget
+        # evaluations), the kept-Jacobian continuation from dtau 1 (a third of the budget), the per-step-Jacobian
+        # continuation, then a trust-region least-squares solve from the start and from the better end point
+        # (FASTSIM's slip/stick switching makes the residual only piecewise smooth; one of them usually gets
+        # through). A continuation stage that ends where a ball that carried load at the start has lost both
         # raceway contacts or a ball has (nearly) stopped orbiting (spurious roots: a ball without contact
-        # load and without orbital speed has zero residuals), the pseudo-transient continuation with a new
-        # Jacobian at every step from the start; then a trust-region least-squares solve from the start and
-        # from the better of the two end points (FASTSIM's slip/stick switching makes the residual only
-        # piecewise smooth; one of them usually gets through)
+        # load and without orbital speed has zero residuals) counts as failed.
         bd0 = wk["bd"]
         loaded0 = (bd0[:, K.BD_QI] > 0.0) | (bd0[:, K.BD_QO] > 0.0)
 
@@ -299,10 +309,7 @@ class TriboQuasiStaticModel:
         nfev = 0
         v1, r1 = v0, np.inf
         if self.lazy_jacobian:
-            # near-Newton steps first (dtau0 >> 1: the pseudo-time term is a small shift of the diagonal) on a
-            # small budget; then the continuation from dtau 1, which a kept Jacobian carries through where
-            # Newton's steps stall (nearly singular spin directions at low friction, the lubricated
-            # traction's kinks at high speed)
+            # near-Newton steps first (dtau0 >> 1), then the continuation from dtau 1
             for dtau0, budget in ((self.fast_dtau0, min(self.fast_budget, maxit // 3)), (1.0, max(maxit // 3, 1))):
                 if budget < 1:
                     continue

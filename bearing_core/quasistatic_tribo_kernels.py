@@ -4,7 +4,7 @@ docstring states the equations and the method).
 Residual:   residual        the unknowns written into a dynamics state, one call of the dynamics' right-hand
                             side (dynamics_kernels.rhs), the generalised forces of each ball's 6 unknowns
                             and of the ring's 5, and each ball's share of the ring loads.
-Jacobian:   jacobian        forward differences of the arrow structure (balls do not touch each other):
+Jacobian:   jacobian        forward differences of the arrow structure (ball blocks: ball_jacobian) (balls do not touch each other):
                             column k of every ball block from ONE rhs call that perturbs unknown k of all
                             balls, one rhs call per ring unknown: 11 calls.
 Linear:     arrow_solve     (diag(d) / dtau - J) dv = R on the scaled unknowns by block elimination
@@ -12,7 +12,8 @@ Linear:     arrow_solve     (diag(d) / dtau - J) dv = R on the scaled unknowns b
                             LU with partial pivoting as fallback when a ball block is (near) singular.
 Solver:     ptc             pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer. Anal. 35 (1998)
                             508) with switched evolution relaxation, as described in quasistatic_tribo;
-                            the Jacobian is kept when a step is rejected (the point has not moved).
+                            the Jacobian is kept when a step is rejected (the point has not moved);
+                            a near-Newton mode for the first stage.
 
 Unknowns: xl (Z, 6) per ball (r, z, Omega_r, Omega_t, Omega_z, theta_dot), xg (6) ring (dx, dy, dz, tx, ty)
 and an unused cage speed; scaled unknowns v = (xl / xs_l, xg / xs_g) flattened (ball-major). Residuals
@@ -394,7 +395,7 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF,
         tda, tp, qx, qwx, qy, qwy):
     """Pseudo-transient continuation from the scaled unknowns v (overwritten with the end point): implicit
     Euler steps (diag(|J_ii|) / dtau - J) dv = R of the pseudo-dynamics dx/dtau = diag(|J_ii|)^-1 R(x),
-    dtau from 1 by switched evolution relaxation (dtau *= |R_old| / |R_new|, factor in [0.3, 10],
+    dtau from dtau0 by switched evolution relaxation (dtau *= |R_old| / |R_new|, factor in [0.3, 10],
     dtau <= 1e15); a step is capped at 2 um per position and 0.3 omega per speed and rejected (dtau / 10,
     Jacobian kept) if the residual grows more than 4-fold or is not finite. Stops when max |R| <= ftol or
     after budget residual evaluations (12 per Jacobian, 1 per trial step). Returns (max |R|, evaluations,
@@ -404,7 +405,14 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF,
     (chord steps, 1 evaluation each) and rebuilt when the residual grew, after LAZY_AGE steps, when dtau
     grew LAZY_DTAU-fold since the rebuild (the step turns into Newton's) and before shrinking dtau after a
     rejected step; converged on a kept Jacobian, one step on a new one follows (accepted if it lowers the
-    residual), so the end point has Newton's accuracy, not just the tolerance."""
+    residual), so the end point has Newton's accuracy, not just the tolerance.
+
+    newton=True (near-Newton mode, for dtau0 >= DTAU_NEWTON, lazy): no rebuild for dtau growth once the
+    Jacobian was built at dtau >= DTAU_NEWTON; a residual growth on a capped step rebuilds only after
+    NEWTON_CAPPED_AGE steps on the Jacobian; an uncapped step that contracts the residual less than two-fold
+    rebuilds; converged on a kept Jacobian, up to NEWTON_POLISH more chord steps follow while the last one
+    contracted at least two-fold (to 1e-3 of ftol; one that does not lower the residual is discarded)
+    instead of the step on a new Jacobian."""
     Z = (v.size - NGLOB) // NLOC
     n = v.size
     xl = np.empty((Z, NLOC))

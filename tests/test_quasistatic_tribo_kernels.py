@@ -132,3 +132,24 @@ def test_kept_jacobian_reaches_the_same_steady_state(traction):
     assert np.max(np.abs(a.Q_o - b.Q_o)) < 1e-7 * np.max(b.Q_o)
     assert abs(a.losses["P_drive"] / b.losses["P_drive"] - 1) < 1e-7
     assert a.iterations < b.iterations
+
+
+@pytest.mark.parametrize("traction", ["lubricated", "coulomb"])
+def test_near_newton_stage_reaches_the_same_steady_state(traction):
+    """The near-Newton first stage (large initial pseudo-time step, chord polishing) and the continuation
+    from dtau 1 solve the same equations: at a tolerance of 1e-10 of the load both steady states must agree
+    to 1e-7 in cage speed, contact loads (relative to the largest) and drive power, and the near-Newton stage
+    must be the one that converged (fewer evaluations than the continuation alone; 3000 rpm, Fx 1 kN,
+    Fz 3 kN; 7218B)."""
+    opt = DynamicsOptions(traction=traction, mu=0.1)
+    out = []
+    for budget in (TriboQuasiStaticModel.fast_budget, 0):
+        m = TriboQuasiStaticModel(G, opt)
+        m.fast_budget = budget
+        out.append(m.solve(3000 * RPM, (1000.0, 0.0, 3000.0, 0.0, 0.0), tol=1e-10))
+    a, b = out
+    assert abs(a.cage_speed / b.cage_speed - 1) < 1e-7
+    assert np.max(np.abs(a.Q_i - b.Q_i)) < 1e-7 * np.max(b.Q_i)
+    assert np.max(np.abs(a.Q_o - b.Q_o)) < 1e-7 * np.max(b.Q_o)
+    assert abs(a.losses["P_drive"] / b.losses["P_drive"] - 1) < 1e-7
+    assert a.iterations <= TriboQuasiStaticModel.fast_budget < b.iterations
