@@ -153,3 +153,25 @@ def test_near_newton_stage_reaches_the_same_steady_state(traction):
     assert np.max(np.abs(a.Q_o - b.Q_o)) < 1e-7 * np.max(b.Q_o)
     assert abs(a.losses["P_drive"] / b.losses["P_drive"] - 1) < 1e-7
     assert a.iterations <= TriboQuasiStaticModel.fast_budget < b.iterations
+
+
+@pytest.mark.parametrize("traction", ["lubricated", "coulomb"])
+def test_start_with_a_stopped_ball_returns_the_axisymmetric_steady_state(traction):
+    """Under pure thrust every ball carries the same load and orbits at the same speed (Harris & Kotzalas,
+    Vol. 1, pure axial load: Q = Fa / (Z sin alpha)). Started from a steady state in which ball 3 is stopped
+    (no spin, no orbit) and pulled 20 um off both raceways -- next to the spurious root of a ball without
+    contact load and orbital speed, whose residuals are zero -- the solve must return the axisymmetric state:
+    orbital speeds and contact loads of all balls equal to 1e-6 (7218B, 3000 rpm, Fz 3 kN)."""
+    import copy
+    m = TriboQuasiStaticModel(G, DynamicsOptions(traction=traction, mu=0.1))
+    w = 3000 * RPM
+    q = m.solve(w, (0.0, 0.0, 3000.0, 0.0, 0.0))
+    s = copy.copy(q)
+    s.y, s.omega_ball, s.orbit_speed = q.y.copy(), q.omega_ball.copy(), q.orbit_speed.copy()
+    s.omega_ball[3] = 0.0
+    s.orbit_speed[3] = 0.0
+    s.y[K.NSTATE_FIXED + K.NSB * 3 + 1] -= 20e-6
+    r = m.solve(w, (0.0, 0.0, 3000.0, 0.0, 0.0), start=s)
+    assert np.ptp(r.orbit_speed) < 1e-6 * np.max(r.orbit_speed)
+    assert np.ptp(r.Q_i) < 1e-6 * np.max(r.Q_i)
+    assert np.ptp(r.Q_o) < 1e-6 * np.max(r.Q_o)
