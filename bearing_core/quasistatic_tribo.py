@@ -30,19 +30,30 @@ the contact angles, the attitude and yaw of the spin axis and the orbital speed 
 Solution: 6 Z + 5 unknowns, with a finite-difference Jacobian of the bearing's arrow structure (balls do not
 touch each other: a 6 x 6 block per ball coupled to the ring; column k of every ball block comes from ONE
 rhs call that perturbs unknown k of all balls, and the rhs reports each ball's share of the ring loads:
-12 calls per Jacobian). First pseudo-transient continuation (implicit Euler steps of a dissipative
-pseudo-dynamics that grow into Newton steps) on a Jacobian kept over the steps while they make progress
-(each step then costs one rhs call), finished by one step on a new Jacobian; if that fails or ends at a
-spurious root (a ball that stopped orbiting or lost its contacts), the same continuation with a new
-Jacobian at every step from the start; then, if needed, a trust-region least-squares solve
-(scipy.optimize.least_squares 'trf'). Residuals, Jacobian, the block-arrow linear solves and the
-continuation loop run in numba (quasistatic_tribo_kernels). Start: the Jones-Harris solution (outer
-raceway control), as DynamicModel.initialize; if that fails, continuation in speed from 100 rpm. Residuals
-are forces [N] (moments over D/2 or dm/2). Measured on 7218B (bench/bench_tribo_qs.py, rheology-based EHL
-traction): 29 of 36 cases (Kalker 0.1 / 0.001, Coulomb, lubricated; 1000 / 3000 / 10,000 rpm; pure thrust
-and two combined loads) converge to 1e-7 of the load, at 1000 and 3000 rpm in 90-600 rhs calls (4-22 ms); the rest
-raise ConvergenceError (Kalker 0.1 at 1000 rpm under combined load and at 3000 rpm under the radial-heavy
-load, Kalker 0.001 and Coulomb at 10,000 rpm under combined load).
+12 calls per Jacobian). Pseudo-transient continuation (implicit Euler steps of a dissipative pseudo-dynamics
+that grow into Newton steps; Kelley & Keyes, SIAM J. Numer. Anal. 35 (1998) 508) on a Jacobian kept over
+the steps while they make progress (each step then costs one rhs call), in up to four stages:
+  1. near-Newton: a large first pseudo-time step (the pseudo-time term only a small shift of the diagonal),
+     steps capped at 2 um / 0.3 omega, the Jacobian rebuilt when an uncapped step contracts the residual
+     less than two-fold or a capped one lets it grow after 5 steps on one Jacobian; a point converged on a
+     kept Jacobian is polished by up to 4 more chord steps while they contract. Budget 120 evaluations;
+  2. the continuation from a small pseudo-time step (dtau 1), rebuilt also when dtau grew ten-fold, finished
+     by one step on a new Jacobian (it gets through where the near-Newton steps stall: measured at
+     Kalker mu 0.001 and in the lubricated cases at 10,000 rpm);
+  3. the same with a new Jacobian at every step;
+  4. a trust-region least-squares solve (scipy.optimize.least_squares 'trf').
+A stage that ends at a spurious root (a ball that carried load at the start has lost both raceway contacts
+or a ball has (nearly) stopped orbiting) counts as failed; the next one starts again from the start. Residuals,
+Jacobian, the block-arrow linear solves and the continuation loop run in numba (quasistatic_tribo_kernels).
+Start: the Jones-Harris solution (outer raceway control), as DynamicModel.initialize; if that fails,
+continuation in speed from 100 rpm. Residuals are forces [N] (moments over D/2 or dm/2). Measured on 7218B
+(bench/bench_tribo_qs.py, rheology-based EHL traction): 27 of 36 cases (Kalker 0.1 / 0.001, Coulomb,
+lubricated; 1000 / 3000 / 10,000 rpm; pure thrust and two combined loads) converge to 1e-7 of the load;
+the Coulomb and lubricated cases at 1000 and 3000 rpm in 34-117 rhs calls (stage 1), Kalker mu 0.001 at
+1000 / 3000 rpm in 350-550 (stage 2); the rest raise ConvergenceError (Kalker 0.1 at 1000 rpm under
+combined load and at 3000 rpm under Fx 3 kN / Fz 2 kN; at 10,000 rpm Kalker 0.001 and Coulomb under
+combined load, Kalker 0.1 and lubricated under Fx 3 kN / Fz 2 kN, where the only roots found have balls
+stopped in the unloaded zone).
 """
 from __future__ import annotations
 
@@ -129,6 +140,10 @@ class TriboQuasiStaticModel:
     #: first stage of the solve: pseudo-transient continuation on a kept Jacobian (False: start with the
     #: per-step Jacobian, as the fallback does)
     lazy_jacobian = True
+    #: near-Newton first attempt of the kept-Jacobian continuation: initial pseudo-time step (scaled) and
+    #: residual evaluations (0: none)
+    fast_dtau0 = 1.0e4
+    fast_budget = 120
 
     def __init__(self, geometry: BearingGeometry, options=None):
         from .dynamics import DynamicModel, DynamicsOptions
@@ -269,38 +284,54 @@ class TriboQuasiStaticModel:
         v0 = np.concatenate([(xl / xs_l).ravel(), xg / xs_g])
         if not np.all(np.abs(fun(v0)) < 1e12):
             raise ConvergenceError("quasi-static tribological model: non-finite residual at the start")
-        # pseudo-transient continuation with a kept Jacobian first (a third of the budget). If it does not
-        # converge, or converges to a state in which a ball that carried load at the start has lost both
-        # raceway contacts or a ball has (nearly) stopped orbiting (spurious roots: a ball without contact
-        # load and without orbital speed has zero residuals), the pseudo-transient continuation with a new
-        # Jacobian at every step from the start; then a trust-region least-squares solve from the start and
-        # from the better of the two end points (FASTSIM's slip/stick switching makes the residual only
-        # piecewise smooth; one of them usually gets through)
+        # stages of the solve (module docstring): near-Newton kept-Jacobian continuation (fast_budget
+        # evaluations), the kept-Jacobian continuation from dtau 1 (a third of the budget), the per-step-Jacobian
+        # continuation, then a trust-region least-squares solve from the start and from the better end point
+        # (FASTSIM's slip/stick switching makes the residual only piecewise smooth; one of them usually gets
+        # through). A stage that ends where a ball that carried load at the start has lost both raceway
+        # contacts or a ball has (nearly) stopped orbiting (spurious roots: a ball without contact load and
+        # without orbital speed has zero residuals) counts as failed.
         bd0 = wk["bd"]
         loaded0 = (bd0[:, K.BD_QI] > 0.0) | (bd0[:, K.BD_QO] > 0.0)
 
-        def ptc(lazy, budget):
+        def ptc(lazy, budget, dtau0=1.0):
             v = v0.copy()
-            r, nf, _ = TK.ptc(t, y, v, xs_l, xs_g, act, float(omega), float(ftol), int(budget), lazy, iF, iM,
-                              P, U, *tabs)
+            r, nf, _ = TK.ptc(t, y, v, xs_l, xs_g, act, float(omega), float(ftol), int(budget), lazy,
+                              float(dtau0), dtau0 >= TK.DTAU_NEWTON, iF, iM, P, U, *tabs)
             return v, r, nf
 
-        v1, r1, nfev = ptc(True, max(maxit // 3, 1)) if self.lazy_jacobian else (v0, np.inf, 0)
-        if r1 <= ftol:
-            fun(v1)
+        def spurious(v):
+            fun(v)
             bd1 = wk["bd"]
             lost = loaded0 & (bd1[:, K.BD_QI] <= 0.0) & (bd1[:, K.BD_QO] <= 0.0)
             stopped = np.abs(wk["xl"][:, 5]) < 0.1 * abs(jh.cage_speed)
-            if np.any(lost | stopped):
-                r1 = np.inf
+            return bool(np.any(lost | stopped))
+
+        nfev = 0
+        v1, r1 = v0, np.inf
+        if self.lazy_jacobian:
+            # near-Newton steps first (dtau0 >> 1), then the continuation from dtau 1
+            for dtau0, budget in ((self.fast_dtau0, min(self.fast_budget, maxit // 3)), (1.0, max(maxit // 3, 1))):
+                if budget < 1:
+                    continue
+                v1, r1, n1 = ptc(True, budget, dtau0)
+                nfev += n1
+                if r1 <= ftol and spurious(v1):
+                    r1 = np.inf
+                if r1 <= ftol:
+                    break
         if not r1 <= ftol:
             v1, r1, n1 = ptc(False, maxit)
             nfev += n1
+            if r1 <= ftol and spurious(v1):
+                r1 = np.inf
         best_v, best_r = v1, r1
         if best_r > ftol:
             for vs in (v0, v1):
                 v2, r2, n2 = trf(vs, maxit // 13)
                 nfev += n2
+                if r2 <= ftol and spurious(v2):
+                    r2 = np.inf
                 if r2 < best_r:
                     best_v, best_r = v2, r2
                 if best_r <= ftol:

@@ -4,7 +4,7 @@ docstring states the equations and the method).
 Residual:   residual        the unknowns written into a dynamics state, one call of the dynamics' right-hand
                             side (dynamics_kernels.rhs), the generalised forces of each ball's 6 unknowns
                             and of the ring's 5, and each ball's share of the ring loads.
-Jacobian:   jacobian        forward differences of the arrow structure (balls do not touch each other):
+Jacobian:   jacobian        forward differences of the arrow structure (ball blocks: ball_jacobian) (balls do not touch each other):
                             column k of every ball block from ONE rhs call that perturbs unknown k of all
                             balls, one rhs call per ring unknown: 11 calls.
 Linear:     arrow_solve     (diag(d) / dtau - J) dv = R on the scaled unknowns by block elimination
@@ -12,7 +12,8 @@ Linear:     arrow_solve     (diag(d) / dtau - J) dv = R on the scaled unknowns b
                             LU with partial pivoting as fallback when a ball block is (near) singular.
 Solver:     ptc             pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer. Anal. 35 (1998)
                             508) with switched evolution relaxation, as described in quasistatic_tribo;
-                            the Jacobian is kept when a step is rejected (the point has not moved).
+                            the Jacobian is kept when a step is rejected (the point has not moved);
+                            a near-Newton mode for the first stage.
 
 Unknowns: xl (Z, 6) per ball (r, z, Omega_r, Omega_t, Omega_z, theta_dot), xg (6) ring (dx, dy, dz, tx, ty)
 and an unused cage speed; scaled unknowns v = (xl / xs_l, xg / xs_g) flattened (ball-major). Residuals
@@ -35,6 +36,12 @@ PTC_CONVERGED, PTC_BUDGET = 0, 1
 # lazy Jacobian of ptc: rebuilt after this many accepted chord steps, or when dtau grew this much
 LAZY_AGE = 20
 LAZY_DTAU = 10.0
+# near-Newton mode of ptc (newton=True): dtau beyond which the pseudo-time term is a small shift of the
+# diagonal (no rebuild for its growth); accepted capped steps on one Jacobian before a residual growth
+# forces a rebuild; chord steps that polish a converged point
+DTAU_NEWTON = 1.0e3
+NEWTON_CAPPED_AGE = 5
+NEWTON_POLISH = 4
 
 
 @hot
@@ -101,8 +108,44 @@ def jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i, tab_
     (6 x 6). Steps: positions 1e-10 m, speeds 1e-7 of their size (at least 0.1 omega for the ball's
     angular velocity), ring tilts 1e-9 rad."""
     Z = xl.shape[0]
-    xp = xl.copy()
     gp = xg.copy()
+    Rl2 = np.empty((Z, NLOC))
+    Rg2 = np.empty(NGLOB)
+    sh2 = np.empty((Z, NGLOB))
+    ball_jacobian(t, y0, xl, xg, Rl, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
+                  qx, qwx, qy, qwy, yy, dy, diag, bd, A, C)
+    hg = np.array([1e-10, 1e-10, 1e-10, 1e-9, 1e-9, 1e-7 * max(abs(xg[5]), 1.0)])
+    for k in range(NGLOB):
+        if act[k]:
+            gp[k] = xg[k] + hg[k]
+            residual(t, y0, xl, gp, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
+                     yy, dy, diag, bd, Rl2, Rg2, sh2)
+            gp[k] = xg[k]
+            for j in range(Z):
+                for i in range(NLOC):
+                    B[j, i, k] = (Rl2[j, i] - Rl[j, i]) / hg[k]
+            for i in range(NGLOB):
+                Dg[i, k] = (Rg2[i] - Rg[i]) / hg[k] if act[i] else 0.0
+        else:
+            for j in range(Z):
+                for i in range(NLOC):
+                    B[j, i, k] = 0.0
+            for i in range(NGLOB):
+                Dg[i, k] = 0.0
+    for i in range(NGLOB):
+        if not act[i]:
+            Dg[i, i] = -1.0
+
+
+@hot
+def ball_jacobian(t, y0, xl, xg, Rl, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
+                  qx, qwx, qy, qwy, yy, dy, diag, bd, A, C):
+    """Ball blocks A and global-ball blocks C of the arrow Jacobian at (xl, xg) with residuals (Rl, share)
+    there, by forward differences: column k of every ball's blocks from ONE rhs call that perturbs unknown
+    k of all balls (6 calls). Steps: positions 1e-10 m, speeds 1e-7 of their size (at least 0.1 omega for
+    the ball's angular velocity)."""
+    Z = xl.shape[0]
+    xp = xl.copy()
     Rl2 = np.empty((Z, NLOC))
     Rg2 = np.empty(NGLOB)
     sh2 = np.empty((Z, NGLOB))
@@ -128,27 +171,6 @@ def jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i, tab_
                 A[j, i, k] = (Rl2[j, i] - Rl[j, i]) / h
             for i in range(NGLOB):
                 C[j, i, k] = (sh2[j, i] - share[j, i]) / h if act[i] else 0.0
-    hg = np.array([1e-10, 1e-10, 1e-10, 1e-9, 1e-9, 1e-7 * max(abs(xg[5]), 1.0)])
-    for k in range(NGLOB):
-        if act[k]:
-            gp[k] = xg[k] + hg[k]
-            residual(t, y0, xl, gp, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                     yy, dy, diag, bd, Rl2, Rg2, sh2)
-            gp[k] = xg[k]
-            for j in range(Z):
-                for i in range(NLOC):
-                    B[j, i, k] = (Rl2[j, i] - Rl[j, i]) / hg[k]
-            for i in range(NGLOB):
-                Dg[i, k] = (Rg2[i] - Rg[i]) / hg[k] if act[i] else 0.0
-        else:
-            for j in range(Z):
-                for i in range(NLOC):
-                    B[j, i, k] = 0.0
-            for i in range(NGLOB):
-                Dg[i, k] = 0.0
-    for i in range(NGLOB):
-        if not act[i]:
-            Dg[i, i] = -1.0
 
 
 @hot(inline="always")
@@ -369,11 +391,11 @@ def scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, 
 
 
 @hot
-def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
-        qx, qwx, qy, qwy):
+def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF, iM, P, U, tab_i, tab_o, ta0,
+        tda, tp, qx, qwx, qy, qwy):
     """Pseudo-transient continuation from the scaled unknowns v (overwritten with the end point): implicit
     Euler steps (diag(|J_ii|) / dtau - J) dv = R of the pseudo-dynamics dx/dtau = diag(|J_ii|)^-1 R(x),
-    dtau from 1 by switched evolution relaxation (dtau *= |R_old| / |R_new|, factor in [0.3, 10],
+    dtau from dtau0 by switched evolution relaxation (dtau *= |R_old| / |R_new|, factor in [0.3, 10],
     dtau <= 1e15); a step is capped at 2 um per position and 0.3 omega per speed and rejected (dtau / 10,
     Jacobian kept) if the residual grows more than 4-fold or is not finite. Stops when max |R| <= ftol or
     after budget residual evaluations (12 per Jacobian, 1 per trial step). Returns (max |R|, evaluations,
@@ -383,7 +405,14 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, iF, iM, P, U, tab_
     (chord steps, 1 evaluation each) and rebuilt when the residual grew, after LAZY_AGE steps, when dtau
     grew LAZY_DTAU-fold since the rebuild (the step turns into Newton's) and before shrinking dtau after a
     rejected step; converged on a kept Jacobian, one step on a new one follows (accepted if it lowers the
-    residual), so the end point has Newton's accuracy, not just the tolerance."""
+    residual), so the end point has Newton's accuracy, not just the tolerance.
+
+    newton=True (near-Newton mode, for dtau0 >= DTAU_NEWTON, lazy): no rebuild for dtau growth once the
+    Jacobian was built at dtau >= DTAU_NEWTON; a residual growth on a capped step rebuilds only after
+    NEWTON_CAPPED_AGE steps on the Jacobian; an uncapped step that contracts the residual less than two-fold
+    rebuilds; converged on a kept Jacobian, up to NEWTON_POLISH more chord steps follow while the last one
+    contracted at least two-fold (to 1e-3 of ftol; one that does not lower the residual is discarded)
+    instead of the step on a new Jacobian."""
     Z = (v.size - NGLOB) // NLOC
     n = v.size
     xl = np.empty((Z, NLOC))
@@ -413,18 +442,25 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, iF, iM, P, U, tab_
     r = scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                         xl, xg, yy, dy, diag, bd, Rl, Rg, share, R)
     nfev = 1
-    dtau = 1.0
+    dtau = dtau0
     fresh = False          # Jacobian up to date at v
     age = 0                # accepted steps on the current Jacobian
     dtau_ref = dtau
     polish = False
+    npol = 0               # chord polishing steps taken (newton)
+    ratio = 1.0            # residual ratio of the last accepted step
     at_v = True            # (xl, xg), (Rl, Rg, share) hold v and its residual blocks
     while nfev < budget:
         if r <= ftol:
             if not (lazy and age > 0) or polish:
                 break
-            polish = True      # converged on a kept Jacobian: one step on a new one
-            fresh = False
+            if newton:         # converged on a kept Jacobian: chord steps while they contract well
+                if npol >= NEWTON_POLISH or ratio > 0.5 or r <= 1e-3 * ftol:
+                    break
+                npol += 1
+            else:
+                polish = True  # converged on a kept Jacobian: one step on a new one
+                fresh = False
         if not fresh:
             if not at_v:       # the last residual call was a rejected trial: the blocks at v again
                 scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx,
@@ -464,6 +500,8 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, iF, iM, P, U, tab_
                     v[i] = v2[i]
                 r = r2
             break
+        if npol > 0 and not r2 < r:
+            break              # a polishing step that does not lower the residual is discarded
         if not math.isfinite(r2) or r2 > 4.0 * r:
             if lazy and age > 0:
                 fresh = False          # a kept Jacobian: rebuild it before shrinking dtau
@@ -474,9 +512,16 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, iF, iM, P, U, tab_
             v[i] = v2[i]
             R[i] = R2[i]
         at_v = True
+        ratio = r2 / r if r > 0.0 else 0.0
         dtau = min(dtau * min(max(r / max(r2, 1e-300), 0.3), 10.0), 1e15)
         age += 1
-        if not lazy or r2 > r or age >= LAZY_AGE or dtau > LAZY_DTAU * dtau_ref:
+        if newton:
+            rebuild = ((r2 > r and not (f > 1.0 and age < NEWTON_CAPPED_AGE)) or (f == 1.0 and ratio > 0.5)
+                       or age >= LAZY_AGE or (dtau > LAZY_DTAU * dtau_ref and dtau_ref < DTAU_NEWTON))
+            if rebuild and not r2 <= ftol:
+                fresh = False
+        elif not lazy or r2 > r or age >= LAZY_AGE or dtau > LAZY_DTAU * dtau_ref:
             fresh = False
         r = r2
     return r, nfev, PTC_CONVERGED if r <= ftol else PTC_BUDGET
+
