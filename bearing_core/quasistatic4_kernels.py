@@ -517,19 +517,27 @@ def ring_forces4(cpsi, spsi, S, Ri, rig, ei, F):
 
 
 @hot
-def _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F):
-    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 (retried from the
-    geometric start with 200 iterations if that fails); X, S: final ball positions and states."""
+def _residual4_tol(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F, btol):
+    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 to the ball tolerance
+    btol (retried from the geometric start with 200 iterations if that fails); X, S: final ball
+    positions and states."""
     _centres4(u, cpsi, spsi, geo, Cr, Cz)
     qk._copy2(X0, X)
     n_it = max(60, Cr.shape[0] // 1000)          # 60 (typed int64, not a literal: one compilation)
-    ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, 1e-10, n_it, S, Rr, Rz)
+    ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, btol, n_it, S, Rr, Rz)
     if not ok:
         _x_start4(Cr, Cz, omega, control, geo, Kt, dal, X)
-        ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, 1e-10, n_it + 140, S, Rr,
+        ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, btol, n_it + 140, S, Rr,
                            Rz)
     ring_forces4(cpsi, spsi, S, geo[G_RI], geo[G_RIG], geo[G_EI], F)
     return ok
+
+
+@hot
+def _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F):
+    """_residual4_tol at the ball tolerance quasistatic_kernels.BALL_TOL."""
+    return _residual4_tol(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F,
+                          qk.BALL_TOL)
 
 
 @hot(inline="always")
@@ -590,6 +598,7 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     qk._scaled(loads, F, fs, u, us, fixed_tilt, r)
     it = 0
     converged = False
+    grow = 1.0
     for it in range(1, maxit + 1):
         if control == CTRL_HYBRID and it <= 15 and qk.hybrid_update(S, tab_i, tab_o, dal, new_oc, oc):
             qk._copy2(X, X0)
@@ -599,12 +608,14 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         if ok and qk.ring_converged(r, tol):
             converged = True
             break
+        btol = qk.ball_tolerance(r)
         for k in range(5):
             qk.shifted(u, k, 1e-2 * us[k], up)
-            _residual4(up, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xp, Sp, Cr, Cz, Rr, Rz, F)
+            _residual4_tol(up, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xp, Sp, Cr, Cz, Rr, Rz, F, btol)
             qk._scaled(loads, F, fs, up, us, fixed_tilt, rp)
             qk.jacobian_column(J, k, rp, r)
-        if not qk.ring_step(J, r, smax_div, step):
+        has_step, clipped = qk.ring_step(J, r, smax_div, step, grow)
+        if not has_step:
             break                   # no least-squares step
         lam = 1.0
         n0 = qk._norm5(r)
@@ -612,8 +623,8 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         okn = False
         for _ in range(16):
             qk.trial_point(u, lam, step, us, un)
-            okn = _residual4(un, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xn, Sn, Cr, Cz, Rr,
-                             Rz, F)
+            okn = _residual4_tol(un, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xn, Sn, Cr, Cz, Rr,
+                                 Rz, F, btol)
             qk._scaled(loads, F, fs, un, us, fixed_tilt, rn)
             if okn and qk.sufficient_decrease(rn, n0, lam):
                 accepted = True
@@ -624,6 +635,7 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             return LINE_SEARCH_FAILED, it
         qk.accept(un, u, rn, r, Xn, X, Sn, S)
         ok = okn
+        grow = qk.step_growth(grow, clipped, lam)
     if not converged:
         info[1] = qk.max_abs_or_nan(r)
         return NOT_CONVERGED, it

@@ -26,6 +26,10 @@ from .hertz import ROW_A_COEF, ROW_ELL_E, ROW_K_LOAD, hertz_lookup_alpha
 from .jit import hot
 
 K_REG = 1e-3  # N/m, tension spring of separated contacts (quasistatic module docstring)
+BALL_TOL = 1e-10       # ball equilibrium: max |R| < BALL_TOL (max(1, m dm omega^2 / 2) + max Q)
+BALL_TOL_FINE = 1e-12  # the same near the ring solution (solve: max scaled ring residual < RING_FINE)
+RING_FINE = 1e-6
+STEP_GROW_MAX = 32.0   # ring step limit grows up to this factor while clipped full steps are accepted
 
 CTRL_OUTER, CTRL_INNER, CTRL_HYBRID = 0, 1, 2
 G_D, G_DM, G_FO, G_FI, G_A, G_ALPHA0, G_RI, G_RIG, G_MASS, G_INERTIA, G_MU, G_WOUT, N_GEO = range(13)
@@ -209,8 +213,10 @@ def rolling_fc(omega, geo):
 
 @hot(inline="always")
 def _x_start(Cr, Cz, omega, geo, tab_o, dal, X):
-    """Initial ball positions: on the line of centres with equal deflections; at speed a ball in the
-    clearance is put on the outer race, pressed by the pure-rolling centrifugal force."""
+    """Initial ball positions: on the line of centres with equal deflections; at speed a ball whose
+    equal deflection is below the outer deflection dc of the pure-rolling centrifugal force alone is
+    put on the outer race with deflection dc along the line of centres (the inner contact then takes
+    what is left, 2 d - dc; at d = dc both starts agree)."""
     D = geo[G_D]
     ro = (geo[G_FO] - 0.5) * D
     ri = (geo[G_FI] - 0.5) * D
@@ -225,7 +231,7 @@ def _x_start(Cr, Cz, omega, geo, tab_o, dal, X):
         t = (ro + d) / max(L, 1e-300)
         X[j, 0] = Cr[j] * t
         X[j, 1] = Cz[j] * t
-        if omega > 0.0 and d < 0.0:
+        if omega > 0.0 and d < lo - ro:
             ta = math.atan2(Cz[j], Cr[j])
             X[j, 0] = lo * math.cos(ta)
             X[j, 1] = lo * math.sin(ta)
@@ -364,19 +370,28 @@ def ring_forces(cpsi, spsi, ai, Qi, Fi, Ri, rig, F):
 
 
 @hot
-def _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F):
-    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 (retried from the
-    geometric start with 200 iterations if that fails); X, S: final ball positions and states."""
+def _residual_tol(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F,
+                  btol):
+    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 to the ball tolerance
+    btol (_solve_balls; retried from the geometric start with 200 iterations if that fails, or at once
+    when X0 is that start); X, S: final ball positions and states."""
     _centres(u, cpsi, spsi, geo, Cr, Cz)
     _copy2(X0, X)
     n_it = max(60, Cr.shape[0] // 1000)          # 60 (typed int64, not a literal: one compilation)
-    ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, n_it, S, Rr, Rz)
+    ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, btol, n_it, S, Rr, Rz)
     if not ok:
         _x_start(Cr, Cz, omega, geo, tab_o, dal, X)
-        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, n_it + 140, S, Rr,
+        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, btol, n_it + 140, S, Rr,
                           Rz)
     ring_forces(cpsi, spsi, S[S_AI], S[S_QI], S[S_FI], geo[G_RI], geo[G_RIG], F)
     return ok
+
+
+@hot
+def _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F):
+    """_residual_tol at the ball tolerance BALL_TOL."""
+    return _residual_tol(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz,
+                         F, BALL_TOL)
 
 
 @hot
@@ -522,9 +537,10 @@ def ring_converged(r, tol):
 
 
 @hot(inline="always")
-def ring_step(J, r, smax_div, step):
+def ring_step(J, r, smax_div, step, grow):
     """Newton step of the 5-DOF solve into step (scaled units): least squares J step = -r (rcond 1e-12),
-    scaled down to the limits smax_div. False (no step) where J or r is not finite."""
+    scaled down to the limits grow * smax_div. Returns (ok, clipped); ok False (no step) where J or r is
+    not finite."""
     fin = True
     for i in range(5):
         if not math.isfinite(r[i]):
@@ -533,16 +549,37 @@ def ring_step(J, r, smax_div, step):
             if not math.isfinite(J[i, k]):
                 fin = False
     if not fin:
-        return False
+        return False, False
     x = lstsq_svd(J, r, 1e-12)
     smax = 0.0
     for k in range(5):
         step[k] = -x[k]
-        smax = max(smax, abs(step[k]) / smax_div[k])
+        smax = max(smax, abs(step[k]) / (grow * smax_div[k]))
     if smax > 1.0:
         for k in range(5):
             step[k] /= smax
-    return True
+    return True, smax > 1.0
+
+
+@hot(inline="always")
+def step_growth(grow, clipped, lam):
+    """Factor on the ring step limits for the next iteration (a trust-region radius update, Nocedal &
+    Wright, Numerical Optimization, 2nd ed., Alg. 4.1, with the line-search fraction lam standing for the
+    agreement ratio): doubled after a clipped step accepted in full, cut to the accepted fraction (not
+    below 1) after a backtracked one."""
+    if lam < 1.0:
+        return max(1.0, grow * lam)
+    if clipped:
+        return min(2.0 * grow, STEP_GROW_MAX)
+    return grow
+
+
+@hot(inline="always")
+def ball_tolerance(r):
+    """Ball tolerance of the ring-force evaluations at scaled ring residual r: BALL_TOL, and
+    BALL_TOL_FINE once max |r| < RING_FINE, so that the ball solves' residuals (at BALL_TOL up to
+    1e-10 (m dm omega^2 / 2 + max Q) each) do not hide the ring residual at its tolerance."""
+    return BALL_TOL_FINE if max_abs_or_nan(r) < RING_FINE else BALL_TOL
 
 
 @hot(inline="always")
@@ -651,10 +688,15 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     _centres(u, cpsi, spsi, geo, Cr, Cz)
     X0 = np.empty((Z, 2))
     _x_start(Cr, Cz, omega, geo, tab_o, dal, X0)
-    ok = _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F)
+    # the balls from the geometric start: _residual's retry from that start, at once
+    _copy2(X0, X)
+    n_it = max(200, Z // 1000)
+    ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, BALL_TOL, n_it, S, Rr, Rz)
+    ring_forces(cpsi, spsi, S[S_AI], S[S_QI], S[S_FI], geo[G_RI], geo[G_RIG], F)
     _scaled(loads, F, fs, u, us, fixed_tilt, r)
     it = 0
     converged = False
+    grow = 1.0
     for it in range(1, maxit + 1):
         if control == CTRL_HYBRID and it <= 15 and hybrid_update(S, tab_i, tab_o, dal, new_oc, oc):
             _copy2(X, X0)
@@ -664,12 +706,15 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         if ok and ring_converged(r, tol):
             converged = True
             break
+        btol = ball_tolerance(r)
         for k in range(5):
             shifted(u, k, 1e-2 * us[k], up)
-            _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, F)
+            _residual_tol(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz,
+                          F, btol)
             _scaled(loads, F, fs, up, us, fixed_tilt, rp)
             jacobian_column(J, k, rp, r)
-        if not ring_step(J, r, smax_div, step):
+        has_step, clipped = ring_step(J, r, smax_div, step, grow)
+        if not has_step:
             break                   # no least-squares step
         lam = 1.0
         n0 = _norm5(r)
@@ -677,8 +722,8 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         okn = False
         for _ in range(16):
             trial_point(u, lam, step, us, un)
-            okn = _residual(un, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xn, Sn, Cr, Cz, Rr,
-                            Rz, F)
+            okn = _residual_tol(un, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xn, Sn, Cr, Cz,
+                                Rr, Rz, F, btol)
             _scaled(loads, F, fs, un, us, fixed_tilt, rn)
             if okn and sufficient_decrease(rn, n0, lam):
                 accepted = True
@@ -689,6 +734,7 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             return LINE_SEARCH_FAILED, it
         accept(un, u, rn, r, Xn, X, Sn, S)
         ok = okn
+        grow = step_growth(grow, clipped, lam)
     if not converged:
         info[1] = max_abs_or_nan(r)
         return NOT_CONVERGED, it
