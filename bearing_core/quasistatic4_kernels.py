@@ -599,8 +599,10 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     it = 0
     converged = False
     grow = 1.0
+    reuse = False
     for it in range(1, maxit + 1):
         if control == CTRL_HYBRID and it <= 15 and qk.hybrid_update(S, tab_i, tab_o, dal, new_oc, oc):
+            reuse = False
             qk._copy2(X, X0)
             ok = _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz,
                             F)
@@ -609,11 +611,13 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             converged = True
             break
         btol = qk.ball_tolerance(r)
-        for k in range(5):
-            qk.shifted(u, k, 1e-2 * us[k], up)
-            _residual4_tol(up, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xp, Sp, Cr, Cz, Rr, Rz, F, btol)
-            qk._scaled(loads, F, fs, up, us, fixed_tilt, rp)
-            qk.jacobian_column(J, k, rp, r)
+        if not reuse:
+            for k in range(5):
+                qk.shifted(u, k, 1e-2 * us[k], up)
+                _residual4_tol(up, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xp, Sp, Cr, Cz, Rr, Rz, F,
+                               btol)
+                qk._scaled(loads, F, fs, up, us, fixed_tilt, rp)
+                qk.jacobian_column(J, k, rp, r)
         has_step, clipped = qk.ring_step(J, r, smax_div, step, grow)
         if not has_step:
             break                   # no least-squares step
@@ -629,10 +633,18 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             if okn and qk.sufficient_decrease(rn, n0, lam):
                 accepted = True
                 break
+            if reuse:
+                break               # no decrease along the kept Jacobian's step: a new Jacobian
             lam *= 0.5
         if not accepted:
+            if reuse:
+                reuse = False
+                continue
             info[0] = n0
             return LINE_SEARCH_FAILED, it
+        reuse = qk.keep_jacobian(rn, n0, lam)
+        if reuse:
+            qk.broyden_update(J, step, lam, rn, r)
         qk.accept(un, u, rn, r, Xn, X, Sn, S)
         ok = okn
         grow = qk.step_growth(grow, clipped, lam)

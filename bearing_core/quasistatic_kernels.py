@@ -30,6 +30,7 @@ BALL_TOL = 1e-10       # ball equilibrium: max |R| < BALL_TOL (max(1, m dm omega
 BALL_TOL_FINE = 1e-12  # the same near the ring solution (solve: max scaled ring residual < RING_FINE)
 RING_FINE = 1e-6
 STEP_GROW_MAX = 32.0   # ring step limit grows up to this factor while clipped full steps are accepted
+REUSE_CONTRACTION = 0.1  # ring Jacobian kept (Broyden-updated) after full steps contracting |r| this much
 
 CTRL_OUTER, CTRL_INNER, CTRL_HYBRID = 0, 1, 2
 G_D, G_DM, G_FO, G_FI, G_A, G_ALPHA0, G_RI, G_RIG, G_MASS, G_INERTIA, G_MU, G_WOUT, N_GEO = range(13)
@@ -575,6 +576,34 @@ def step_growth(grow, clipped, lam):
 
 
 @hot(inline="always")
+def broyden_update(J, step, lam, rn, r):
+    """Broyden's rank-one update of the ring Jacobian J (scaled units) for the accepted step s = lam step
+    and residual change y = rn - r: J += (y - J s) s^T / (s^T s) (Broyden 1965; Dennis & Schnabel,
+    Numerical Methods for Unconstrained Optimization and Nonlinear Equations, Eq. 8.1.5)."""
+    ss = 0.0
+    for k in range(5):
+        ss += (lam * step[k]) ** 2
+    if not ss > 0.0:
+        return
+    for i in range(5):
+        js = 0.0
+        for k in range(5):
+            js += J[i, k] * lam * step[k]
+        c = (rn[i] - r[i] - js) / ss
+        for k in range(5):
+            J[i, k] += c * lam * step[k]
+
+
+@hot(inline="always")
+def keep_jacobian(rn, n0, lam):
+    """Whether the next ring iteration reuses the (Broyden-updated) Jacobian instead of a new
+    forward-difference one: after a full step that reduced |r| at least REUSE_CONTRACTION-fold (the
+    Newton phase, where the difference Jacobian's own error, ~1e-3 for steps of 1e-8 m on deflections of
+    ~1e-5 m, bounds the contraction anyway)."""
+    return lam == 1.0 and _norm5(rn) < REUSE_CONTRACTION * n0
+
+
+@hot(inline="always")
 def ball_tolerance(r):
     """Ball tolerance of the ring-force evaluations at scaled ring residual r: BALL_TOL, and
     BALL_TOL_FINE once max |r| < RING_FINE, so that the ball solves' residuals (at BALL_TOL up to
@@ -697,8 +726,10 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     it = 0
     converged = False
     grow = 1.0
+    reuse = False
     for it in range(1, maxit + 1):
         if control == CTRL_HYBRID and it <= 15 and hybrid_update(S, tab_i, tab_o, dal, new_oc, oc):
+            reuse = False
             _copy2(X, X0)
             ok = _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz,
                            Rr, Rz, F)
@@ -707,12 +738,13 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             converged = True
             break
         btol = ball_tolerance(r)
-        for k in range(5):
-            shifted(u, k, 1e-2 * us[k], up)
-            _residual_tol(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz,
-                          F, btol)
-            _scaled(loads, F, fs, up, us, fixed_tilt, rp)
-            jacobian_column(J, k, rp, r)
+        if not reuse:
+            for k in range(5):
+                shifted(u, k, 1e-2 * us[k], up)
+                _residual_tol(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr,
+                              Rz, F, btol)
+                _scaled(loads, F, fs, up, us, fixed_tilt, rp)
+                jacobian_column(J, k, rp, r)
         has_step, clipped = ring_step(J, r, smax_div, step, grow)
         if not has_step:
             break                   # no least-squares step
@@ -728,10 +760,18 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             if okn and sufficient_decrease(rn, n0, lam):
                 accepted = True
                 break
+            if reuse:
+                break               # no decrease along the kept Jacobian's step: a new Jacobian
             lam *= 0.5
         if not accepted:
+            if reuse:
+                reuse = False
+                continue
             info[0] = n0
             return LINE_SEARCH_FAILED, it
+        reuse = keep_jacobian(rn, n0, lam)
+        if reuse:
+            broyden_update(J, step, lam, rn, r)
         accept(un, u, rn, r, Xn, X, Sn, S)
         ok = okn
         grow = step_growth(grow, clipped, lam)
