@@ -647,7 +647,8 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
             qk.broyden_update(J, step, lam, rn, r)
         qk.accept(un, u, rn, r, Xn, X, Sn, S)
         ok = okn
-        grow = qk.step_growth(grow, clipped, lam)
+        if not (control == CTRL_HYBRID and it < 15):
+            grow = qk.step_growth(grow, clipped, lam)     # fixed limits while the raceway control may change
     if not converged:
         info[1] = qk.max_abs_or_nan(r)
         return NOT_CONVERGED, it
