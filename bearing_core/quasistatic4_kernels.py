@@ -567,10 +567,11 @@ def residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
 
 @hot
 def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, spsi, tab_i, tab_o, dal,
-          X, S, Kmat, info):
+          X, S, Kmat, info, fast):
     """5-DOF inner-ring equilibrium of the four-point model: the algorithm and arguments of
     quasistatic_kernels.solve (Newton, forward-difference Jacobian, least-squares step, backtracking line
-    search, Harris's hybrid criterion in the first 15 iterations, stiffness by central differences) with
+    search, the fast option, Harris's hybrid criterion in the first 15 iterations, stiffness by central
+    differences) with
     the four-point ball equilibrium; S is (NS4, Z). Returns (status, iterations)."""
     Z = cpsi.shape[0]
     us = np.empty(5)
@@ -637,18 +638,21 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
                 break               # no decrease along the kept Jacobian's step: a new Jacobian
             lam *= 0.5
         if not accepted:
-            if reuse:
+            if reuse or grow > 1.0:
+                # a kept Jacobian's step, or one from grown limits, that does not decrease |r|: again
+                # with a new Jacobian and the initial limits
                 reuse = False
+                grow = 1.0
                 continue
             info[0] = n0
             return LINE_SEARCH_FAILED, it
-        reuse = qk.keep_jacobian(rn, n0, lam)
+        reuse = qk.keep_jacobian(rn, n0, lam, fast)
         if reuse:
             qk.broyden_update(J, step, lam, rn, r)
         qk.accept(un, u, rn, r, Xn, X, Sn, S)
         ok = okn
         if not (control == CTRL_HYBRID and it < 15):
-            grow = qk.step_growth(grow, clipped, lam)     # fixed limits while the raceway control may change
+            grow = qk.step_growth(grow, clipped, lam, fast)     # fixed limits while the raceway control may change
     if not converged:
         info[1] = qk.max_abs_or_nan(r)
         return NOT_CONVERGED, it

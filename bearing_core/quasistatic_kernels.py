@@ -8,13 +8,14 @@ One ball:        _ball          contact deflections, Hertz loads (hertz.hertz_lo
 All balls:       _solve_balls   per-ball Newton (2x2 finite-difference Jacobian, step limit 1e-3 D,
                                 per-ball backtracking) for the ball equilibrium at given ring displacement.
 Ring:            ring_forces    force and moment of the balls on the inner ring.
-5-DOF solve:     solve          Newton on the ring equilibrium (finite-difference 5x5 Jacobian, least
-                                squares step, backtracking line search), Harris's hybrid-control
-                                criterion, and the 5x5 stiffness matrix by central differences.
+5-DOF solve:     solve          Newton on the ring equilibrium (finite-difference 5x5 Jacobian, kept
+                                with Broyden updates while it contracts the residual, least squares
+                                step, growing step limits, backtracking line search), Harris's
+                                hybrid-control criterion, and the 5x5 stiffness matrix by central
+                                differences.
 
 Geometry and parameters come in one float array ``geo`` (indices G_*); the raceway control as an int
-(CTRL_*); the ball state of all balls as a (NS, Z) array (rows S_*). Each kernel reproduces step for step
-the algorithm documented in QuasiStaticModel.
+(CTRL_*); the ball state of all balls as a (NS, Z) array (rows S_*).
 """
 from __future__ import annotations
 
@@ -29,7 +30,7 @@ K_REG = 1e-3  # N/m, tension spring of separated contacts (quasistatic module do
 BALL_TOL = 1e-10       # ball equilibrium: max |R| < BALL_TOL (max(1, m dm omega^2 / 2) + max Q)
 BALL_TOL_FINE = 1e-12  # the same near the ring solution (solve: max scaled ring residual < RING_FINE)
 RING_FINE = 1e-6
-STEP_GROW_MAX = 32.0   # ring step limit grows up to this factor while clipped full steps are accepted
+STEP_GROW_MAX = 32.0   # ring step limits grow up to this factor while clipped full steps are accepted
 REUSE_CONTRACTION = 0.1  # ring Jacobian kept (Broyden-updated) after full steps contracting |r| this much
 
 CTRL_OUTER, CTRL_INNER, CTRL_HYBRID = 0, 1, 2
@@ -563,14 +564,14 @@ def ring_step(J, r, smax_div, step, grow):
 
 
 @hot(inline="always")
-def step_growth(grow, clipped, lam):
+def step_growth(grow, clipped, lam, fast):
     """Factor on the ring step limits for the next iteration (a trust-region radius update, Nocedal &
     Wright, Numerical Optimization, 2nd ed., Alg. 4.1, with the line-search fraction lam standing for the
     agreement ratio): doubled after a clipped step accepted in full, cut to the accepted fraction (not
     below 1) after a backtracked one."""
     if lam < 1.0:
         return max(1.0, grow * lam)
-    if clipped:
+    if clipped and fast:
         return min(2.0 * grow, STEP_GROW_MAX)
     return grow
 
@@ -595,12 +596,12 @@ def broyden_update(J, step, lam, rn, r):
 
 
 @hot(inline="always")
-def keep_jacobian(rn, n0, lam):
+def keep_jacobian(rn, n0, lam, fast):
     """Whether the next ring iteration reuses the (Broyden-updated) Jacobian instead of a new
     forward-difference one: after a full step that reduced |r| at least REUSE_CONTRACTION-fold (the
     Newton phase, where the difference Jacobian's own error, ~1e-3 for steps of 1e-8 m on deflections of
     ~1e-5 m, bounds the contraction anyway)."""
-    return lam == 1.0 and _norm5(rn) < REUSE_CONTRACTION * n0
+    return fast and lam == 1.0 and _norm5(rn) < REUSE_CONTRACTION * n0
 
 
 @hot(inline="always")
@@ -683,14 +684,20 @@ def stiffness_column(Kmat, k, Fp, Fm, hk):
 
 @hot
 def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, spsi, tab_i, tab_o, dal,
-          X, S, Kmat, info):
+          X, S, Kmat, info, fast):
     """5-DOF inner-ring equilibrium F_ext + F_balls(u) = 0 by Newton's method, from u (updated in place;
     [m, rad]). Residual scaled by the load (moments by dm/2), unknowns by 1 um / 1e-5 rad; forward-difference
     Jacobian (step 1e-2 scaled units), least-squares step (rcond 1e-12) limited to 20 um / 1 mrad,
-    backtracking line search (16 halvings, sufficient decrease 1e-4). Hybrid control: Harris's criterion
-    re-evaluated in the first 15 iterations. On success X (Z, 2), S (NS, Z) hold the balls and, if want_K,
-    Kmat the 5x5 stiffness by central differences (steps 1e-8 m, 1e-7 rad). Returns (status, iterations);
-    info[0] = |residual| at a failed line search, info[1] = max scaled residual."""
+    backtracking line search (16 halvings, sufficient decrease 1e-4). Converged when every scaled ring
+    residual is below tol with every ball in equilibrium (_solve_balls; ball tolerance BALL_TOL, and
+    BALL_TOL_FINE once max |r| < RING_FINE). Hybrid control: Harris's criterion re-evaluated in the
+    first 15 iterations. fast: the step limits grow (step_growth) after clipped full steps once the
+    raceway control is fixed, and after a full step that contracted |r| tenfold the next step uses the
+    Broyden-updated Jacobian instead of a new one (keep_jacobian); a step from either that fails the
+    line search is retried with a new Jacobian at the initial limits. fast=False: the plain Newton
+    iteration. On success X (Z, 2), S (NS, Z) hold the balls and, if want_K, Kmat the 5x5 stiffness by
+    central differences (steps 1e-8 m, 1e-7 rad). Returns (status, iterations); info[0] = |residual| at
+    a failed line search, info[1] = max scaled residual."""
     Z = cpsi.shape[0]
     us = np.empty(5)
     smax_div = np.empty(5)
@@ -764,18 +771,21 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
                 break               # no decrease along the kept Jacobian's step: a new Jacobian
             lam *= 0.5
         if not accepted:
-            if reuse:
+            if reuse or grow > 1.0:
+                # a kept Jacobian's step, or one from grown limits, that does not decrease |r|: again
+                # with a new Jacobian and the initial limits
                 reuse = False
+                grow = 1.0
                 continue
             info[0] = n0
             return LINE_SEARCH_FAILED, it
-        reuse = keep_jacobian(rn, n0, lam)
+        reuse = keep_jacobian(rn, n0, lam, fast)
         if reuse:
             broyden_update(J, step, lam, rn, r)
         accept(un, u, rn, r, Xn, X, Sn, S)
         ok = okn
         if not (control == CTRL_HYBRID and it < 15):
-            grow = step_growth(grow, clipped, lam)     # fixed limits while the raceway control may change
+            grow = step_growth(grow, clipped, lam, fast)     # fixed limits while the raceway control may change
     if not converged:
         info[1] = max_abs_or_nan(r)
         return NOT_CONVERGED, it
