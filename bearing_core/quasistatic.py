@@ -196,8 +196,9 @@ class QuasiStaticModel:
         return _state_dict(S)
 
     def _x_start(self, u):
-        """Initial ball positions: on the line of centres, with equal deflections; at speed a ball in the
-        clearance starts on the outer race, pressed by the pure-rolling centrifugal force."""
+        """Initial ball positions: on the line of centres, with equal deflections; at speed a ball whose
+        equal deflection is below the outer deflection of the pure-rolling centrifugal force starts on the
+        outer race with that deflection (quasistatic_kernels._x_start)."""
         geo, c, s, _, _, to, dal = self._kargs()
         return qsk.x_start(np.asarray(u, dtype=float), float(self._omega), c, s, geo, to, dal)
 

@@ -519,15 +519,20 @@ def ring_forces4(cpsi, spsi, S, Ri, rig, ei, F):
 @hot
 def _residual4_tol(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F, btol):
     """Ring force F of the balls at displacement u, balls re-equilibrated from X0 to the ball tolerance
-    btol (retried from the geometric start with 200 iterations if that fails); X, S: final ball
-    positions and states."""
+    btol where the per-ball Newton iteration reaches it, else to quasistatic_kernels.BALL_TOL
+    (_solve_balls4; retried from the geometric start with 200 iterations if that fails); X, S: final
+    ball positions and states. Returns whether the balls are in equilibrium to BALL_TOL at least."""
     _centres4(u, cpsi, spsi, geo, Cr, Cz)
     qk._copy2(X0, X)
     n_it = max(60, Cr.shape[0] // 1000)          # 60 (typed int64, not a literal: one compilation)
-    ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, btol, n_it, S, Rr, Rz)
+    ok = False
+    if btol < qk.BALL_TOL:
+        ok = _newton_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, btol, n_it, S, Rr, Rz)
+    if not ok:
+        ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, qk.BALL_TOL, n_it, S, Rr, Rz)
     if not ok:
         _x_start4(Cr, Cz, omega, control, geo, Kt, dal, X)
-        ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, btol, n_it + 140, S, Rr,
+        ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, qk.BALL_TOL, n_it + 140, S, Rr,
                            Rz)
     ring_forces4(cpsi, spsi, S, geo[G_RI], geo[G_RIG], geo[G_EI], F)
     return ok
@@ -611,7 +616,7 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         if ok and qk.ring_converged(r, tol):
             converged = True
             break
-        btol = qk.ball_tolerance(r)
+        btol = qk.ball_tolerance(r, fast)
         if not reuse:
             for k in range(5):
                 qk.shifted(u, k, 1e-2 * us[k], up)

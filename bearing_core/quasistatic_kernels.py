@@ -374,17 +374,20 @@ def ring_forces(cpsi, spsi, ai, Qi, Fi, Ri, rig, F):
 @hot
 def _residual_tol(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F,
                   btol):
-    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 to the ball tolerance
-    btol (_solve_balls; retried from the geometric start with 200 iterations if that fails, or at once
-    when X0 is that start); X, S: final ball positions and states."""
+    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 (_solve_balls) to the
+    ball tolerance btol where they reach it, else to BALL_TOL (a ball at the edge of contact may not
+    reach a finer one), retried from the geometric start with 200 iterations if that fails; X, S: final
+    ball positions and states. Returns whether the balls are in equilibrium to BALL_TOL at least."""
     _centres(u, cpsi, spsi, geo, Cr, Cz)
     _copy2(X0, X)
     n_it = max(60, Cr.shape[0] // 1000)          # 60 (typed int64, not a literal: one compilation)
     ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, btol, n_it, S, Rr, Rz)
+    if not ok and btol < BALL_TOL:
+        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, BALL_TOL, n_it, S, Rr, Rz)
     if not ok:
         _x_start(Cr, Cz, omega, geo, tab_o, dal, X)
-        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, btol, n_it + 140, S, Rr,
-                          Rz)
+        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, BALL_TOL, n_it + 140, S,
+                          Rr, Rz)
     ring_forces(cpsi, spsi, S[S_AI], S[S_QI], S[S_FI], geo[G_RI], geo[G_RIG], F)
     return ok
 
@@ -605,11 +608,12 @@ def keep_jacobian(rn, n0, lam, fast):
 
 
 @hot(inline="always")
-def ball_tolerance(r):
-    """Ball tolerance of the ring-force evaluations at scaled ring residual r: BALL_TOL, and
+def ball_tolerance(r, fast):
+    """Ball tolerance of the ring-force evaluations at scaled ring residual r: BALL_TOL, and with fast
     BALL_TOL_FINE once max |r| < RING_FINE, so that the ball solves' residuals (at BALL_TOL up to
-    1e-10 (m dm omega^2 / 2 + max Q) each) do not hide the ring residual at its tolerance."""
-    return BALL_TOL_FINE if max_abs_or_nan(r) < RING_FINE else BALL_TOL
+    1e-10 (m dm omega^2 / 2 + max Q) each, at 20,000 rpm several times the ring tolerance) do not hide
+    the ring residual at its tolerance."""
+    return BALL_TOL_FINE if fast and max_abs_or_nan(r) < RING_FINE else BALL_TOL
 
 
 @hot(inline="always")
@@ -689,11 +693,12 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     [m, rad]). Residual scaled by the load (moments by dm/2), unknowns by 1 um / 1e-5 rad; forward-difference
     Jacobian (step 1e-2 scaled units), least-squares step (rcond 1e-12) limited to 20 um / 1 mrad,
     backtracking line search (16 halvings, sufficient decrease 1e-4). Converged when every scaled ring
-    residual is below tol with every ball in equilibrium (_solve_balls; ball tolerance BALL_TOL, and
-    BALL_TOL_FINE once max |r| < RING_FINE). Hybrid control: Harris's criterion re-evaluated in the
+    residual is below tol with every ball in equilibrium (_solve_balls, ball tolerance BALL_TOL at
+    least). Hybrid control: Harris's criterion re-evaluated in the
     first 15 iterations. fast: the step limits grow (step_growth) after clipped full steps once the
     raceway control is fixed, and after a full step that contracted |r| tenfold the next step uses the
-    Broyden-updated Jacobian instead of a new one (keep_jacobian); a step from either that fails the
+    Broyden-updated Jacobian instead of a new one (keep_jacobian), and the ball tolerance tightens near
+    the solution (ball_tolerance); a step from the kept Jacobian or grown limits that fails the
     line search is retried with a new Jacobian at the initial limits. fast=False: the plain Newton
     iteration. On success X (Z, 2), S (NS, Z) hold the balls and, if want_K, Kmat the 5x5 stiffness by
     central differences (steps 1e-8 m, 1e-7 rad). Returns (status, iterations); info[0] = |residual| at
@@ -744,7 +749,7 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         if ok and ring_converged(r, tol):
             converged = True
             break
-        btol = ball_tolerance(r)
+        btol = ball_tolerance(r, fast)
         if not reuse:
             for k in range(5):
                 shifted(u, k, 1e-2 * us[k], up)
