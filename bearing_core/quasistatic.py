@@ -196,8 +196,9 @@ class QuasiStaticModel:
         return _state_dict(S)
 
     def _x_start(self, u):
-        """Initial ball positions: on the line of centres, with equal deflections; at speed a ball in the
-        clearance starts on the outer race, pressed by the pure-rolling centrifugal force."""
+        """Initial ball positions: on the line of centres, with equal deflections; at speed a ball whose
+        equal deflection is below the outer deflection of the pure-rolling centrifugal force starts on the
+        outer race with that deflection (quasistatic_kernels._x_start)."""
         geo, c, s, _, _, to, dal = self._kargs()
         return qsk.x_start(np.asarray(u, dtype=float), float(self._omega), c, s, geo, to, dal)
 
@@ -240,14 +241,19 @@ class QuasiStaticModel:
                 return self._solve(omega, loads, u0, tol, min(maxit, 30), stiffness)
             except ConvergenceError as e:
                 first = e
+            # the plain Newton iteration (fixed step limits, a new Jacobian every iteration), then
             # continuation: static solution first, then speed in steps
             try:
-                res = self._solve(0.0, loads, None, tol, maxit, False)
+                return self._solve(omega, loads, u0, tol, min(maxit, 30), stiffness, fast=False)
+            except ConvergenceError:
+                pass
+            try:
+                res = self._solve(0.0, loads, None, tol, maxit, False, fast=False)
                 u = res.u
                 for w in np.linspace(0.0, omega, 9)[1:]:
-                    res = self._solve(float(w), loads, u, tol, maxit, False)
+                    res = self._solve(float(w), loads, u, tol, maxit, False, fast=False)
                     u = res.u
-                return self._solve(omega, loads, u, tol, maxit, stiffness)
+                return self._solve(omega, loads, u, tol, maxit, stiffness, fast=False)
             except ConvergenceError as e:
                 raise ConvergenceError(
                     f"no quasi-static equilibrium found for omega = {omega:.6g} rad/s, loads = "
@@ -274,9 +280,9 @@ class QuasiStaticModel:
             u[1] = dr * loads[1] / Fr
         return u
 
-    def _solve(self, omega, loads, u0, tol, maxit, stiffness):
-        """One Newton solve of the 5-DOF ring equilibrium (kernel solve; algorithm in the docstring of
-        quasistatic_kernels.solve)."""
+    def _solve(self, omega, loads, u0, tol, maxit, stiffness, fast=True):
+        """One Newton solve of the 5-DOF ring equilibrium (kernel solve; algorithm and fast in the
+        docstring of quasistatic_kernels.solve)."""
         g = self.g
         u = self._u_guess(loads) if u0 is None else np.array(u0, dtype=float)
         self._omega = omega
@@ -286,7 +292,8 @@ class QuasiStaticModel:
         Kmat = np.empty((5, 5))
         info = np.zeros(2)
         status, it = self._KERNELS.solve(float(omega), np.ascontiguousarray(loads, dtype=float), u, self.fixed_tilt, ctrl,
-                               float(tol), int(maxit), bool(stiffness), geo, c, s, ti, to, dal, X, S, Kmat, info)
+                               float(tol), int(maxit), bool(stiffness), geo, c, s, ti, to, dal, X, S, Kmat, info,
+                               bool(fast))
         if status == qsk.LINE_SEARCH_FAILED:
             raise ConvergenceError(f"quasi-static line search failed at omega={omega:.4g} rad/s, "
                                    f"loads={loads.tolist()}, |residual|={info[0]:.3e}")

@@ -517,19 +517,32 @@ def ring_forces4(cpsi, spsi, S, Ri, rig, ei, F):
 
 
 @hot
-def _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F):
-    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 (retried from the
-    geometric start with 200 iterations if that fails); X, S: final ball positions and states."""
+def _residual4_tol(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F, btol):
+    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 to the ball tolerance
+    btol where the per-ball Newton iteration reaches it, else to quasistatic_kernels.BALL_TOL
+    (_solve_balls4; retried from the geometric start with 200 iterations if that fails); X, S: final
+    ball positions and states. Returns whether the balls are in equilibrium to BALL_TOL at least."""
     _centres4(u, cpsi, spsi, geo, Cr, Cz)
     qk._copy2(X0, X)
     n_it = max(60, Cr.shape[0] // 1000)          # 60 (typed int64, not a literal: one compilation)
-    ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, 1e-10, n_it, S, Rr, Rz)
+    ok = False
+    if btol < qk.BALL_TOL:
+        ok = _newton_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, btol, n_it, S, Rr, Rz)
+    if not ok:
+        ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, qk.BALL_TOL, n_it, S, Rr, Rz)
     if not ok:
         _x_start4(Cr, Cz, omega, control, geo, Kt, dal, X)
-        ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, 1e-10, n_it + 140, S, Rr,
+        ok = _solve_balls4(Cr, Cz, omega, X, oc, control, geo, Kt, dal, qk.BALL_TOL, n_it + 140, S, Rr,
                            Rz)
     ring_forces4(cpsi, spsi, S, geo[G_RI], geo[G_RIG], geo[G_EI], F)
     return ok
+
+
+@hot
+def _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F):
+    """_residual4_tol at the ball tolerance quasistatic_kernels.BALL_TOL."""
+    return _residual4_tol(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz, F,
+                          qk.BALL_TOL)
 
 
 @hot(inline="always")
@@ -559,10 +572,11 @@ def residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal):
 
 @hot
 def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, spsi, tab_i, tab_o, dal,
-          X, S, Kmat, info):
+          X, S, Kmat, info, fast):
     """5-DOF inner-ring equilibrium of the four-point model: the algorithm and arguments of
     quasistatic_kernels.solve (Newton, forward-difference Jacobian, least-squares step, backtracking line
-    search, Harris's hybrid criterion in the first 15 iterations, stiffness by central differences) with
+    search, the fast option, Harris's hybrid criterion in the first 15 iterations, stiffness by central
+    differences) with
     the four-point ball equilibrium; S is (NS4, Z). Returns (status, iterations)."""
     Z = cpsi.shape[0]
     us = np.empty(5)
@@ -590,8 +604,11 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     qk._scaled(loads, F, fs, u, us, fixed_tilt, r)
     it = 0
     converged = False
+    grow = 1.0
+    reuse = False
     for it in range(1, maxit + 1):
         if control == CTRL_HYBRID and it <= 15 and qk.hybrid_update(S, tab_i, tab_o, dal, new_oc, oc):
+            reuse = False
             qk._copy2(X, X0)
             ok = _residual4(u, omega, X0, oc, control, geo, cpsi, spsi, Kt, dal, X, S, Cr, Cz, Rr, Rz,
                             F)
@@ -599,12 +616,16 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         if ok and qk.ring_converged(r, tol):
             converged = True
             break
-        for k in range(5):
-            qk.shifted(u, k, 1e-2 * us[k], up)
-            _residual4(up, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xp, Sp, Cr, Cz, Rr, Rz, F)
-            qk._scaled(loads, F, fs, up, us, fixed_tilt, rp)
-            qk.jacobian_column(J, k, rp, r)
-        if not qk.ring_step(J, r, smax_div, step):
+        btol = qk.ball_tolerance(r, fast)
+        if not reuse:
+            for k in range(5):
+                qk.shifted(u, k, 1e-2 * us[k], up)
+                _residual4_tol(up, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xp, Sp, Cr, Cz, Rr, Rz, F,
+                               btol)
+                qk._scaled(loads, F, fs, up, us, fixed_tilt, rp)
+                qk.jacobian_column(J, k, rp, r)
+        has_step, clipped = qk.ring_step(J, r, smax_div, step, grow)
+        if not has_step:
             break                   # no least-squares step
         lam = 1.0
         n0 = qk._norm5(r)
@@ -612,18 +633,31 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         okn = False
         for _ in range(16):
             qk.trial_point(u, lam, step, us, un)
-            okn = _residual4(un, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xn, Sn, Cr, Cz, Rr,
-                             Rz, F)
+            okn = _residual4_tol(un, omega, X, oc, control, geo, cpsi, spsi, Kt, dal, Xn, Sn, Cr, Cz, Rr,
+                                 Rz, F, btol)
             qk._scaled(loads, F, fs, un, us, fixed_tilt, rn)
             if okn and qk.sufficient_decrease(rn, n0, lam):
                 accepted = True
                 break
+            if reuse:
+                break               # no decrease along the kept Jacobian's step: a new Jacobian
             lam *= 0.5
         if not accepted:
+            if reuse or grow > 1.0:
+                # a kept Jacobian's step, or one from grown limits, that does not decrease |r|: again
+                # with a new Jacobian and the initial limits
+                reuse = False
+                grow = 1.0
+                continue
             info[0] = n0
             return LINE_SEARCH_FAILED, it
+        reuse = qk.keep_jacobian(rn, n0, lam, fast)
+        if reuse:
+            qk.broyden_update(J, step, lam, rn, r)
         qk.accept(un, u, rn, r, Xn, X, Sn, S)
         ok = okn
+        if not (control == CTRL_HYBRID and it < 15):
+            grow = qk.step_growth(grow, clipped, lam, fast)     # fixed limits while the raceway control may change
     if not converged:
         info[1] = qk.max_abs_or_nan(r)
         return NOT_CONVERGED, it

@@ -8,13 +8,14 @@ One ball:        _ball          contact deflections, Hertz loads (hertz.hertz_lo
 All balls:       _solve_balls   per-ball Newton (2x2 finite-difference Jacobian, step limit 1e-3 D,
                                 per-ball backtracking) for the ball equilibrium at given ring displacement.
 Ring:            ring_forces    force and moment of the balls on the inner ring.
-5-DOF solve:     solve          Newton on the ring equilibrium (finite-difference 5x5 Jacobian, least
-                                squares step, backtracking line search), Harris's hybrid-control
-                                criterion, and the 5x5 stiffness matrix by central differences.
+5-DOF solve:     solve          Newton on the ring equilibrium (finite-difference 5x5 Jacobian, kept
+                                with Broyden updates while it contracts the residual, least squares
+                                step, growing step limits, backtracking line search), Harris's
+                                hybrid-control criterion, and the 5x5 stiffness matrix by central
+                                differences.
 
 Geometry and parameters come in one float array ``geo`` (indices G_*); the raceway control as an int
-(CTRL_*); the ball state of all balls as a (NS, Z) array (rows S_*). Each kernel reproduces step for step
-the algorithm documented in QuasiStaticModel.
+(CTRL_*); the ball state of all balls as a (NS, Z) array (rows S_*).
 """
 from __future__ import annotations
 
@@ -26,6 +27,11 @@ from .hertz import ROW_A_COEF, ROW_ELL_E, ROW_K_LOAD, hertz_lookup_alpha
 from .jit import hot
 
 K_REG = 1e-3  # N/m, tension spring of separated contacts (quasistatic module docstring)
+BALL_TOL = 1e-10       # ball equilibrium: max |R| < BALL_TOL (max(1, m dm omega^2 / 2) + max Q)
+BALL_TOL_FINE = 1e-12  # the same near the ring solution (solve: max scaled ring residual < RING_FINE)
+RING_FINE = 1e-6
+STEP_GROW_MAX = 32.0   # ring step limits grow up to this factor while clipped full steps are accepted
+REUSE_CONTRACTION = 0.1  # ring Jacobian kept (Broyden-updated) after full steps contracting |r| this much
 
 CTRL_OUTER, CTRL_INNER, CTRL_HYBRID = 0, 1, 2
 G_D, G_DM, G_FO, G_FI, G_A, G_ALPHA0, G_RI, G_RIG, G_MASS, G_INERTIA, G_MU, G_WOUT, N_GEO = range(13)
@@ -209,8 +215,10 @@ def rolling_fc(omega, geo):
 
 @hot(inline="always")
 def _x_start(Cr, Cz, omega, geo, tab_o, dal, X):
-    """Initial ball positions: on the line of centres with equal deflections; at speed a ball in the
-    clearance is put on the outer race, pressed by the pure-rolling centrifugal force."""
+    """Initial ball positions: on the line of centres with equal deflections; at speed a ball whose
+    equal deflection is below the outer deflection dc of the pure-rolling centrifugal force alone is
+    put on the outer race with deflection dc along the line of centres (the inner contact then takes
+    what is left, 2 d - dc; at d = dc both starts agree)."""
     D = geo[G_D]
     ro = (geo[G_FO] - 0.5) * D
     ri = (geo[G_FI] - 0.5) * D
@@ -225,7 +233,7 @@ def _x_start(Cr, Cz, omega, geo, tab_o, dal, X):
         t = (ro + d) / max(L, 1e-300)
         X[j, 0] = Cr[j] * t
         X[j, 1] = Cz[j] * t
-        if omega > 0.0 and d < 0.0:
+        if omega > 0.0 and d < lo - ro:
             ta = math.atan2(Cz[j], Cr[j])
             X[j, 0] = lo * math.cos(ta)
             X[j, 1] = lo * math.sin(ta)
@@ -364,19 +372,31 @@ def ring_forces(cpsi, spsi, ai, Qi, Fi, Ri, rig, F):
 
 
 @hot
-def _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F):
-    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 (retried from the
-    geometric start with 200 iterations if that fails); X, S: final ball positions and states."""
+def _residual_tol(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F,
+                  btol):
+    """Ring force F of the balls at displacement u, balls re-equilibrated from X0 (_solve_balls) to the
+    ball tolerance btol where they reach it, else to BALL_TOL (a ball at the edge of contact may not
+    reach a finer one), retried from the geometric start with 200 iterations if that fails; X, S: final
+    ball positions and states. Returns whether the balls are in equilibrium to BALL_TOL at least."""
     _centres(u, cpsi, spsi, geo, Cr, Cz)
     _copy2(X0, X)
     n_it = max(60, Cr.shape[0] // 1000)          # 60 (typed int64, not a literal: one compilation)
-    ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, n_it, S, Rr, Rz)
+    ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, btol, n_it, S, Rr, Rz)
+    if not ok and btol < BALL_TOL:
+        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, BALL_TOL, n_it, S, Rr, Rz)
     if not ok:
         _x_start(Cr, Cz, omega, geo, tab_o, dal, X)
-        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, 1e-10, n_it + 140, S, Rr,
-                          Rz)
+        ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, BALL_TOL, n_it + 140, S,
+                          Rr, Rz)
     ring_forces(cpsi, spsi, S[S_AI], S[S_QI], S[S_FI], geo[G_RI], geo[G_RIG], F)
     return ok
+
+
+@hot
+def _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F):
+    """_residual_tol at the ball tolerance BALL_TOL."""
+    return _residual_tol(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz,
+                         F, BALL_TOL)
 
 
 @hot
@@ -522,9 +542,10 @@ def ring_converged(r, tol):
 
 
 @hot(inline="always")
-def ring_step(J, r, smax_div, step):
+def ring_step(J, r, smax_div, step, grow):
     """Newton step of the 5-DOF solve into step (scaled units): least squares J step = -r (rcond 1e-12),
-    scaled down to the limits smax_div. False (no step) where J or r is not finite."""
+    scaled down to the limits grow * smax_div. Returns (ok, clipped); ok False (no step) where J or r is
+    not finite."""
     fin = True
     for i in range(5):
         if not math.isfinite(r[i]):
@@ -533,16 +554,66 @@ def ring_step(J, r, smax_div, step):
             if not math.isfinite(J[i, k]):
                 fin = False
     if not fin:
-        return False
+        return False, False
     x = lstsq_svd(J, r, 1e-12)
     smax = 0.0
     for k in range(5):
         step[k] = -x[k]
-        smax = max(smax, abs(step[k]) / smax_div[k])
+        smax = max(smax, abs(step[k]) / (grow * smax_div[k]))
     if smax > 1.0:
         for k in range(5):
             step[k] /= smax
-    return True
+    return True, smax > 1.0
+
+
+@hot(inline="always")
+def step_growth(grow, clipped, lam, fast):
+    """Factor on the ring step limits for the next iteration (a trust-region radius update, Nocedal &
+    Wright, Numerical Optimization, 2nd ed., Alg. 4.1, with the line-search fraction lam standing for the
+    agreement ratio): doubled after a clipped step accepted in full, cut to the accepted fraction (not
+    below 1) after a backtracked one."""
+    if lam < 1.0:
+        return max(1.0, grow * lam)
+    if clipped and fast:
+        return min(2.0 * grow, STEP_GROW_MAX)
+    return grow
+
+
+@hot(inline="always")
+def broyden_update(J, step, lam, rn, r):
+    """Broyden's rank-one update of the ring Jacobian J (scaled units) for the accepted step s = lam step
+    and residual change y = rn - r: J += (y - J s) s^T / (s^T s) (Broyden 1965; Dennis & Schnabel,
+    Numerical Methods for Unconstrained Optimization and Nonlinear Equations, Eq. 8.1.5)."""
+    ss = 0.0
+    for k in range(5):
+        ss += (lam * step[k]) ** 2
+    if not ss > 0.0:
+        return
+    for i in range(5):
+        js = 0.0
+        for k in range(5):
+            js += J[i, k] * lam * step[k]
+        c = (rn[i] - r[i] - js) / ss
+        for k in range(5):
+            J[i, k] += c * lam * step[k]
+
+
+@hot(inline="always")
+def keep_jacobian(rn, n0, lam, fast):
+    """Whether the next ring iteration reuses the (Broyden-updated) Jacobian instead of a new
+    forward-difference one: after a full step that reduced |r| at least REUSE_CONTRACTION-fold (the
+    Newton phase, where the difference Jacobian's own error, ~1e-3 for steps of 1e-8 m on deflections of
+    ~1e-5 m, bounds the contraction anyway)."""
+    return fast and lam == 1.0 and _norm5(rn) < REUSE_CONTRACTION * n0
+
+
+@hot(inline="always")
+def ball_tolerance(r, fast):
+    """Ball tolerance of the ring-force evaluations at scaled ring residual r: BALL_TOL, and with fast
+    BALL_TOL_FINE once max |r| < RING_FINE, so that the ball solves' residuals (at BALL_TOL up to
+    1e-10 (m dm omega^2 / 2 + max Q) each, at 20,000 rpm several times the ring tolerance) do not hide
+    the ring residual at its tolerance."""
+    return BALL_TOL_FINE if fast and max_abs_or_nan(r) < RING_FINE else BALL_TOL
 
 
 @hot(inline="always")
@@ -617,14 +688,21 @@ def stiffness_column(Kmat, k, Fp, Fm, hk):
 
 @hot
 def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, spsi, tab_i, tab_o, dal,
-          X, S, Kmat, info):
+          X, S, Kmat, info, fast):
     """5-DOF inner-ring equilibrium F_ext + F_balls(u) = 0 by Newton's method, from u (updated in place;
     [m, rad]). Residual scaled by the load (moments by dm/2), unknowns by 1 um / 1e-5 rad; forward-difference
     Jacobian (step 1e-2 scaled units), least-squares step (rcond 1e-12) limited to 20 um / 1 mrad,
-    backtracking line search (16 halvings, sufficient decrease 1e-4). Hybrid control: Harris's criterion
-    re-evaluated in the first 15 iterations. On success X (Z, 2), S (NS, Z) hold the balls and, if want_K,
-    Kmat the 5x5 stiffness by central differences (steps 1e-8 m, 1e-7 rad). Returns (status, iterations);
-    info[0] = |residual| at a failed line search, info[1] = max scaled residual."""
+    backtracking line search (16 halvings, sufficient decrease 1e-4). Converged when every scaled ring
+    residual is below tol with every ball in equilibrium (_solve_balls, ball tolerance BALL_TOL at
+    least). Hybrid control: Harris's criterion re-evaluated in the
+    first 15 iterations. fast: the step limits grow (step_growth) after clipped full steps once the
+    raceway control is fixed, and after a full step that contracted |r| tenfold the next step uses the
+    Broyden-updated Jacobian instead of a new one (keep_jacobian), and the ball tolerance tightens near
+    the solution (ball_tolerance); a step from the kept Jacobian or grown limits that fails the
+    line search is retried with a new Jacobian at the initial limits. fast=False: the plain Newton
+    iteration. On success X (Z, 2), S (NS, Z) hold the balls and, if want_K, Kmat the 5x5 stiffness by
+    central differences (steps 1e-8 m, 1e-7 rad). Returns (status, iterations); info[0] = |residual| at
+    a failed line search, info[1] = max scaled residual."""
     Z = cpsi.shape[0]
     us = np.empty(5)
     smax_div = np.empty(5)
@@ -651,12 +729,19 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
     _centres(u, cpsi, spsi, geo, Cr, Cz)
     X0 = np.empty((Z, 2))
     _x_start(Cr, Cz, omega, geo, tab_o, dal, X0)
-    ok = _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz, Rr, Rz, F)
+    # the balls from the geometric start: _residual's retry from that start, at once
+    _copy2(X0, X)
+    n_it = max(200, Z // 1000)
+    ok = _solve_balls(Cr, Cz, omega, X, oc, control, geo, tab_i, tab_o, dal, BALL_TOL, n_it, S, Rr, Rz)
+    ring_forces(cpsi, spsi, S[S_AI], S[S_QI], S[S_FI], geo[G_RI], geo[G_RIG], F)
     _scaled(loads, F, fs, u, us, fixed_tilt, r)
     it = 0
     converged = False
+    grow = 1.0
+    reuse = False
     for it in range(1, maxit + 1):
         if control == CTRL_HYBRID and it <= 15 and hybrid_update(S, tab_i, tab_o, dal, new_oc, oc):
+            reuse = False
             _copy2(X, X0)
             ok = _residual(u, omega, X0, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, X, S, Cr, Cz,
                            Rr, Rz, F)
@@ -664,12 +749,16 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         if ok and ring_converged(r, tol):
             converged = True
             break
-        for k in range(5):
-            shifted(u, k, 1e-2 * us[k], up)
-            _residual(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr, Rz, F)
-            _scaled(loads, F, fs, up, us, fixed_tilt, rp)
-            jacobian_column(J, k, rp, r)
-        if not ring_step(J, r, smax_div, step):
+        btol = ball_tolerance(r, fast)
+        if not reuse:
+            for k in range(5):
+                shifted(u, k, 1e-2 * us[k], up)
+                _residual_tol(up, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xp, Sp, Cr, Cz, Rr,
+                              Rz, F, btol)
+                _scaled(loads, F, fs, up, us, fixed_tilt, rp)
+                jacobian_column(J, k, rp, r)
+        has_step, clipped = ring_step(J, r, smax_div, step, grow)
+        if not has_step:
             break                   # no least-squares step
         lam = 1.0
         n0 = _norm5(r)
@@ -677,18 +766,31 @@ def solve(omega, loads, u, fixed_tilt, control, tol, maxit, want_K, geo, cpsi, s
         okn = False
         for _ in range(16):
             trial_point(u, lam, step, us, un)
-            okn = _residual(un, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xn, Sn, Cr, Cz, Rr,
-                            Rz, F)
+            okn = _residual_tol(un, omega, X, oc, control, geo, cpsi, spsi, tab_i, tab_o, dal, Xn, Sn, Cr, Cz,
+                                Rr, Rz, F, btol)
             _scaled(loads, F, fs, un, us, fixed_tilt, rn)
             if okn and sufficient_decrease(rn, n0, lam):
                 accepted = True
                 break
+            if reuse:
+                break               # no decrease along the kept Jacobian's step: a new Jacobian
             lam *= 0.5
         if not accepted:
+            if reuse or grow > 1.0:
+                # a kept Jacobian's step, or one from grown limits, that does not decrease |r|: again
+                # with a new Jacobian and the initial limits
+                reuse = False
+                grow = 1.0
+                continue
             info[0] = n0
             return LINE_SEARCH_FAILED, it
+        reuse = keep_jacobian(rn, n0, lam, fast)
+        if reuse:
+            broyden_update(J, step, lam, rn, r)
         accept(un, u, rn, r, Xn, X, Sn, S)
         ok = okn
+        if not (control == CTRL_HYBRID and it < 15):
+            grow = step_growth(grow, clipped, lam, fast)     # fixed limits while the raceway control may change
     if not converged:
         info[1] = max_abs_or_nan(r)
         return NOT_CONVERGED, it

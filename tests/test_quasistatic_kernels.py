@@ -7,7 +7,7 @@ import pytest
 
 from bearing_core.errors import ConvergenceError
 from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import QuasiStaticModel
+from bearing_core.quasistatic import FourPointQuasiStaticModel, QuasiStaticModel
 from bearing_core.quasistatic_kernels import lstsq_svd
 
 RPM = math.pi / 30
@@ -97,6 +97,32 @@ def test_wan105_seed003_table2_through_kernels():
     m.solve(1000 * RPM, (500, 0, 889.84, 0, 0), stiffness=True)
     r2 = m.solve(15000 * RPM, (0, 0, 889.84, 0, 0), stiffness=False)
     assert np.array_equal(r.u, r2.u) and np.array_equal(r.Q_o, r2.Q_o)
+
+
+@pytest.mark.parametrize("name, rpm, control, loads", [
+    ("7218B", 20000.0, "outer", (3200.0, 960.0, 960.0, 0.0, 0.0)),
+    ("7218B", 20000.0, "outer", (600.0, 0.0, 3000.0, 40.0, -25.0)),
+    ("wan-105", 20000.0, "hybrid", (1500.0, 450.0, 450.0, 0.0, 0.0)),
+    ("QJ1044", 3000.0, "outer", (1000.0, 0.0, 3000.0, 0.0, 0.0)),
+])
+def test_fast_and_plain_newton_reach_the_same_equilibrium(name, rpm, control, loads):
+    """The ring equilibrium does not depend on the iteration: the fast solve (growing step limits, kept
+    Broyden Jacobian, finer ball tolerance near the solution) and the plain Newton iteration (fixed
+    limits, a new difference Jacobian every iteration) end at the same displacements and ball loads within
+    what the convergence criterion allows (scaled ring residual < 1e-10, condition numbers of the scaled
+    Jacobian < 1e3: 1e-7 of the largest displacement / load); the four-point case covers
+    quasistatic4_kernels.solve."""
+    g = load_preset(name)
+    m = (FourPointQuasiStaticModel if g.is_four_point else QuasiStaticModel)(g, control)
+    loads = np.asarray(loads, dtype=float)
+    fast = m._solve(rpm * RPM, loads, None, 1e-10, 30, False, fast=True)
+    plain = m._solve(rpm * RPM, loads, None, 1e-10, 100, False, fast=False)
+    assert np.max(np.abs(fast.u - plain.u)) < 1e-7 * np.max(np.abs(plain.u))
+    qmax = max(plain.Q_i.max(), plain.Q_o.max())
+    assert np.max(np.abs(fast.Q_i - plain.Q_i)) < 1e-7 * qmax
+    assert np.max(np.abs(fast.Q_o - plain.Q_o)) < 1e-7 * qmax
+    for r in (fast, plain):
+        assert r.residual < 1e-9
 
 
 def test_convergence_error_message():
