@@ -156,18 +156,18 @@ def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wr
 
 
 @hot
-def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, a, b, p, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct,
-                     vcz, D, dm, Rdef, Ry, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc):
-    """One ball-raceway contact of the ball (rb, rd, thd, zd, Wr, Wt, Wz: state in its local frame) with a
-    race turning at w_race [rad/s] whose curvature centre moves at (vcr, vct, vcz) [m/s]; contact geometry
-    (delta [m], normal n, alpha [rad], Hertz Q [N], semi-axes a, b [m], p [Pa]) from contact_kernels.
+def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz, D, dm,
+                     zeta, mb):
+    """Normal force and kinematics of one ball-raceway contact of the ball (rb, rd, thd, zd, Wr, Wt, Wz: state
+    in its local frame) with a race turning at w_race [rad/s] whose curvature centre moves at (vcr, vct, vcz)
+    [m/s]; contact geometry (delta [m], normal n, alpha [rad], Hertz Q [N]) from contact_kernels.
     Normal damping linear in the deflection rate, zeta of critical for the ball mass on the local Hertz
     stiffness 1.5 Q / delta, only in contact and never pulling (contact_kernels.normal_contact_force);
-    contact kinematics (contact_kernels.contact_kinematics) and traction (_race_traction; effective radius
-    across the rolling direction Ry, along it Rx = D/2 (1 -+ D cos(alpha) / dm), inner / outer).
-    Returns (F_n [N] normal force with damping, P_damp [W], U_el [J] elastic energy 0.4 Q delta, then the
-    traction on the ball F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W] and the kinematics vs_t, vs_m [m/s],
-    w_spin [rad/s], u_roll [m/s])."""
+    contact kinematics (contact_kernels.contact_kinematics); effective radius of the contact along the
+    rolling direction Rx = D/2 (1 -+ D cos(alpha) / dm), inner / outer (Hamrock-Dowson).
+    Returns (F_n [N] normal force with damping, P_damp [W], U_el [J] elastic energy 0.4 Q delta, Rx [m],
+    then the kinematics vs_t, vs_m [m/s], w_spin, w_roll_m, w_roll_t [rad/s], u_roll [m/s]) for the
+    traction (_race_traction). Scalar arguments only: no reference counting per contact."""
     Fn = Q
     pdamp = 0.0
     uel = 0.0
@@ -182,9 +182,7 @@ def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, a, b, p, rb, rd, thd, zd,
         Rx = 0.5 * D * (1.0 - D * math.cos(alpha) / dm)
     else:
         Rx = 0.5 * D * (1.0 + D * math.cos(alpha) / dm)
-    ft, fm, mn, mm, mt, pl = _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur,
-                                            tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc)
-    return Fn, pdamp, uel, ft, fm, mn, mm, mt, pl, vs_t, vs_m, wsp, ur
+    return Fn, pdamp, uel, Rx, vs_t, vs_m, wsp, wrm, wrt, ur
 
 
 @hot
@@ -333,15 +331,20 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         _, dlo, nor, noz, ao, Qo, ao_s, bo_s, po = oa
         _, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2 = cb
         _, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2 = ob
-        # each contact: normal force with damping, contact kinematics, traction (_raceway_contact)
-        (Fni, pd_i, ue_i, fti, fmi, mni, mmi, mti, pli, vsti, vsmi, wspi,
-         uri) = _raceway_contact(True, dli, nir, niz, ai, Qi, ai_s, bi_s, pi_, rb, rd, thd, zd, Wr, Wt, Wz, w,
-                                 vri, vrt, vrz, D, dm, Rdi, Ryi, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny,
-                                 qx, qwx, qy, qwy, sc)
-        (Fno, pd_o, ue_o, fto, fmo, mno, mmo, mto, plo, vsto, vsmo, wspo,
-         uro) = _raceway_contact(False, dlo, nor, noz, ao, Qo, ao_s, bo_s, po, rb, rd, thd, zd, Wr, Wt, Wz, wo,
-                                 vor, vot, 0.0, D, dm, Rdo, Ryo, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny,
-                                 qx, qwx, qy, qwy, sc)
+        # each contact: normal force with damping and contact kinematics (_raceway_contact), traction
+        # (_race_traction, inlined: the traction arrays are not reference-counted per contact)
+        (Fni, pd_i, ue_i, Rxi, vsti, vsmi, wspi, wrmi, wrti,
+         uri) = _raceway_contact(True, dli, nir, niz, ai, Qi, rb, rd, thd, zd, Wr, Wt, Wz, w, vri, vrt, vrz, D,
+                                 dm, zeta, mb)
+        fti, fmi, mni, mmi, mti, pli = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi, Rxi, Ryi, vsti, vsmi,
+                                                      wspi, wrmi, wrti, uri, tmodel, tp, Gc, nuc, fnx, fny, qx,
+                                                      qwx, qy, qwy, sc)
+        (Fno, pd_o, ue_o, Rxo, vsto, vsmo, wspo, wrmo, wrto,
+         uro) = _raceway_contact(False, dlo, nor, noz, ao, Qo, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot, 0.0, D,
+                                 dm, zeta, mb)
+        fto, fmo, mno, mmo, mto, plo = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo, Rxo, Ryo, vsto, vsmo,
+                                                      wspo, wrmo, wrto, uro, tmodel, tp, Gc, nuc, fnx, fny, qx,
+                                                      qwx, qy, qwy, sc)
         P_dp += pd_i
         Uel += ue_i
         P_dp += pd_o
@@ -384,10 +387,12 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # second arcs (four-point contact): the same contact kernel, with their loads on ball and rings
         fr2_ring = 0.0; ft2_ring = 0.0; fz2_ring = 0.0
         if Qi2 > 0.0:
-            (Fn2, pd2, ue2, ft2, fm2, mn2, mm2, mt2, pl2, vst2, vsm2, wsp2,
-             ur2) = _raceway_contact(True, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2, rb, rd, thd, zd, Wr, Wt,
-                                     Wz, w, vrr - zib * tdot, vrt, vrz, D, dm, Rdi, Ryi, zeta, mb, kalker, tmodel,
-                                     tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc)
+            (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
+             ur2) = _raceway_contact(True, dli2, nir2, niz2, ai2, Qi2, rb, rd, thd, zd, Wr, Wt, Wz, w,
+                                     vrr - zib * tdot, vrt, vrz, D, dm, zeta, mb)
+            ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ai2_s, bi2_s, Qi2, pi2, D, Rdi, Rx2, Ryi, vst2,
+                                                          vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
+                                                          fny, qx, qwx, qy, qwy, sc)
             P_dp += pd2; Uel += ue2
             Fr += -Fn2 * nir2 - fm2 * niz2; Ft += ft2; Fz += -Fn2 * niz2 + fm2 * nir2
             Mr += mn2 * nir2 - mm2 * niz2; Mt += mt2; Mz += mn2 * niz2 + mm2 * nir2
@@ -399,10 +404,12 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             fz2_ring = Fn2 * niz2 - fm2 * nir2
             TRz -= rb * ft2 + niz2 * mn2 + nir2 * mm2
         if Qo2 > 0.0:
-            (Fn2, pd2, ue2, ft2, fm2, mn2, mm2, mt2, pl2, vst2, vsm2, wsp2,
-             ur2) = _raceway_contact(False, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2, rb, rd, thd, zd, Wr,
-                                     Wt, Wz, wo, vor, vot, 0.0, D, dm, Rdo, Ryo, zeta, mb, kalker, tmodel, tp, Gc,
-                                     nuc, fnx, fny, qx, qwx, qy, qwy, sc)
+            (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
+             ur2) = _raceway_contact(False, dlo2, nor2, noz2, ao2, Qo2, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot,
+                                     0.0, D, dm, zeta, mb)
+            ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ao2_s, bo2_s, Qo2, po2, D, Rdo, Rx2, Ryo, vst2,
+                                                          vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
+                                                          fny, qx, qwx, qy, qwy, sc)
             P_dp += pd2; Uel += ue2
             Fr += -Fn2 * nor2 - fm2 * noz2; Ft += ft2; Fz += -Fn2 * noz2 + fm2 * nor2
             Mr += mn2 * nor2 - mm2 * noz2; Mt += mt2; Mz += mn2 * noz2 + mm2 * nor2
