@@ -127,7 +127,7 @@ def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
         K, ac, bc = hertz_table_coefs(table, alpha0, dalpha, alpha)
         sd = math.sqrt(delta)
         Q = K * delta * sd
-        q3 = K ** (1.0 / 3.0) * sd
+        q3 = np.cbrt(K) * sd
         a = ac * q3
         b = bc * q3
         p = 1.5 * Q / (math.pi * a * b)

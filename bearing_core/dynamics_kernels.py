@@ -156,15 +156,16 @@ def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wr
 
 
 @hot
-def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz, D, dm,
+def _raceway_contact(delta, n_r, n_z, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz, D, dm,
                      zeta, mb):
     """Normal force and kinematics of one ball-raceway contact of the ball (rb, rd, thd, zd, Wr, Wt, Wz: state
     in its local frame) with a race turning at w_race [rad/s] whose curvature centre moves at (vcr, vct, vcz)
-    [m/s]; contact geometry (delta [m], normal n, alpha [rad], Hertz Q [N]) from contact_kernels.
+    [m/s]; contact geometry (delta [m], normal n from the ball centre, Hertz Q [N]) from contact_kernels.
     Normal damping linear in the deflection rate, zeta of critical for the ball mass on the local Hertz
     stiffness 1.5 Q / delta, only in contact and never pulling (contact_kernels.normal_contact_force);
     contact kinematics (contact_kernels.contact_kinematics); effective radius of the contact along the
-    rolling direction Rx = D/2 (1 -+ D cos(alpha) / dm), inner / outer (Hamrock-Dowson).
+    rolling direction Rx = D/2 (1 -+ D cos(alpha) / dm), inner / outer (Hamrock-Dowson), with
+    cos(alpha) = -+ n_r.
     Returns (F_n [N] normal force with damping, P_damp [W], U_el [J] elastic energy 0.4 Q delta, Rx [m],
     then the kinematics vs_t, vs_m [m/s], w_spin, w_roll_m, w_roll_t [rad/s], u_roll [m/s]) for the
     traction (_race_traction). Scalar arguments only: no reference counting per contact."""
@@ -178,10 +179,8 @@ def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, rb, rd, thd, zd, Wr, Wt, 
         uel = 0.4 * Q * delta
     vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz,
                                                        n_r, n_z, D)
-    if inner:
-        Rx = 0.5 * D * (1.0 - D * math.cos(alpha) / dm)
-    else:
-        Rx = 0.5 * D * (1.0 + D * math.cos(alpha) / dm)
+    # cos(alpha) = -n_r (inner) or n_r (outer): the contact angle from the normal (contact_kernels)
+    Rx = 0.5 * D * (1.0 + D * n_r / dm)
     return Fn, pdamp, uel, Rx, vs_t, vs_m, wsp, wrm, wrt, ur
 
 
@@ -225,6 +224,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     Ri = 0.5 * dm + (fi - 0.5) * D * math.cos(a0)
     Roo = 0.5 * dm - (fo - 0.5) * D * math.cos(a0)
     Zoo = -(fo - 0.5) * D * math.sin(a0)
+    Cr0 = Aa * math.cos(a0)               # inner groove centre relative to the outer one, ring at rest
+    Cz0 = Aa * math.sin(a0)
     offi = (fi - 0.5) * D
     offo = (fo - 0.5) * D
     Rdi = 2.0 * fi * D / (2.0 * fi + 1.0)
@@ -285,8 +286,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         c = math.cos(th)
         s = math.sin(th)
         # groove centres (QS mapping) and their rates
-        Cr = Aa * math.cos(a0) + xi_ * c + yi_ * s
-        Cz = Aa * math.sin(a0) + zi_ + Ri * (txi * s - tyi * c)
+        Cr = Cr0 + xi_ * c + yi_ * s
+        Cz = Cz0 + zi_ + Ri * (txi * s - tyi * c)
         vrr = vxi * c + vyi * s                    # ring translation velocity at the ball, local frame
         vrt = -vxi * s + vyi * c
         vrz = vzi + Ri * (wxi * s - wyi * c)
@@ -334,13 +335,13 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # each contact: normal force with damping and contact kinematics (_raceway_contact), traction
         # (_race_traction, inlined: the traction arrays are not reference-counted per contact)
         (Fni, pd_i, ue_i, Rxi, vsti, vsmi, wspi, wrmi, wrti,
-         uri) = _raceway_contact(True, dli, nir, niz, ai, Qi, rb, rd, thd, zd, Wr, Wt, Wz, w, vri, vrt, vrz, D,
+         uri) = _raceway_contact(dli, nir, niz, Qi, rb, rd, thd, zd, Wr, Wt, Wz, w, vri, vrt, vrz, D,
                                  dm, zeta, mb)
         fti, fmi, mni, mmi, mti, pli = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi, Rxi, Ryi, vsti, vsmi,
                                                       wspi, wrmi, wrti, uri, tmodel, tp, Gc, nuc, fnx, fny, qx,
                                                       qwx, qy, qwy, sc)
         (Fno, pd_o, ue_o, Rxo, vsto, vsmo, wspo, wrmo, wrto,
-         uro) = _raceway_contact(False, dlo, nor, noz, ao, Qo, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot, 0.0, D,
+         uro) = _raceway_contact(dlo, nor, noz, Qo, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot, 0.0, D,
                                  dm, zeta, mb)
         fto, fmo, mno, mmo, mto, plo = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo, Rxo, Ryo, vsto, vsmo,
                                                       wspo, wrmo, wrto, uro, tmodel, tp, Gc, nuc, fnx, fny, qx,
@@ -388,7 +389,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         fr2_ring = 0.0; ft2_ring = 0.0; fz2_ring = 0.0
         if Qi2 > 0.0:
             (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
-             ur2) = _raceway_contact(True, dli2, nir2, niz2, ai2, Qi2, rb, rd, thd, zd, Wr, Wt, Wz, w,
+             ur2) = _raceway_contact(dli2, nir2, niz2, Qi2, rb, rd, thd, zd, Wr, Wt, Wz, w,
                                      vrr - zib * tdot, vrt, vrz, D, dm, zeta, mb)
             ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ai2_s, bi2_s, Qi2, pi2, D, Rdi, Rx2, Ryi, vst2,
                                                           vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
@@ -405,7 +406,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             TRz -= rb * ft2 + niz2 * mn2 + nir2 * mm2
         if Qo2 > 0.0:
             (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
-             ur2) = _raceway_contact(False, dlo2, nor2, noz2, ao2, Qo2, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot,
+             ur2) = _raceway_contact(dlo2, nor2, noz2, Qo2, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot,
                                      0.0, D, dm, zeta, mb)
             ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ao2_s, bo2_s, Qo2, po2, D, Rdo, Rx2, Ryo, vst2,
                                                           vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
@@ -444,8 +445,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if lube or Fpk > 0.0:
             # pocket force along the cage-frame tangential direction at the ball; the cage gets (-fx, -fy) at
             # the ball centre (a torque about its centre) and the films' shear torque tw_
-            tpx = -math.sin(thb)
-            tpy = math.cos(thb)
+            tpx = -by_ / rbc          # (-sin, cos) of thb
+            tpy = bx_ / rbc
             fx = fpt * tpx + fpr * c
             fy = fpt * tpy + fpr * s
             Fr += fx * c + fy * s
@@ -513,13 +514,15 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # equal-sign angles)
         ai_k = abs(ai) if fourpt else ai
         ao_k = abs(ao) if fourpt else ao
+        sai_k = abs(niz) if fourpt else -niz      # sin of ai_k, ao_k from the contact normals
+        sao_k = abs(noz) if fourpt else noz
         if Qi > 0.0:
             sai += ai_k; nai += 1.0
             Qimax = max(Qimax, Qi)
             pmax = max(pmax, 1.5 * Qi / (math.pi * ai_s * bi_s))
         Qimin = min(Qimin, Qi)
         if Qi > 0.0 and Qo > 0.0:
-            wco, wci = pure_rolling_cage_speeds(w, ai_k, ao_k, gD, wo)
+            wco, wci = pure_rolling_cage_speeds_cs(w, -nir, sai_k, nor, sao_k, gD, wo)
             sco += wco; sci += wci; npr += 1.0
         if Qo > 0.0:
             sao += ao_k; nao += 1.0
@@ -787,13 +790,22 @@ def pure_rolling_cage_speeds(w, ai, ao, gD, wo=0.0):
     contact centres, its spin axis at tan(beta) = sin(ao) / (cos(ao) + gD) (outer control) or
     sin(ai) / (cos(ai) - gD) (inner control), and
     w_c = w (1 - gD cos ai) / [(1 - gD cos ai) + (1 + gD cos ao) cos(ai - beta) / cos(ao - beta)]."""
-    gi = gD * math.cos(ai)
-    go = gD * math.cos(ao)
-    bo = math.atan2(math.sin(ao), math.cos(ao) + gD)
-    bi = math.atan2(math.sin(ai), math.cos(ai) - gD)
+    return pure_rolling_cage_speeds_cs(w, math.cos(ai), math.sin(ai), math.cos(ao), math.sin(ao), gD, wo)
+
+
+@hot
+def pure_rolling_cage_speeds_cs(w, ca, sa, co, so, gD, wo=0.0):
+    """pure_rolling_cage_speeds from the cosines and sines of the contact angles (ca, sa) = (cos ai, sin ai),
+    (co, so) = (cos ao, sin ao), without trigonometric calls: with beta = atan2(so, co + gD) (outer control)
+    cos(ai - beta) / cos(ao - beta) = (ca (co + gD) + sa so) / (co (co + gD) + so so), the common factor
+    1 / hypot(so, co + gD) cancelling; inner control likewise with beta = atan2(sa, ca - gD)."""
+    gi = gD * ca
+    go = gD * co
+    cbo = co + gD
+    cbi = ca - gD
     wr = w - wo
-    c_o = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * math.cos(ai - bo) / math.cos(ao - bo))
-    c_i = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * math.cos(ai - bi) / math.cos(ao - bi))
+    c_o = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * (ca * cbo + sa * so) / (co * cbo + so * so))
+    c_i = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * (ca * cbi + sa * sa) / (co * cbi + so * sa))
     return c_o, c_i
 
 
