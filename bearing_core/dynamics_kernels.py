@@ -139,19 +139,36 @@ def _shaft(U, t):
     return U[U_W0] + acc * (t - t0), acc
 
 
-@hot(inline="always")
+# the EHL traction kernel compiled once more without reference counting, for _race_traction (see there)
+_ehl_traction_norc = hot(nrt=False, cache=False)(ehl_ellipse_traction_into.py_func)
+
+
+@hot(nrt=True)
+def _kalker_traction(a, b, Q, mu, Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, D):
+    """Traction of one ball-race contact by FASTSIM (fastsim.fastsim_traction_fast; seed 000 Eqs. 7-9), as
+    _race_traction. Scalar arguments; compiled with reference counting (set explicitly, so that it is not
+    taken over from the caller): FASTSIM allocates its strip arrays."""
+    ft, fm, mn, pl = fastsim_traction_fast(a, b, Q, mu, Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, PRESSURE_HERTZ)
+    # the shear acts on the contact surface, D/2 from the ball centre
+    return ft, fm, mn, 0.5 * D * ft, -0.5 * D * fm, pl
+
+
+@hot(nrt=False)
 def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx,
                    fny, qx, qwx, qy, qwy, sc):
     """Traction of one ball-race contact on the ball: (F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W]) by
-    FASTSIM (kalker), the rheology-based EHL traction with rolling resistance (ehl_traction; Rx, Ry [m]
-    the contact's effective radii; sc = ehl_traction.ehl_scratch of the quadrature) or the ellipse-integrated
-    curve / Coulomb law (contact_kernels)."""
+    FASTSIM (kalker, _kalker_traction), the rheology-based EHL traction with rolling resistance
+    (ehl_traction.ehl_ellipse_traction_into; Rx, Ry [m] the contact's effective radii; sc =
+    ehl_traction.ehl_scratch of the quadrature) or the ellipse-integrated curve / Coulomb law
+    (contact_kernels.ellipse_traction). Compiled without reference counting (jit.hot(nrt=False)), as are
+    ellipse_traction and the copy _ehl_traction_norc of the EHL kernel (the same source, its own dispatcher,
+    not cached on its own: numba's disk cache does not tell the flags apart): the parameter, quadrature and
+    scratch arrays, owned by the caller, are not reference-counted per contact (two atomic operations per
+    array and call otherwise, ~2 us per right-hand side)."""
     if kalker:
-        ft, fm, mn, pl = fastsim_traction_fast(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, PRESSURE_HERTZ)
-        # the shear acts on the contact surface, D/2 from the ball centre
-        return ft, fm, mn, 0.5 * D * ft, -0.5 * D * fm, pl
+        return _kalker_traction(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, D)
     if tmodel == TRACTION_EHL:
-        return ehl_ellipse_traction_into(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, sc)
+        return _ehl_traction_norc(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, sc)
     return ellipse_traction(a, b, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, qx, qwx, qy, qwy)
 
 
@@ -333,7 +350,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         _, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2 = cb
         _, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2 = ob
         # each contact: normal force with damping and contact kinematics (_raceway_contact), traction
-        # (_race_traction, inlined: the traction arrays are not reference-counted per contact)
+        # (_race_traction)
         (Fni, pd_i, ue_i, Rxi, vsti, vsmi, wspi, wrmi, wrti,
          uri) = _raceway_contact(dli, nir, niz, Qi, rb, rd, thd, zd, Wr, Wt, Wz, w, vri, vrt, vrz, D,
                                  dm, zeta, mb)
