@@ -127,7 +127,7 @@ def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
         K, ac, bc = hertz_table_coefs(table, alpha0, dalpha, alpha)
         sd = math.sqrt(delta)
         Q = K * delta * sd
-        q3 = K ** (1.0 / 3.0) * sd
+        q3 = np.cbrt(K) * sd
         a = ac * q3
         b = bc * q3
         p = 1.5 * Q / (math.pi * a * b)
@@ -139,7 +139,7 @@ def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
     return delta, nr, nz, alpha, Q, a, b, p
 
 
-@hot
+@hot(nrt=False)
 def ball_race_contact(Xr, Xz, Cr, Cz, ro_c, ri_c, table_i, table_o, alpha0, dalpha):
     """Hertz normal contact of one ball with both races.
 
@@ -155,7 +155,7 @@ def ball_race_contact(Xr, Xz, Cr, Cz, ro_c, ri_c, table_i, table_o, alpha0, dalp
     return do, nor, noz, ao, Qo, a_o, b_o, p_o, di, nir, niz, ai, Qi, a_i, b_i, p_i
 
 
-@hot
+@hot(nrt=False)
 def gothic_arch_contact(dr, dz, rc, fD, e, arc, table, alpha0, dalpha, inner):
     """Hertz normal contact of a ball with one arc of a gothic-arch (two-arc) groove.
 
@@ -246,7 +246,7 @@ def contact_kinematics(r_b, vr, vt, vz, wr, wt, wz, Omega_race, vrr, vrt, vrz, n
 
 # --------------------------------------------------------------------------------------------------
 # 3. traction over the contact ellipse
-@hot
+@hot(nrt=False)
 def traction_coefficient(v, u_roll, model, params):
     """Traction coefficient [-] at sliding speed v >= 0 [m/s] and rolling speed u_roll [m/s].
 
@@ -262,7 +262,7 @@ def traction_coefficient(v, u_roll, model, params):
     return params[P_MU0] * math.tanh(v / params[P_VREG])
 
 
-@hot
+@hot(nrt=False)
 def ellipse_traction(a, b, p_max, D, R_def, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll, model,
                      params, xi, wxi, zeta, wzeta):
     """Traction on the ball integrated over the Hertz ellipse (seed 002 Sec. 2.2; seed 004 Eqs. 1-5).

@@ -139,35 +139,53 @@ def _shaft(U, t):
     return U[U_W0] + acc * (t - t0), acc
 
 
-@hot(inline="always")
+# the EHL traction kernel compiled once more without reference counting, for _race_traction (see there)
+_ehl_traction_norc = hot(nrt=False, cache=False)(ehl_ellipse_traction_into.py_func)
+
+
+@hot(nrt=True)
+def _kalker_traction(a, b, Q, mu, Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, D):
+    """Traction of one ball-race contact by FASTSIM (fastsim.fastsim_traction_fast; seed 000 Eqs. 7-9), as
+    _race_traction. Scalar arguments; compiled with reference counting (set explicitly, so that it is not
+    taken over from the caller): FASTSIM allocates its strip arrays."""
+    ft, fm, mn, pl = fastsim_traction_fast(a, b, Q, mu, Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, PRESSURE_HERTZ)
+    # the shear acts on the contact surface, D/2 from the ball centre
+    return ft, fm, mn, 0.5 * D * ft, -0.5 * D * fm, pl
+
+
+@hot(nrt=False)
 def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, Gc, nuc, fnx,
                    fny, qx, qwx, qy, qwy, sc):
     """Traction of one ball-race contact on the ball: (F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W]) by
-    FASTSIM (kalker), the rheology-based EHL traction with rolling resistance (ehl_traction; Rx, Ry [m]
-    the contact's effective radii; sc = ehl_traction.ehl_scratch of the quadrature) or the ellipse-integrated
-    curve / Coulomb law (contact_kernels)."""
+    FASTSIM (kalker, _kalker_traction), the rheology-based EHL traction with rolling resistance
+    (ehl_traction.ehl_ellipse_traction_into; Rx, Ry [m] the contact's effective radii; sc =
+    ehl_traction.ehl_scratch of the quadrature) or the ellipse-integrated curve / Coulomb law
+    (contact_kernels.ellipse_traction). Compiled without reference counting (jit.hot(nrt=False)), as are
+    ellipse_traction and the copy _ehl_traction_norc of the EHL kernel (the same source, its own dispatcher,
+    not cached on its own: numba's disk cache does not tell the flags apart): the parameter, quadrature and
+    scratch arrays, owned by the caller, are not reference-counted per contact (two atomic operations per
+    array and call otherwise, ~2 us per right-hand side)."""
     if kalker:
-        ft, fm, mn, pl = fastsim_traction_fast(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, PRESSURE_HERTZ)
-        # the shear acts on the contact surface, D/2 from the ball centre
-        return ft, fm, mn, 0.5 * D * ft, -0.5 * D * fm, pl
+        return _kalker_traction(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, D)
     if tmodel == TRACTION_EHL:
-        return ehl_ellipse_traction_into(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, sc)
+        return _ehl_traction_norc(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, sc)
     return ellipse_traction(a, b, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, qx, qwx, qy, qwy)
 
 
 @hot
-def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, a, b, p, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct,
-                     vcz, D, dm, Rdef, Ry, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc):
-    """One ball-raceway contact of the ball (rb, rd, thd, zd, Wr, Wt, Wz: state in its local frame) with a
-    race turning at w_race [rad/s] whose curvature centre moves at (vcr, vct, vcz) [m/s]; contact geometry
-    (delta [m], normal n, alpha [rad], Hertz Q [N], semi-axes a, b [m], p [Pa]) from contact_kernels.
+def _raceway_contact(delta, n_r, n_z, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz, D, dm,
+                     zeta, mb):
+    """Normal force and kinematics of one ball-raceway contact of the ball (rb, rd, thd, zd, Wr, Wt, Wz: state
+    in its local frame) with a race turning at w_race [rad/s] whose curvature centre moves at (vcr, vct, vcz)
+    [m/s]; contact geometry (delta [m], normal n from the ball centre, Hertz Q [N]) from contact_kernels.
     Normal damping linear in the deflection rate, zeta of critical for the ball mass on the local Hertz
     stiffness 1.5 Q / delta, only in contact and never pulling (contact_kernels.normal_contact_force);
-    contact kinematics (contact_kernels.contact_kinematics) and traction (_race_traction; effective radius
-    across the rolling direction Ry, along it Rx = D/2 (1 -+ D cos(alpha) / dm), inner / outer).
-    Returns (F_n [N] normal force with damping, P_damp [W], U_el [J] elastic energy 0.4 Q delta, then the
-    traction on the ball F_t, F_m [N], M_n, M_m, M_t [N m], P_loss [W] and the kinematics vs_t, vs_m [m/s],
-    w_spin [rad/s], u_roll [m/s])."""
+    contact kinematics (contact_kernels.contact_kinematics); effective radius of the contact along the
+    rolling direction Rx = D/2 (1 -+ D cos(alpha) / dm), inner / outer (Hamrock-Dowson), with
+    cos(alpha) = -+ n_r.
+    Returns (F_n [N] normal force with damping, P_damp [W], U_el [J] elastic energy 0.4 Q delta, Rx [m],
+    then the kinematics vs_t, vs_m [m/s], w_spin, w_roll_m, w_roll_t [rad/s], u_roll [m/s]) for the
+    traction (_race_traction). Scalar arguments only: no reference counting per contact."""
     Fn = Q
     pdamp = 0.0
     uel = 0.0
@@ -178,13 +196,9 @@ def _raceway_contact(inner, delta, n_r, n_z, alpha, Q, a, b, p, rb, rd, thd, zd,
         uel = 0.4 * Q * delta
     vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz,
                                                        n_r, n_z, D)
-    if inner:
-        Rx = 0.5 * D * (1.0 - D * math.cos(alpha) / dm)
-    else:
-        Rx = 0.5 * D * (1.0 + D * math.cos(alpha) / dm)
-    ft, fm, mn, mm, mt, pl = _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur,
-                                            tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc)
-    return Fn, pdamp, uel, ft, fm, mn, mm, mt, pl, vs_t, vs_m, wsp, ur
+    # cos(alpha) = -n_r (inner) or n_r (outer): the contact angle from the normal (contact_kernels)
+    Rx = 0.5 * D * (1.0 + D * n_r / dm)
+    return Fn, pdamp, uel, Rx, vs_t, vs_m, wsp, wrm, wrt, ur
 
 
 @hot
@@ -227,6 +241,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     Ri = 0.5 * dm + (fi - 0.5) * D * math.cos(a0)
     Roo = 0.5 * dm - (fo - 0.5) * D * math.cos(a0)
     Zoo = -(fo - 0.5) * D * math.sin(a0)
+    Cr0 = Aa * math.cos(a0)               # inner groove centre relative to the outer one, ring at rest
+    Cz0 = Aa * math.sin(a0)
     offi = (fi - 0.5) * D
     offo = (fo - 0.5) * D
     Rdi = 2.0 * fi * D / (2.0 * fi + 1.0)
@@ -287,8 +303,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         c = math.cos(th)
         s = math.sin(th)
         # groove centres (QS mapping) and their rates
-        Cr = Aa * math.cos(a0) + xi_ * c + yi_ * s
-        Cz = Aa * math.sin(a0) + zi_ + Ri * (txi * s - tyi * c)
+        Cr = Cr0 + xi_ * c + yi_ * s
+        Cz = Cz0 + zi_ + Ri * (txi * s - tyi * c)
         vrr = vxi * c + vyi * s                    # ring translation velocity at the ball, local frame
         vrt = -vxi * s + vyi * c
         vrz = vzi + Ri * (wxi * s - wyi * c)
@@ -333,15 +349,20 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         _, dlo, nor, noz, ao, Qo, ao_s, bo_s, po = oa
         _, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2 = cb
         _, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2 = ob
-        # each contact: normal force with damping, contact kinematics, traction (_raceway_contact)
-        (Fni, pd_i, ue_i, fti, fmi, mni, mmi, mti, pli, vsti, vsmi, wspi,
-         uri) = _raceway_contact(True, dli, nir, niz, ai, Qi, ai_s, bi_s, pi_, rb, rd, thd, zd, Wr, Wt, Wz, w,
-                                 vri, vrt, vrz, D, dm, Rdi, Ryi, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny,
-                                 qx, qwx, qy, qwy, sc)
-        (Fno, pd_o, ue_o, fto, fmo, mno, mmo, mto, plo, vsto, vsmo, wspo,
-         uro) = _raceway_contact(False, dlo, nor, noz, ao, Qo, ao_s, bo_s, po, rb, rd, thd, zd, Wr, Wt, Wz, wo,
-                                 vor, vot, 0.0, D, dm, Rdo, Ryo, zeta, mb, kalker, tmodel, tp, Gc, nuc, fnx, fny,
-                                 qx, qwx, qy, qwy, sc)
+        # each contact: normal force with damping and contact kinematics (_raceway_contact), traction
+        # (_race_traction)
+        (Fni, pd_i, ue_i, Rxi, vsti, vsmi, wspi, wrmi, wrti,
+         uri) = _raceway_contact(dli, nir, niz, Qi, rb, rd, thd, zd, Wr, Wt, Wz, w, vri, vrt, vrz, D,
+                                 dm, zeta, mb)
+        fti, fmi, mni, mmi, mti, pli = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi, Rxi, Ryi, vsti, vsmi,
+                                                      wspi, wrmi, wrti, uri, tmodel, tp, Gc, nuc, fnx, fny, qx,
+                                                      qwx, qy, qwy, sc)
+        (Fno, pd_o, ue_o, Rxo, vsto, vsmo, wspo, wrmo, wrto,
+         uro) = _raceway_contact(dlo, nor, noz, Qo, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot, 0.0, D,
+                                 dm, zeta, mb)
+        fto, fmo, mno, mmo, mto, plo = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo, Rxo, Ryo, vsto, vsmo,
+                                                      wspo, wrmo, wrto, uro, tmodel, tp, Gc, nuc, fnx, fny, qx,
+                                                      qwx, qy, qwy, sc)
         P_dp += pd_i
         Uel += ue_i
         P_dp += pd_o
@@ -384,10 +405,12 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # second arcs (four-point contact): the same contact kernel, with their loads on ball and rings
         fr2_ring = 0.0; ft2_ring = 0.0; fz2_ring = 0.0
         if Qi2 > 0.0:
-            (Fn2, pd2, ue2, ft2, fm2, mn2, mm2, mt2, pl2, vst2, vsm2, wsp2,
-             ur2) = _raceway_contact(True, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2, rb, rd, thd, zd, Wr, Wt,
-                                     Wz, w, vrr - zib * tdot, vrt, vrz, D, dm, Rdi, Ryi, zeta, mb, kalker, tmodel,
-                                     tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc)
+            (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
+             ur2) = _raceway_contact(dli2, nir2, niz2, Qi2, rb, rd, thd, zd, Wr, Wt, Wz, w,
+                                     vrr - zib * tdot, vrt, vrz, D, dm, zeta, mb)
+            ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ai2_s, bi2_s, Qi2, pi2, D, Rdi, Rx2, Ryi, vst2,
+                                                          vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
+                                                          fny, qx, qwx, qy, qwy, sc)
             P_dp += pd2; Uel += ue2
             Fr += -Fn2 * nir2 - fm2 * niz2; Ft += ft2; Fz += -Fn2 * niz2 + fm2 * nir2
             Mr += mn2 * nir2 - mm2 * niz2; Mt += mt2; Mz += mn2 * niz2 + mm2 * nir2
@@ -399,10 +422,12 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             fz2_ring = Fn2 * niz2 - fm2 * nir2
             TRz -= rb * ft2 + niz2 * mn2 + nir2 * mm2
         if Qo2 > 0.0:
-            (Fn2, pd2, ue2, ft2, fm2, mn2, mm2, mt2, pl2, vst2, vsm2, wsp2,
-             ur2) = _raceway_contact(False, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2, rb, rd, thd, zd, Wr,
-                                     Wt, Wz, wo, vor, vot, 0.0, D, dm, Rdo, Ryo, zeta, mb, kalker, tmodel, tp, Gc,
-                                     nuc, fnx, fny, qx, qwx, qy, qwy, sc)
+            (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
+             ur2) = _raceway_contact(dlo2, nor2, noz2, Qo2, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot,
+                                     0.0, D, dm, zeta, mb)
+            ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ao2_s, bo2_s, Qo2, po2, D, Rdo, Rx2, Ryo, vst2,
+                                                          vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
+                                                          fny, qx, qwx, qy, qwy, sc)
             P_dp += pd2; Uel += ue2
             Fr += -Fn2 * nor2 - fm2 * noz2; Ft += ft2; Fz += -Fn2 * noz2 + fm2 * nor2
             Mr += mn2 * nor2 - mm2 * noz2; Mt += mt2; Mz += mn2 * noz2 + mm2 * nor2
@@ -437,8 +462,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if lube or Fpk > 0.0:
             # pocket force along the cage-frame tangential direction at the ball; the cage gets (-fx, -fy) at
             # the ball centre (a torque about its centre) and the films' shear torque tw_
-            tpx = -math.sin(thb)
-            tpy = math.cos(thb)
+            tpx = -by_ / rbc          # (-sin, cos) of thb
+            tpy = bx_ / rbc
             fx = fpt * tpx + fpr * c
             fy = fpt * tpy + fpr * s
             Fr += fx * c + fy * s
@@ -506,13 +531,15 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # equal-sign angles)
         ai_k = abs(ai) if fourpt else ai
         ao_k = abs(ao) if fourpt else ao
+        sai_k = abs(niz) if fourpt else -niz      # sin of ai_k, ao_k from the contact normals
+        sao_k = abs(noz) if fourpt else noz
         if Qi > 0.0:
             sai += ai_k; nai += 1.0
             Qimax = max(Qimax, Qi)
             pmax = max(pmax, 1.5 * Qi / (math.pi * ai_s * bi_s))
         Qimin = min(Qimin, Qi)
         if Qi > 0.0 and Qo > 0.0:
-            wco, wci = pure_rolling_cage_speeds(w, ai_k, ao_k, gD, wo)
+            wco, wci = pure_rolling_cage_speeds_cs(w, -nir, sai_k, nor, sao_k, gD, wo)
             sco += wco; sci += wci; npr += 1.0
         if Qo > 0.0:
             sao += ao_k; nao += 1.0
@@ -780,13 +807,22 @@ def pure_rolling_cage_speeds(w, ai, ao, gD, wo=0.0):
     contact centres, its spin axis at tan(beta) = sin(ao) / (cos(ao) + gD) (outer control) or
     sin(ai) / (cos(ai) - gD) (inner control), and
     w_c = w (1 - gD cos ai) / [(1 - gD cos ai) + (1 + gD cos ao) cos(ai - beta) / cos(ao - beta)]."""
-    gi = gD * math.cos(ai)
-    go = gD * math.cos(ao)
-    bo = math.atan2(math.sin(ao), math.cos(ao) + gD)
-    bi = math.atan2(math.sin(ai), math.cos(ai) - gD)
+    return pure_rolling_cage_speeds_cs(w, math.cos(ai), math.sin(ai), math.cos(ao), math.sin(ao), gD, wo)
+
+
+@hot
+def pure_rolling_cage_speeds_cs(w, ca, sa, co, so, gD, wo=0.0):
+    """pure_rolling_cage_speeds from the cosines and sines of the contact angles (ca, sa) = (cos ai, sin ai),
+    (co, so) = (cos ao, sin ao), without trigonometric calls: with beta = atan2(so, co + gD) (outer control)
+    cos(ai - beta) / cos(ao - beta) = (ca (co + gD) + sa so) / (co (co + gD) + so so), the common factor
+    1 / hypot(so, co + gD) cancelling; inner control likewise with beta = atan2(sa, ca - gD)."""
+    gi = gD * ca
+    go = gD * co
+    cbo = co + gD
+    cbi = ca - gD
     wr = w - wo
-    c_o = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * math.cos(ai - bo) / math.cos(ao - bo))
-    c_i = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * math.cos(ai - bi) / math.cos(ao - bi))
+    c_o = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * (ca * cbo + sa * so) / (co * cbo + so * so))
+    c_i = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * (ca * cbi + sa * sa) / (co * cbi + so * sa))
     return c_o, c_i
 
 

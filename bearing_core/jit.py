@@ -33,16 +33,22 @@ if PLAIN_MATH:
         _nb_config.CACHE_DIR = os.path.join(_base, "plain_math")
 
 
-def hot(fn=None, *, inline: str = "never", nogil: bool = False, nrt: bool = True):
+def hot(fn=None, *, inline: str = "never", nogil: bool = False, nrt: bool | None = None,
+        cache: bool = True):
     """numba.njit with the module's flags and cache=True; use as @hot, @hot(inline='always') or
     @hot(nogil=True) (integration loops that release the GIL for threaded batches). nrt=False: compiled
     without numba's reference-counting runtime, for a small kernel called very often that neither
     allocates nor returns arrays (its array arguments stay owned by the caller): no atomic reference
-    count per call."""
-    kw = dict(cache=True, error_model=ERROR_MODEL, fastmath=set(FASTMATH) if FASTMATH else False,
+    count per call. numba passes the choice on to the callees it compiles for such a kernel unless they set
+    their own: nrt=True sets it explicitly, for a kernel that allocates and is called from an nrt=False one
+    (default None: taken over from the caller, reference counting when compiled on its own).
+    cache=False: not cached on disk, for a second dispatcher of a function that has its own cached one
+    (numba's cache is keyed by the source function and signature, not by the flags); the kernels that call
+    it are cached with its code linked in."""
+    kw = dict(cache=cache, error_model=ERROR_MODEL, fastmath=set(FASTMATH) if FASTMATH else False,
               inline=inline, nogil=nogil)
-    if not nrt:
-        kw["_nrt"] = False
+    if nrt is not None:
+        kw["_nrt"] = nrt
     if fn is None:
         return lambda f: njit(**kw)(f)
     return njit(**kw)(fn)

@@ -403,3 +403,23 @@ def test_vibration_grows_as_preload_falls_seed000_table3():
     assert open100 == 0.0
     assert open25 > 0.2
     assert rms25 / rms100 >= 20.0, (rms100, rms25)
+
+
+def test_pure_rolling_cage_speeds_from_contact_normals():
+    """The right-hand side's pure-rolling cage speeds from the cosines and sines of the contact angles
+    (dynamics_kernels.pure_rolling_cage_speeds_cs, the spin-axis angle beta eliminated algebraically) against
+    the trigonometric form of Jones' raceway control (Harris & Kotzalas, Advanced Concepts of Bearing
+    Technology, 5th ed., Vol. 2 Ch. 3; bearing_core.skid.pure_rolling_cage_speeds, numpy with atan2 / cos),
+    per ball, both rings turning, 7218B D / dm; tolerance 1e-12 relative (rounding only)."""
+    from bearing_core import dynamics_kernels as K
+    from bearing_core.skid import pure_rolling_cage_speeds as ref
+    g = load_preset("7218B")
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        ai, ao = rng.uniform(0.05, 1.2, 2)
+        w, wo = rng.uniform(-1500.0, 1500.0, 2)
+        c_o, c_i = K.pure_rolling_cage_speeds_cs(w, math.cos(ai), math.sin(ai), math.cos(ao), math.sin(ao),
+                                                 g.D / g.dm, wo)
+        r_o, r_i = ref(w, [ai], [ao], g.D, g.dm, omega_outer=wo)
+        assert c_o == pytest.approx(r_o, rel=1e-12, abs=1e-12 * abs(w - wo))
+        assert c_i == pytest.approx(r_i, rel=1e-12, abs=1e-12 * abs(w - wo))
