@@ -175,7 +175,7 @@ def ball_jacobian(t, y0, xl, xg, Rl, share, act, omega, iF, iM, P, U, tab_i, tab
 
 @hot(inline="always")
 def _lu6(M, piv):
-    """In-place LU with partial pivoting of a small square matrix; returns the smallest |pivot| relative to
+    """In-place LU with partial pivoting of a small square matrix (solved by dynamics_kernels._lu_solve); returns the smallest |pivot| relative to
     the largest entry (0 for an exactly singular matrix)."""
     n = M.shape[0]
     big = 0.0
@@ -204,28 +204,6 @@ def _lu6(M, piv):
             for k in range(c + 1, n):
                 M[i, k] -= f * M[c, k]
     return rmin
-
-
-@hot(inline="always")
-def _lu6_solve(M, piv, x):
-    """x <- M^-1 x with the factors of _lu6."""
-    n = M.shape[0]
-    for c in range(n):
-        p = piv[c]
-        if p != c:
-            tmp = x[c]
-            x[c] = x[p]
-            x[p] = tmp
-    for i in range(n):
-        s = x[i]
-        for k in range(i):
-            s -= M[i, k] * x[k]
-        x[i] = s
-    for i in range(n - 1, -1, -1):
-        s = x[i]
-        for k in range(i + 1, n):
-            s -= M[i, k] * x[k]
-        x[i] = s / M[i, i]
 
 
 @hot
@@ -284,7 +262,7 @@ def _dense_solve(A, B, C, Dg, xs_l, xs_g, d, dtau, R, dv):
         return False
     for i in range(n):
         dv[i] = R[i]
-    _lu6_solve(M, piv, dv)
+    K._lu_solve(M, piv, dv)
     return True
 
 
@@ -320,12 +298,12 @@ def arrow_solve(A, B, C, Dg, xs_l, xs_g, d, dtau, R, dv):
         for k in range(NGLOB):
             for i in range(NLOC):
                 col[i] = -B[j, i, k] * xs_g[k]
-            _lu6_solve(Mjj, piv, col)
+            K._lu_solve(Mjj, piv, col)
             for i in range(NLOC):
                 X[j, i, k] = col[i]
         for i in range(NLOC):
             col[i] = R[r0 + i]
-        _lu6_solve(Mjj, piv, col)
+        K._lu_solve(Mjj, piv, col)
         for i in range(NLOC):
             x[j, i] = col[i]
         # S -= M_gj X_j, s -= M_gj x_j with M_gj = -C_j xs_l
@@ -341,7 +319,7 @@ def arrow_solve(A, B, C, Dg, xs_l, xs_g, d, dtau, R, dv):
                 S[i, k] += acc
     if not _lu6(S, pivs) > 1e-10:
         return _dense_solve(A, B, C, Dg, xs_l, xs_g, d, dtau, R, dv)
-    _lu6_solve(S, pivs, s)
+    K._lu_solve(S, pivs, s)
     for k in range(NGLOB):
         dv[ng + k] = s[k]
     for j in range(Z):
