@@ -27,6 +27,9 @@ log(u) + (y - (u - 1)) / u with u = 1 + y rounded (the correction restores the b
 asinh(x) = log1p(x + x^2 / (1 + sqrt(1 + x^2))); tanh(x) = -expm1(-2x) / (2 + expm1(-2x)). The coarse
 variants use the same reductions with the series cut at r^6 (truncation r^7 / 7! < 1.2e-7, relative
 to e^r - 1 r^6 / 7! < 3.5e-7) and at s^7 (2 s^9 / 9 < 3e-8).
+The series are evaluated by Estrin's scheme (sums of pairs c_k + c_{k+1} r with powers r^2, r^4, r^8 in
+place of Horner's rule): the same accuracy, but a dependency chain of about 5 instead of 13 fused
+multiply-adds for exp, which sets the cost where only 16 points (two SIMD vectors) are in flight.
 """
 from __future__ import annotations
 
@@ -85,10 +88,12 @@ def _exp_parts(x):
     r = (xc - kf * _LN2_HI) - kf * _LN2_LO
     if x != x:
         r = x
-    t = r * (1.0 + r * (1.0 / 2.0 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (
-        1.0 / 720.0 + r * (1.0 / 5040.0 + r * (1.0 / 40320.0 + r * (1.0 / 362880.0 + r * (
-            1.0 / 3628800.0 + r * (1.0 / 39916800.0 + r * (1.0 / 479001600.0 + r * (
-                1.0 / 6227020800.0)))))))))))))
+    r2 = r * r
+    r4 = r2 * r2
+    hi = (((1.0 / 40320.0 + r * (1.0 / 362880.0)) + r2 * (1.0 / 3628800.0 + r * (1.0 / 39916800.0))) +
+          r4 * (1.0 / 479001600.0 + r * (1.0 / 6227020800.0)))
+    lo = (1.0 / 24.0 + r * (1.0 / 120.0)) + r2 * (1.0 / 720.0 + r * (1.0 / 5040.0))
+    t = r + r2 * ((0.5 + r * (1.0 / 6.0)) + r2 * (lo + r4 * hi))
     return _bits_f64((np.int64(kf) + 1023) << 52), t
 
 
@@ -107,8 +112,8 @@ def _exp_reduce(x):
 def _exp_parts_lo(x):
     """_exp_parts with the series cut at r^6 (coarse variants)."""
     s, r = _exp_reduce(x)
-    return s, r * (1.0 + r * (1.0 / 2.0 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (
-        1.0 / 720.0))))))
+    r2 = r * r
+    return s, r + r2 * ((0.5 + r * (1.0 / 6.0)) + r2 * ((1.0 / 24.0 + r * (1.0 / 120.0)) + r2 * (1.0 / 720.0)))
 
 
 @_mx
@@ -144,8 +149,10 @@ def _log1p_reduced(f):
     """log(1 + f) for f in [sqrt(1/2) - 1, sqrt(2) - 1]: 2 atanh(s), s = f / (2 + f)."""
     s = f / (2.0 + f)
     z = s * s
-    R = z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0 + z * (1.0 / 9.0 + z * (1.0 / 11.0 + z * (
-        1.0 / 13.0 + z * (1.0 / 15.0 + z * (1.0 / 17.0 + z * (1.0 / 19.0)))))))))
+    z2 = z * z
+    z4 = z2 * z2
+    hi = (1.0 / 11.0 + z * (1.0 / 13.0)) + z2 * (1.0 / 15.0 + z * (1.0 / 17.0)) + z4 * (1.0 / 19.0)
+    R = z * (((1.0 / 3.0 + z * (1.0 / 5.0)) + z2 * (1.0 / 7.0 + z * (1.0 / 9.0))) + z4 * hi)
     return 2.0 * s + 2.0 * s * R
 
 
@@ -178,7 +185,7 @@ def log_lo(x):
     f = m - 1.0
     s = f / (2.0 + f)
     z = s * s
-    return ef * _LN2_HI + ((2.0 * s + 2.0 * s * (z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0))))) +
+    return ef * _LN2_HI + ((2.0 * s + 2.0 * s * (z * ((1.0 / 3.0 + z * (1.0 / 5.0)) + (z * z) * (1.0 / 7.0)))) +
                            ef * _LN2_LO)
 
 
