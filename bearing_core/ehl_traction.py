@@ -151,25 +151,34 @@ def thermal_eyring_root(lX, K):
 
     Written as g(s) = ln sinh s + K s - ln X = s (1 + K) + ln(1 - e^{-2s}) - ln 2 - ln X = 0
     (increasing and concave in s). The seed is Newton's step from the isothermal root s_i = asinh X
-    (where g = K s_i), s_i / (1 + K tanh s_i), tanh s_i = X / sqrt(1 + X^2) (s_i approximated by X below
-    X = 1e-3 and by ln X + ln 2 above X = e^20, relative error <= 2e-7); it lies below the root, by up to
-    53 % at K = 31.6, where g bends like a logarithm. One Householder step of order 3 (quartic
+    (where g = K s_i), s_i / (1 + K tanh s_i), tanh s_i = X / sqrt(1 + X^2), with s_i from series in X,
+    ln X and 1 / X^2 (relative error <= 1e-4; no log on the path from ln X); it lies below the root, by
+    up to 53 % at K = 31.6, where g bends like a logarithm. One Householder step of order 3 (quartic
     convergence) in the variable ln s, in which g is nearly linear there, takes it to within 2.4e-3; one
     Halley step (cubic) on g in s finishes. All derivatives of g follow from w = 1 - e^{-2s}:
     g' = 1 + K + 2 (1 - w) / w, g'' = -4 (1 - w) / w^2, g''' = 8 (1 - w)(2 - w) / w^3, so each step
     costs one exp and one log. The seed and the Householder step use the coarse exp / log of
-    bearing_core.mathx (<= 6e-7) and a Pade form of its factor e^{-d} (<= 1.4e-6); the Halley step, in
-    full precision, cubes the iterate's error, so that the root moves by < 5e-12 relative (measured
-    1.4e-12) against the same steps in full precision. Measured relative error against the converged
+    bearing_core.mathx (<= 6e-7) and a Pade form of the step's factor e^{-d} (<= 1.4e-6); the Halley
+    step, in full precision, cubes the iterate's error, so that the root moves by < 5e-12 relative
+    (measured 1.4e-12) against the same steps in full precision. Measured relative error against the converged
     root (tests/test_jit_flags.py, ln X in [-28, 50]): <= 2e-14 for K <= 3, <= 1.8e-12 for K <= 10,
     <= 1.1e-9 for K <= 31.6. The seed is held above 3.3e-308 (exp(-708)); the root stays positive."""
     # seed: Newton's step on g from the isothermal root s_i = asinh X (where g = K s_i):
-    # s_i / (1 + K tanh s_i), tanh s_i = X / sqrt(1 + X^2); below the root (g is concave)
+    # s_i / (1 + K tanh s_i), tanh s_i = X / sqrt(1 + X^2); below the root (g is concave). s_i to 1e-4
+    # (the steps below remove it) without a log on the path from ln X: Taylor series in X below
+    # X = e^-0.75 and in 1 / X^2 above X = e^0.75 (asinh X = ln 2X + 1 / (4 X^2) - ...), between them a
+    # polynomial in ln X (Chebyshev fit of degree 6 over |ln X| <= 0.75, relative error 9e-6)
     x = mx.exp_lo(lX if lX < 20.0 else 20.0)
-    r = math.sqrt(1.0 + x * x)
-    si = mx.log_lo(x + r)
-    si = x if x < 1e-3 else si
-    si = si if lX <= 20.0 else lX + LN2
+    x2 = x * x
+    r = math.sqrt(1.0 + x2)
+    u = 1.0 / (x2 if x2 > 1.0 else 1.0)                 # 1 / X^2 where used (X > 2.1)
+    s_lo = x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 - x2 * (5.0 / 112.0))))
+    s_hi = (lX + LN2) + u * (0.25 - u * (3.0 / 32.0 - u * (15.0 / 288.0)))
+    l2 = lX * lX
+    s_mid = ((0.8813739608608067 + lX * 0.7070891455748324) +
+             l2 * ((0.1767523031968521 - lX * 0.02917219344930663) +
+                   l2 * ((-0.018167773628819685 + lX * 0.005054404389377888) + l2 * 0.0029017703331124614)))
+    si = s_lo if lX < -0.75 else (s_mid if lX <= 0.75 else s_hi)
     s = si * r / (r + K * x)
     s = 3.3e-308 if s < 3.3e-308 else s                 # exp(-708), where mathx.exp stops
     # coarse Householder step of order 3 in ln s, where G(ln s) = g(s) is nearly linear for s << 1 / K:

@@ -222,12 +222,18 @@ def test_thermal_eyring_root_extremes():
 def _root_full_precision(lX, K):
     """thermal_eyring_root's algorithm (seed, Householder step in ln s, Halley step) with numpy's exp / log
     throughout, in place of the coarse polynomial exp / log of its seed and first step and the Pade form
-    of that step's factor e^{-d}."""
+    of that step's factor e^{-d} (the seed's series for asinh are part of the algorithm)."""
     ln2 = math.log(2.0)
     x = np.exp(np.minimum(lX, 20.0))
-    r = np.sqrt(1.0 + x * x)
-    si = np.where(x < 1e-3, x, np.log(x + r))
-    si = np.where(lX <= 20.0, si, lX + ln2)
+    x2 = x * x
+    r = np.sqrt(1.0 + x2)
+    u = 1.0 / np.maximum(x2, 1.0)
+    s_lo = x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 - x2 * (5.0 / 112.0))))
+    s_hi = (lX + ln2) + u * (0.25 - u * (3.0 / 32.0 - u * (15.0 / 288.0)))
+    s_mid = np.polynomial.polynomial.polyval(lX, [0.8813739608608067, 0.7070891455748324, 0.1767523031968521,
+                                                  -0.02917219344930663, -0.018167773628819685,
+                                                  0.005054404389377888, 0.0029017703331124614])
+    si = np.where(lX < -0.75, s_lo, np.where(lX <= 0.75, s_mid, s_hi))
     s = np.maximum(si * r / (r + K * x), 3.3e-308)
     w = -np.expm1(-2.0 * s)
     t = 1.0 - w
@@ -246,7 +252,7 @@ def _root_full_precision(lX, K):
 
 
 def test_thermal_eyring_root_coarse_steps():
-    """The coarse exp / log of the root's seed and Householder step and the Pade form of its factor e^{-d}
+    """The coarse exp / log of the root's seed and Householder step and the Pade form of that step's e^{-d}
     move the root by < 5e-12 relative against the same algorithm in full precision (its docstring), over
     ln X in [-28, 50] and K in [0, 31.6]: the last, full-precision Halley step cubes their error."""
     from bearing_core.ehl_traction import thermal_eyring_root
