@@ -161,24 +161,33 @@ def thermal_eyring_root(lX, K):
     bearing_core.mathx (<= 6e-7) and a Pade form of the step's factor e^{-d} (<= 1.4e-6); the Halley
     step, in full precision, cubes the iterate's error, so that the root moves by < 5e-12 relative
     (measured 1.4e-12) against the same steps in full precision. Measured relative error against the converged
-    root (tests/test_jit_flags.py, ln X in [-28, 50]): <= 2e-14 for K <= 3, <= 1.8e-12 for K <= 10,
+    root (tests/test_jit_flags.py, ln X in [-28, 50]): <= 2e-14 for K <= 3, <= 2.5e-12 for K <= 10,
     <= 1.1e-9 for K <= 31.6. The seed is held above 3.3e-308 (exp(-708)); the root stays positive."""
+    return _thermal_eyring_root(lX, lX, K)
+
+
+@hot(inline="always")
+def _thermal_eyring_root(lXc, lX, K):
+    """thermal_eyring_root with its seed and Householder step taken from lXc, an approximation of lX, so
+    that the root can start from a coarse ln X while the full-precision one is being computed. An
+    absolute error of lXc up to 3e-5 leaves the error bounds unchanged (tests/test_jit_flags.py); 1e-4
+    raises the one for K <= 3 to 1e-13."""
     # seed: Newton's step on g from the isothermal root s_i = asinh X (where g = K s_i):
     # s_i / (1 + K tanh s_i), tanh s_i = X / sqrt(1 + X^2); below the root (g is concave). s_i to 1e-4
     # (the steps below remove it) without a log on the path from ln X: Taylor series in X below
     # X = e^-0.75 and in 1 / X^2 above X = e^0.75 (asinh X = ln 2X + 1 / (4 X^2) - ...), between them a
     # polynomial in ln X (Chebyshev fit of degree 6 over |ln X| <= 0.75, relative error 9e-6)
-    x = mx.exp_lo(lX if lX < 20.0 else 20.0)
+    x = mx.exp_lo(lXc if lXc < 20.0 else 20.0)
     x2 = x * x
     r = math.sqrt(1.0 + x2)
     u = 1.0 / (x2 if x2 > 1.0 else 1.0)                 # 1 / X^2 where used (X > 2.1)
     s_lo = x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 - x2 * (5.0 / 112.0))))
-    s_hi = (lX + LN2) + u * (0.25 - u * (3.0 / 32.0 - u * (15.0 / 288.0)))
-    l2 = lX * lX
-    s_mid = ((0.8813739608608067 + lX * 0.7070891455748324) +
-             l2 * ((0.1767523031968521 - lX * 0.02917219344930663) +
-                   l2 * ((-0.018167773628819685 + lX * 0.005054404389377888) + l2 * 0.0029017703331124614)))
-    si = s_lo if lX < -0.75 else (s_mid if lX <= 0.75 else s_hi)
+    s_hi = (lXc + LN2) + u * (0.25 - u * (3.0 / 32.0 - u * (15.0 / 288.0)))
+    l2 = lXc * lXc
+    s_mid = ((0.8813739608608067 + lXc * 0.7070891455748324) +
+             l2 * ((0.1767523031968521 - lXc * 0.02917219344930663) +
+                   l2 * ((-0.018167773628819685 + lXc * 0.005054404389377888) + l2 * 0.0029017703331124614)))
+    si = s_lo if lXc < -0.75 else (s_mid if lXc <= 0.75 else s_hi)
     s = si * r / (r + K * x)
     s = 3.3e-308 if s < 3.3e-308 else s                 # exp(-708), where mathx.exp stops
     # coarse Householder step of order 3 in ln s, where G(ln s) = g(s) is nearly linear for s << 1 / K:
@@ -186,7 +195,7 @@ def thermal_eyring_root(lX, K):
     # g'' = -4 t / w^2, g''' = 8 t (1 + t) / w^3 (w = 1 - e^{-2s}, t = 1 - w; q = s / w keeps them scaled)
     w = -mx.expm1_lo(-2.0 * s)
     t = 1.0 - w
-    g = s * (1.0 + K) + mx.log_lo(w) - LN2 - lX
+    g = s * (1.0 + K) + mx.log_lo(w) - LN2 - lXc
     q = s / w
     tq = t * q
     G1 = s * (1.0 + K) + 2.0 * tq
@@ -221,11 +230,15 @@ def _point_stress(v, pf, s_in, lxh, lne, z, h, u, tau0, tauL0, gamL, G_e, cfilm,
     # ln(eta(p) v / (tau_0 h)); Roelands with log(1 + p/p0) in place of log1p: what matters is the absolute
     # error of ln(eta/eta_0), here <= z lne 1.1e-16, not the relative one near p = 0
     lX = lxh + lne * mx.expm1(z * mx.log(1.0 + pf * (1.0 / ROELANDS_P0))) + mx.log(vv)
+    # the same with the coarse exp / log, absolute error ~ 8e-7 (ln(eta / eta_0) + lne) + 1e-7 |ln v|
+    # (<= 3e-5 up to ln(eta / eta_0) = 25): the thermal root starts from it, in parallel with the
+    # full-precision lX that it needs in its last step only
+    lXc = lxh + lne * mx.expm1_lo(z * mx.log_lo(1.0 + pf * (1.0 / ROELANDS_P0))) + mx.log_lo(vv)
     tl = tauL0 + gamL * pf
     if thermal:
         c = vv * (cfilm + math.sqrt(s_in) * cflash)       # temperature rise per unit stress [K/Pa]
         tl = tl / (1.0 + kgam * c * tl)
-        tau = tau0 * thermal_eyring_root(lX, beta * c * tau0)
+        tau = tau0 * _thermal_eyring_root(lXc, lX, beta * c * tau0)
     else:
         tau = tau0 * _asinh_exp(lX)                        # Ree-Eyring
     if G_e > 0.0:
