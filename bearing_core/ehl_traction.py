@@ -27,7 +27,7 @@ per contact; names of the parameter slots in contact_kernels.P_*):
    and eta(T) = eta(T_inlet) exp(-beta (T - T_inlet)), beta = -d ln eta / dT of the oil at T_inlet. The
    implicit equation tau = tau_0 asinh(X exp(-beta c tau)), dT = c tau, is solved to 1e-9 relative
    (thermal_eyring_root): in the Eyring-logarithmic regime (Evans & Johnson's thermal Eyring regime,
-   tau ~ tau_0 ln(2X) / (1 + beta c tau_0)) as elsewhere, by a Householder and a Halley step on
+   tau ~ tau_0 ln(2X) / (1 + beta c tau_0)) as elsewhere, by a Householder and a Chebyshev step on
    ln sinh.
 6. Elasticity, Maxwell [JT77]: a fluid element entering the Hertz zone at constant strain rate builds its
    stress as tau = tau_v (1 - exp(-tau_e / tau_v)) with tau_e = G_e gamma_dot s_in / u the elastic stress
@@ -155,14 +155,14 @@ def thermal_eyring_root(lX, K):
     ln X and 1 / X^2 (relative error <= 1e-4; no log on the path from ln X); it lies below the root, by
     up to 53 % at K = 31.6, where g bends like a logarithm. One Householder step of order 3 (quartic
     convergence) in the variable ln s, in which g is nearly linear there, takes it to within 2.4e-3; one
-    Halley step (cubic) on g in s finishes. All derivatives of g follow from w = 1 - e^{-2s}:
+    Chebyshev step (cubic) on g in s finishes. All derivatives of g follow from w = 1 - e^{-2s}:
     g' = 1 + K + 2 (1 - w) / w, g'' = -4 (1 - w) / w^2, g''' = 8 (1 - w)(2 - w) / w^3, so each step
     costs one exp and one log. The seed and the Householder step use the coarse exp / log of
-    bearing_core.mathx (<= 6e-7) and a Pade form of the step's factor e^{-d} (<= 1.4e-6); the Halley
+    bearing_core.mathx (<= 6e-7) and a Pade form of the step's factor e^{-d} (<= 1.4e-6); the Chebyshev
     step, in full precision, cubes the iterate's error, so that the root moves by < 5e-12 relative
-    (measured 1.4e-12) against the same steps in full precision. Measured relative error against the converged
-    root (tests/test_jit_flags.py, ln X in [-28, 50]): <= 2e-14 for K <= 3, <= 2.5e-12 for K <= 10,
-    <= 1.1e-9 for K <= 31.6. The seed is held above 3.3e-308 (exp(-708)); the root stays positive."""
+    (measured 1.3e-12) against the same steps in full precision. Measured relative error against the converged
+    root (tests/test_jit_flags.py, ln X in [-28, 50]): <= 2e-14 for K <= 3, <= 2e-12 for K <= 10,
+    <= 1e-9 for K <= 31.6. The seed is held above 3.3e-308 (exp(-708)); the root stays positive."""
     return _thermal_eyring_root(lX, lX, K)
 
 
@@ -209,12 +209,13 @@ def _thermal_eyring_root(lXc, lX, K):
     pe = 1.0 + 0.1 * d2
     qo = d * (0.5 + d2 * (1.0 / 120.0))
     s = s * (pe - qo) / (pe + qo)
-    # Halley's step on g in full precision: 2 g g' / (2 g'^2 - g g'') = g N w / (N^2 + 2 g t), N = w g'
+    # Chebyshev's step (cubic) on g in full precision: (g / g') (1 + g g'' / (2 g'^2))
+    # = (g w / N) (1 - 2 g t / N^2), N = w g' = 2 + (K - 1) w; 1 / N is computed while the log is
     w = -mx.expm1(-2.0 * s)
     t = 1.0 - w
+    rN = 1.0 / (2.0 + (K - 1.0) * w)
     g = s * (1.0 + K) + mx.log(w) - LN2 - lX
-    N = 2.0 + (K - 1.0) * w
-    ds = g * N * w / (N * N + 2.0 * g * t)
+    ds = g * w * rN * (1.0 - 2.0 * g * t * rN * rN)
     s = 0.1 * s if ds >= 0.9 * s else s - ds
     return s
 

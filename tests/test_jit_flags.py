@@ -162,8 +162,8 @@ def _root_bisect(lX, K):
 
 
 def test_thermal_eyring_root_error_bounds():
-    """Bounds stated in ehl_traction.thermal_eyring_root: relative error <= 2e-14 for K <= 3, <= 2.5e-12
-    for K <= 10, <= 1.1e-9 for K <= 31.6, over ln X in [-28, 50] (Eyring argument 7e-13 ... 5e21, beyond
+    """Bounds stated in ehl_traction.thermal_eyring_root: relative error <= 2e-14 for K <= 3, <= 2e-12
+    for K <= 10, <= 1e-9 for K <= 31.6, over ln X in [-28, 50] (Eyring argument 7e-13 ... 5e21, beyond
     both ends of the quadrature points of bearing contacts)."""
     from bearing_core.ehl_traction import thermal_eyring_root
     from numba import njit
@@ -180,7 +180,7 @@ def test_thermal_eyring_root_error_bounds():
     s = roots(lX, K)
     ref = _root_bisect(lX, K)
     rel = np.abs(s / ref - 1.0)
-    for kmax, bound in ((3.0, 2e-14), (10.0, 2.5e-12), (31.7, 1.1e-9)):
+    for kmax, bound in ((3.0, 2e-14), (10.0, 2e-12), (31.7, 1e-9)):
         m = K <= kmax
         assert rel[m].max() <= bound, (kmax, rel[m].max(), lX[m][np.argmax(rel[m])], K[m][np.argmax(rel[m])])
     # K = 0 is the isothermal Ree-Eyring stress asinh(X)
@@ -199,7 +199,7 @@ def test_thermal_eyring_root_error_bounds():
 
     for dl in (3e-5, -3e-5):
         rel = np.abs(roots_c(lX + dl, lX, K) / ref - 1.0)
-        for kmax, bound in ((3.0, 2e-14), (10.0, 2.5e-12), (31.7, 1.1e-9)):
+        for kmax, bound in ((3.0, 2e-14), (10.0, 2e-12), (31.7, 1e-9)):
             assert rel[K <= kmax].max() <= bound, (dl, kmax, rel[K <= kmax].max())
 
 
@@ -235,7 +235,7 @@ def test_thermal_eyring_root_extremes():
     assert np.all(np.isnan(roots(np.array([np.nan, 1.0]), np.array([1.0, np.nan]))))
 
 def _root_full_precision(lX, K):
-    """thermal_eyring_root's algorithm (seed, Householder step in ln s, Halley step) with numpy's exp / log
+    """thermal_eyring_root's algorithm (seed, Householder step in ln s, Chebyshev step) with numpy's exp / log
     throughout, in place of the coarse polynomial exp / log of its seed and first step and the Pade form
     of that step's factor e^{-d} (the seed's series for asinh are part of the algorithm)."""
     ln2 = math.log(2.0)
@@ -262,14 +262,14 @@ def _root_full_precision(lX, K):
     w = -np.expm1(-2.0 * s)
     g = s * (1.0 + K) + np.log(w) - ln2 - lX
     N = 2.0 + (K - 1.0) * w
-    ds = g * N * w / (N * N + 2.0 * g * (1.0 - w))
+    ds = g * w / N * (1.0 - 2.0 * g * (1.0 - w) / N ** 2)
     return np.where(ds >= 0.9 * s, 0.1 * s, s - ds)
 
 
 def test_thermal_eyring_root_coarse_steps():
     """The coarse exp / log of the root's seed and Householder step and the Pade form of that step's e^{-d}
     move the root by < 5e-12 relative against the same algorithm in full precision (its docstring), over
-    ln X in [-28, 50] and K in [0, 31.6]: the last, full-precision Halley step cubes their error."""
+    ln X in [-28, 50] and K in [0, 31.6]: the last, full-precision Chebyshev step cubes their error."""
     from bearing_core.ehl_traction import thermal_eyring_root
     from numba import njit
 
