@@ -35,7 +35,8 @@ that grow into Newton steps; Kelley & Keyes, SIAM J. Numer. Anal. 35 (1998) 508)
 the steps while they make progress (each step then costs one rhs call), in up to four stages:
   1. near-Newton: a large first pseudo-time step (the pseudo-time term only a small shift of the diagonal),
      steps capped at 2 um / 0.3 omega, the Jacobian rebuilt when an uncapped step contracts the residual
-     less than two-fold or a capped one lets it grow after 5 steps on one Jacobian; a point converged on a
+     less than two-fold or a capped one lets it grow after 5 steps on one Jacobian (every other rebuild
+     renews only the ball blocks, 6 rhs calls, and keeps the ring's columns); a point converged on a
      kept Jacobian is polished by up to 4 more chord steps while they contract. Budget 120 evaluations;
   2. the continuation from a small pseudo-time step (dtau 1), rebuilt also when dtau grew ten-fold, finished
      by one step on a new Jacobian (it gets through where the near-Newton steps stall: measured at
@@ -45,8 +46,11 @@ the steps while they make progress (each step then costs one rhs call), in up to
 A stage that ends at a spurious root (a ball that carried load at the start has lost both raceway contacts
 or a ball has (nearly) stopped orbiting) counts as failed; the next one starts again from the start. Residuals,
 Jacobian, the block-arrow linear solves and the continuation loop run in numba (quasistatic_tribo_kernels).
-Start: the Jones-Harris solution (outer raceway control), as DynamicModel.initialize; if that fails,
-continuation in speed from 100 rpm. Residuals are forces [N] (moments over D/2 or dm/2). Measured on 7218B
+Start: the Jones-Harris solution (outer raceway control; the state DynamicModel.initialize starts from,
+solved to a scaled ring residual of 1e-6: the tribological solve refines it), or a previous solution
+(solve(start=...), e.g. the neighbouring case of a sweep; if it fails, the Jones-Harris start follows); if
+that fails, continuation in speed from 100 rpm. The kernel parameters (DynamicModel's, for the bearing and
+options) are memoised. Residuals are forces [N] (moments over D/2 or dm/2). Measured on 7218B
 (bench/bench_tribo_qs.py, rheology-based EHL traction): 27 of 36 cases (Kalker 0.1 / 0.001, Coulomb,
 lubricated; 1000 / 3000 / 10,000 rpm; pure thrust and two combined loads) converge to 1e-7 of the load;
 the Coulomb and lubricated cases at 1000 and 3000 rpm in 34-117 rhs calls (stage 1), Kalker mu 0.001 at
@@ -166,6 +170,9 @@ class TriboQuasiStaticModel:
     #: residual evaluations (0: none)
     fast_dtau0 = 1.0e4
     fast_budget = 120
+    #: tolerance of the Jones-Harris start (QuasiStaticModel.solve's scaled ring residual; its default is
+    #: 1e-10): a start, which the tribological solve refines
+    jones_harris_tol = 1e-6
 
     def __init__(self, geometry: BearingGeometry, options=None):
         from .dynamics import DynamicModel, DynamicsOptions
@@ -242,7 +249,7 @@ class TriboQuasiStaticModel:
         if getattr(self, "_qsm_g", None) is not g:
             self._qsm = quasistatic_model(g, "outer", fixed_tilt=self.opt.fixed_tilt)
             self._qsm_g = g
-        return self._qsm.solve(omega, loads, stiffness=False)
+        return self._qsm.solve(omega, loads, stiffness=False, tol=self.jones_harris_tol)
 
     def _solve_one(self, omega, loads, tol, maxit, start, need_jh=True):
         """One solve from start (None: the Jones-Harris solution); need_jh: solve Jones-Harris also when

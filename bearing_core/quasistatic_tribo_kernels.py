@@ -42,6 +42,10 @@ LAZY_DTAU = 10.0
 DTAU_NEWTON = 1.0e3
 NEWTON_CAPPED_AGE = 5
 NEWTON_POLISH = 4
+# near-Newton mode: rebuilds of the ball blocks alone (6 rhs calls instead of 11) between two rebuilds of
+# the whole Jacobian (the ring's columns change little along the path: 58 -> 49 evaluations for 7218B,
+# lubricated, 3000 rpm, Fx 1 kN, Fz 3 kN; median over bench_tribo_qs.py --speed in docs/speed.md)
+NEWTON_RING_KEEP = 1
 
 
 @hot
@@ -390,7 +394,8 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF,
     NEWTON_CAPPED_AGE steps on the Jacobian; an uncapped step that contracts the residual less than two-fold
     rebuilds; converged on a kept Jacobian, up to NEWTON_POLISH more chord steps follow while the last one
     contracted at least two-fold (to 1e-3 of ftol; one that does not lower the residual is discarded)
-    instead of the step on a new Jacobian."""
+    instead of the step on a new Jacobian; every other rebuild renews the ball blocks (A, C) only and keeps
+    the ring's columns (B, Dg) (NEWTON_RING_KEEP), except for the step on a new Jacobian and polishing."""
     Z = (v.size - NGLOB) // NLOC
     n = v.size
     xl = np.empty((Z, NLOC))
@@ -427,6 +432,7 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF,
     polish = False
     npol = 0               # chord polishing steps taken (newton)
     ratio = 1.0            # residual ratio of the last accepted step
+    ring_age = NEWTON_RING_KEEP   # rebuilds since the ring's Jacobian columns were computed (none yet)
     at_v = True            # (xl, xg), (Rl, Rg, share) hold v and its residual blocks
     while nfev < budget:
         if r <= ftol:
@@ -445,10 +451,18 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF,
                                 qy, qwy, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R)
                 nfev += 1
                 at_v = True
-            jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
-                     qx, qwx, qy, qwy, yy, dy, diag, bd, A, B, C, Dg)
+            if newton and ring_age < NEWTON_RING_KEEP and not polish and npol == 0:
+                # near-Newton rebuild: new ball blocks (6 rhs calls), the ring's columns kept
+                ball_jacobian(t, y0, xl, xg, Rl, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
+                              qx, qwx, qy, qwy, yy, dy, diag, bd, A, C)
+                nfev += 6
+                ring_age += 1
+            else:
+                jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
+                         qx, qwx, qy, qwy, yy, dy, diag, bd, A, B, C, Dg)
+                nfev += 12
+                ring_age = 0
             jacobian_diagonal(A, Dg, xs_l, xs_g, d)
-            nfev += 12
             fresh = True
             age = 0
             dtau_ref = dtau
