@@ -433,6 +433,8 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF,
     npol = 0               # chord polishing steps taken (newton)
     ratio = 1.0            # residual ratio of the last accepted step
     ring_age = NEWTON_RING_KEEP   # rebuilds since the ring's Jacobian columns were computed (none yet)
+    partial = False        # the current Jacobian has renewed ball blocks and kept ring columns
+    no_partial = False     # such a Jacobian failed: whole ones from then on
     at_v = True            # (xl, xg), (Rl, Rg, share) hold v and its residual blocks
     while nfev < budget:
         if r <= ftol:
@@ -451,17 +453,19 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF,
                                 qy, qwy, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R)
                 nfev += 1
                 at_v = True
-            if newton and ring_age < NEWTON_RING_KEEP and not polish and npol == 0:
+            if newton and ring_age < NEWTON_RING_KEEP and not (polish or no_partial) and npol == 0:
                 # near-Newton rebuild: new ball blocks (6 rhs calls), the ring's columns kept
                 ball_jacobian(t, y0, xl, xg, Rl, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
                               qx, qwx, qy, qwy, yy, dy, diag, bd, A, C)
                 nfev += 6
                 ring_age += 1
+                partial = True
             else:
                 jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
                          qx, qwx, qy, qwy, yy, dy, diag, bd, A, B, C, Dg)
                 nfev += 12
                 ring_age = 0
+                partial = False
             jacobian_diagonal(A, Dg, xs_l, xs_g, d)
             fresh = True
             age = 0
@@ -494,6 +498,12 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF,
             break
         if npol > 0 and not r2 < r:
             break              # a polishing step that does not lower the residual is discarded
+        if partial and age == 0 and not r2 < r:
+            # the first step on ball blocks renewed with the ring's columns kept does not lower the residual:
+            # discarded, the whole Jacobian renewed, now and at every later rebuild
+            fresh = False
+            no_partial = True
+            continue
         if not math.isfinite(r2) or r2 > 4.0 * r:
             if lazy and age > 0:
                 fresh = False          # a kept Jacobian: rebuild it before shrinking dtau
