@@ -139,6 +139,16 @@ class TriboQuasiStaticResult:
 
 
 @lru_cache(maxsize=32)
+def _checked_options(geometry: BearingGeometry, options):
+    """options for the quasi-static solve (full model, no thermal network) after the dynamics' checks of
+    the bearing and the options (DynamicModel raises on bad ones); memoised (the result is immutable)."""
+    from .dynamics import DynamicModel
+    opt = replace(options, reduced="full", thermal=False)
+    DynamicModel(geometry, opt)
+    return opt
+
+
+@lru_cache(maxsize=32)
 def _kernel_setup(geometry: BearingGeometry, options, omega: float):
     """Parameters of the dynamics' right-hand side for the quasi-static solve, as DynamicModel.initialize
     sets them (running geometry at shaft speed omega [rad/s] with options.ring_growth, isothermal at the
@@ -175,7 +185,7 @@ class TriboQuasiStaticModel:
     jones_harris_tol = 1e-6
 
     def __init__(self, geometry: BearingGeometry, options=None):
-        from .dynamics import DynamicModel, DynamicsOptions
+        from .dynamics import DynamicsOptions
         opt = DynamicsOptions() if options is None else options
         if opt.coupling != "load":
             raise BearingInputError("coupling", opt.coupling, "load (the quasi-static model takes loads)")
@@ -183,8 +193,10 @@ class TriboQuasiStaticModel:
             raise BearingInputError("outer_mount", opt.outer_mount, "fixed (quasi-static model)")
         geometry.require_two_point("quasi-static tribological model")
         self.g = geometry
-        self.opt = replace(opt, reduced="full", thermal=False)
-        DynamicModel(geometry, self.opt)      # the dynamics' checks of the bearing and options
+        try:
+            self.opt = _checked_options(geometry, opt)
+        except TypeError:                      # options with unhashable fields: no memo
+            self.opt = _checked_options.__wrapped__(geometry, opt)
 
     def solve(self, omega: float, loads, tol: float = 1e-7, maxit: int = 3000,
               start: TriboQuasiStaticResult | None = None) -> TriboQuasiStaticResult:
@@ -270,8 +282,9 @@ class TriboQuasiStaticModel:
         if start is None:
             Roo = 0.5 * g.dm - (g.fo - 0.5) * g.D * math.cos(g.alpha0)
             Zoo = -(g.fo - 0.5) * g.D * math.sin(g.alpha0)
+            w_cage = jh.cage_speed
             y[0:5] = jh.u
-            y[11] = jh.cage_speed
+            y[11] = w_cage
             y[b + 1] = Roo + jh.X[:, 0]
             y[b + 2] = Zoo + jh.X[:, 1]
             y[b + 3] = jh.omega_m
@@ -295,7 +308,7 @@ class TriboQuasiStaticModel:
             xl[:, 5] = y[b + 3]
             xg[:5] = y[0:5]
             xg[5] = y[11]
-            w_cage = abs(jh.cage_speed)
+            w_cage = abs(w_cage)
         else:                                  # previous solution, speeds scaled to this shaft speed
             ratio = omega / start.omega
             xl[:, 0] = start.y[b + 1]
