@@ -183,6 +183,8 @@ class TriboQuasiStaticModel:
     #: tolerance of the Jones-Harris start (QuasiStaticModel.solve's scaled ring residual; its default is
     #: 1e-10): a start, which the tribological solve refines
     jones_harris_tol = 1e-6
+    #: step cap of the ring tilts from a previous solution [10 urad]
+    warm_tilt_cap = 10.0
 
     def __init__(self, geometry: BearingGeometry, options=None):
         from .dynamics import DynamicsOptions
@@ -371,13 +373,19 @@ class TriboQuasiStaticModel:
         # through). A stage that ends where a ball that carried load at the start has lost both raceway
         # contacts or a ball has (nearly) stopped orbiting (spurious roots: a ball without contact load and
         # without orbital speed has zero residuals) counts as failed.
+        # step cap of the ring tilts [10 urad]: 3 urad from the Jones-Harris start (measured: larger caps
+        # cost more evaluations there, 58 -> 73 for 7218B, 3000 rpm, Fx 1 kN, Fz 3 kN at 10 urad); from a
+        # previous solution the tilt may have to move by ~0.5 mrad (a new radial load), which at 3 urad a
+        # step took some hundred steps (median 347 evaluations over bench_tribo_qs.py --sweep's kind of
+        # sweeps, 36 at 100 urad)
+        cap_tilt = 0.3 if start is None else self.warm_tilt_cap
         bd0 = wk["bd"]
         loaded0 = (bd0[:, K.BD_QI] > 0.0) | (bd0[:, K.BD_QO] > 0.0)
 
         def ptc(lazy, budget, dtau0=1.0):
             v = v0.copy()
             r, nf, _ = TK.ptc(t, y, v, xs_l, xs_g, act, float(omega), float(ftol), int(budget), lazy,
-                              float(dtau0), dtau0 >= TK.DTAU_NEWTON, iF, iM, P, U, *tabs)
+                              float(dtau0), dtau0 >= TK.DTAU_NEWTON, float(cap_tilt), iF, iM, P, U, *tabs)
             return v, r, nf
 
         def evaluate(v):

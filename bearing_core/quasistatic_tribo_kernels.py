@@ -373,12 +373,12 @@ def scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, 
 
 
 @hot
-def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF, iM, P, U, tab_i, tab_o, ta0,
-        tda, tp, qx, qwx, qy, qwy):
+def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, cap_tilt, iF, iM, P, U, tab_i, tab_o,
+        ta0, tda, tp, qx, qwx, qy, qwy):
     """Pseudo-transient continuation from the scaled unknowns v (overwritten with the end point): implicit
     Euler steps (diag(|J_ii|) / dtau - J) dv = R of the pseudo-dynamics dx/dtau = diag(|J_ii|)^-1 R(x),
     dtau from dtau0 by switched evolution relaxation (dtau *= |R_old| / |R_new|, factor in [0.3, 10],
-    dtau <= 1e15); a step is capped at 2 um per position and 0.3 omega per speed and rejected (dtau / 10,
+    dtau <= 1e15); a step is capped at 2 um per position, 0.3 omega per speed and cap_tilt [10 urad] per ring tilt and rejected (dtau / 10,
     Jacobian kept) if the residual grows more than 4-fold or is not finite. Stops when max |R| <= ftol or
     after budget residual evaluations (12 per Jacobian, 1 per trial step). Returns (max |R|, evaluations,
     status PTC_CONVERGED | PTC_BUDGET).
@@ -416,12 +416,14 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF,
     B = np.empty((Z, NLOC, NGLOB))
     C = np.empty((Z, NGLOB, NLOC))
     Dg = np.empty((NGLOB, NGLOB))
-    cap = np.zeros(n, dtype=np.bool_)
+    cap = np.full(n, 0.3)          # step caps of the scaled unknowns: speeds 0.3 omega
     for j in range(Z):
-        cap[j * NLOC] = True
-        cap[j * NLOC + 1] = True
+        cap[j * NLOC] = 2.0        # ball centres 2 um
+        cap[j * NLOC + 1] = 2.0
     for k in range(3):
-        cap[Z * NLOC + k] = True
+        cap[Z * NLOC + k] = 2.0    # ring 2 um
+    cap[Z * NLOC + 3] = cap_tilt   # ring tilts [10 urad]
+    cap[Z * NLOC + 4] = cap_tilt
     r = scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                         xl, xg, yy, dy, diag, bd, Rl, Rg, share, R)
     nfev = 1
@@ -476,14 +478,9 @@ def ptc(t, y0, v, xs_l, xs_g, act, omega, ftol, budget, lazy, dtau0, newton, iF,
             dtau *= 0.1
             nfev += 1       # counts as a trial (keeps the loop finite when the matrix stays singular)
             continue
-        cp = 0.0
-        cs = 0.0
+        f = 1.0
         for i in range(n):
-            if cap[i]:
-                cp = max(cp, abs(dv[i]))
-            else:
-                cs = max(cs, abs(dv[i]))
-        f = max(1.0, cp / 2.0, cs / 0.3)
+            f = max(f, abs(dv[i]) / cap[i])
         for i in range(n):
             v2[i] = v[i] + dv[i] / f
         r2 = scaled_residual(t, y0, v2, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
