@@ -47,7 +47,7 @@ A stage that ends at a spurious root (a ball that carried load at the start has 
 or a ball has (nearly) stopped orbiting) counts as failed; the next one starts again from the start. Residuals,
 Jacobian, the block-arrow linear solves and the continuation loop run in numba (quasistatic_tribo_kernels).
 Start: the Jones-Harris solution (outer raceway control; the state DynamicModel.initialize starts from,
-solved to a scaled ring residual of 1e-6: the tribological solve refines it), or a previous solution
+solved to a scaled ring residual of 1e-8: the tribological solve refines it), or a previous solution
 (solve(start=...), e.g. the neighbouring case of a sweep; if it fails, the Jones-Harris start follows); if
 that fails, continuation in speed from 100 rpm. The kernel parameters (DynamicModel's, for the bearing and
 options) are memoised. Residuals are forces [N] (moments over D/2 or dm/2). Measured on 7218B
@@ -182,7 +182,7 @@ class TriboQuasiStaticModel:
     fast_budget = 120
     #: tolerance of the Jones-Harris start (QuasiStaticModel.solve's scaled ring residual; its default is
     #: 1e-10): a start, which the tribological solve refines
-    jones_harris_tol = 1e-6
+    jones_harris_tol = 1e-8
     #: step cap of the ring tilts from a previous solution [10 urad]
     warm_tilt_cap = 10.0
 
@@ -377,7 +377,8 @@ class TriboQuasiStaticModel:
         # cost more evaluations there, 58 -> 73 for 7218B, 3000 rpm, Fx 1 kN, Fz 3 kN at 10 urad); from a
         # previous solution the tilt may have to move by ~0.5 mrad (a new radial load), which at 3 urad a
         # step took some hundred steps (median 347 evaluations over bench_tribo_qs.py --sweep's kind of
-        # sweeps, 36 at 100 urad)
+        # sweeps, 36 at 100 urad). The later stages keep 3 urad (the smaller steps get through where the
+        # near-Newton stage fails: 7218B, Coulomb, 10,000 rpm load sweep).
         cap_tilt = 0.3 if start is None else self.warm_tilt_cap
         bd0 = wk["bd"]
         loaded0 = (bd0[:, K.BD_QI] > 0.0) | (bd0[:, K.BD_QO] > 0.0)
@@ -385,7 +386,8 @@ class TriboQuasiStaticModel:
         def ptc(lazy, budget, dtau0=1.0):
             v = v0.copy()
             r, nf, _ = TK.ptc(t, y, v, xs_l, xs_g, act, float(omega), float(ftol), int(budget), lazy,
-                              float(dtau0), dtau0 >= TK.DTAU_NEWTON, float(cap_tilt), iF, iM, P, U, *tabs)
+                              float(dtau0), dtau0 >= TK.DTAU_NEWTON,
+                              float(cap_tilt if dtau0 >= TK.DTAU_NEWTON else 0.3), iF, iM, P, U, *tabs)
             return v, r, nf
 
         def evaluate(v):
