@@ -43,8 +43,8 @@ DTAU_NEWTON = 1.0e3
 NEWTON_CAPPED_AGE = 5
 NEWTON_POLISH = 4
 # near-Newton mode: rebuilds of the ball blocks alone (6 rhs calls instead of 11) between two rebuilds of
-# the whole Jacobian (the ring's columns change little along the path: 58 -> 49 evaluations for 7218B,
-# lubricated, 3000 rpm, Fx 1 kN, Fz 3 kN; median over bench_tribo_qs.py --speed in docs/speed.md)
+# the whole Jacobian (the ring's columns change little along the path: 57 -> 49 evaluations for 7218B,
+# lubricated, 3000 rpm, Fx 1 kN, Fz 3 kN; median 49 -> 46 over bench_tribo_qs.py --speed)
 NEWTON_RING_KEEP = 1
 
 
