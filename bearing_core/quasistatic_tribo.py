@@ -163,6 +163,9 @@ def _kernel_setup(geometry: BearingGeometry, options, omega: float):
     dm.U[K.U_W0] = dm.U[K.U_W1] = omega
     dm.apply_temperatures(options.oil_temperature, options.oil_temperature)
     P = dm.P
+    # Free balls, centred cage (module docstring): the cage takes no part, so its oil films (pocket shear,
+    # flooded-land drag) are left out too; otherwise they would load the balls and drag a cage whose
+    # torque balance is not an equation here, and power in would not equal heat out.
     P[K.P_LUBE] = 0.0
     P[K.P_ETA_LAND] = 0.0
     return dm.g, P, dm._tab_i, dm._tab_o, dm._ta0, dm._tda, dm._tp, dm._quad
@@ -182,8 +185,8 @@ class TriboQuasiStaticModel:
     fast_budget = 120
     #: tolerance of the Jones-Harris start (QuasiStaticModel.solve's scaled ring residual). Measured: 1e-6
     #: or 1e-8 save 1-3 of its ~10 iterations (~0.05 ms), but the start then moves by round-off, and that
-    #: flips the outcome of cases that end in the fallback stages (bench_tribo_qs.py --speed: 2 of 96 cases
-    #: that converged fail and 2 that failed converge, at either tolerance)
+    #: flips the outcome of cases that end in the fallback stages (at 1e-8, 2 of bench_tribo_qs.py --speed's
+    #: 87 converging cases fail; at 1e-6, 7218B Coulomb at 10,000 rpm under Fz 3.2 kN fails)
     jones_harris_tol = 1e-10
     #: step cap of the ring tilts from a previous solution [10 urad]
     warm_tilt_cap = 10.0
