@@ -35,7 +35,8 @@ that grow into Newton steps; Kelley & Keyes, SIAM J. Numer. Anal. 35 (1998) 508)
 the steps while they make progress (each step then costs one rhs call), in up to four stages:
   1. near-Newton: a large first pseudo-time step (the pseudo-time term only a small shift of the diagonal),
      steps capped at 2 um / 0.3 omega, the Jacobian rebuilt when an uncapped step contracts the residual
-     less than two-fold or a capped one lets it grow after 5 steps on one Jacobian; a point converged on a
+     less than two-fold or a capped one lets it grow after 5 steps on one Jacobian (every other rebuild
+     renews only the ball blocks, 6 rhs calls, and keeps the ring's columns); a point converged on a
      kept Jacobian is polished by up to 4 more chord steps while they contract. Budget 120 evaluations;
   2. the continuation from a small pseudo-time step (dtau 1), rebuilt also when dtau grew ten-fold, finished
      by one step on a new Jacobian (it gets through where the near-Newton steps stall: measured at
@@ -45,8 +46,11 @@ the steps while they make progress (each step then costs one rhs call), in up to
 A stage that ends at a spurious root (a ball that carried load at the start has lost both raceway contacts
 or a ball has (nearly) stopped orbiting) counts as failed; the next one starts again from the start. Residuals,
 Jacobian, the block-arrow linear solves and the continuation loop run in numba (quasistatic_tribo_kernels).
-Start: the Jones-Harris solution (outer raceway control), as DynamicModel.initialize; if that fails,
-continuation in speed from 100 rpm. Residuals are forces [N] (moments over D/2 or dm/2). Measured on 7218B
+Start: the Jones-Harris solution (outer raceway control; the state DynamicModel.initialize starts from,
+without its stiffness matrix), or a previous solution
+(solve(start=...), e.g. the neighbouring case of a sweep; if it fails, the Jones-Harris start follows); if
+that fails, continuation in speed from 100 rpm. The kernel parameters (DynamicModel's, for the bearing and
+options) are memoised. Residuals are forces [N] (moments over D/2 or dm/2). Measured on 7218B
 (bench/bench_tribo_qs.py, rheology-based EHL traction): 27 of 36 cases (Kalker 0.1 / 0.001, Coulomb,
 lubricated; 1000 / 3000 / 10,000 rpm; pure thrust and two combined loads) converge to 1e-7 of the load;
 the Coulomb and lubricated cases at 1000 and 3000 rpm in 34-117 rhs calls (stage 1), Kalker mu 0.001 at
@@ -59,6 +63,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -66,6 +71,7 @@ from . import dynamics_kernels as K
 from . import quasistatic_tribo_kernels as TK
 from .errors import BearingInputError, ConvergenceError, check_range
 from .geometry import BearingGeometry
+from .quasistatic import quasistatic_model
 
 NLOC = TK.NLOC      # per-ball unknowns: r, z, Omega_r, Omega_t, Omega_z, theta_dot
 NGLOB = TK.NGLOB    # dx, dy, dz, tx, ty, (omega_c: not an unknown with free orbits; kept for the layout)
@@ -113,7 +119,7 @@ class TriboQuasiStaticResult:
     residual: float               # max |residual| [N] (forces; moments over D/2 or dm/2)
     iterations: int
     y: np.ndarray = field(repr=False, default=None)
-    jones_harris: object = field(repr=False, default=None)
+    jones_harris: object = field(repr=False, default=None)   # the Jones-Harris start (None: warm start)
 
     @property
     def slide_roll_i(self):
@@ -132,6 +138,39 @@ class TriboQuasiStaticResult:
         return self.spin_o * 0.5 * self.geometry.D / np.where(self.u_o > 0, self.u_o, np.inf)
 
 
+@lru_cache(maxsize=32)
+def _checked_options(geometry: BearingGeometry, options):
+    """options for the quasi-static solve (full model, no thermal network) after the dynamics' checks of
+    the bearing and the options (DynamicModel raises on bad ones); memoised (the result is immutable)."""
+    from .dynamics import DynamicModel
+    opt = replace(options, reduced="full", thermal=False)
+    DynamicModel(geometry, opt)
+    return opt
+
+
+@lru_cache(maxsize=32)
+def _kernel_setup(geometry: BearingGeometry, options, omega: float):
+    """Parameters of the dynamics' right-hand side for the quasi-static solve, as DynamicModel.initialize
+    sets them (running geometry at shaft speed omega [rad/s] with options.ring_growth, isothermal at the
+    oil temperature), with the cage's oil films off (module docstring) and the ring's support damping
+    left at 0 (the ring does not move in a steady state): (running geometry, P, tab_i, tab_o, ta0, tda,
+    tp, quadrature). They depend on the bearing, the options and (with ring growth only) the speed, so they
+    are memoised (~0.2 ms a build); callers take copies (_setup)."""
+    from .dynamics import DynamicModel
+    dm = DynamicModel(geometry, options)
+    dm.update_operating_geometry(omega)
+    dm.P = dm._params(False)
+    dm.U[K.U_W0] = dm.U[K.U_W1] = omega
+    dm.apply_temperatures(options.oil_temperature, options.oil_temperature)
+    P = dm.P
+    # Free balls, centred cage (module docstring): the cage takes no part, so its oil films (pocket shear,
+    # flooded-land drag) are left out too; otherwise they would load the balls and drag a cage whose
+    # torque balance is not an equation here, and power in would not equal heat out.
+    P[K.P_LUBE] = 0.0
+    P[K.P_ETA_LAND] = 0.0
+    return dm.g, P, dm._tab_i, dm._tab_o, dm._ta0, dm._tda, dm._tp, dm._quad
+
+
 class TriboQuasiStaticModel:
     """Quasi-static tribological model of one bearing with the traction of ``options`` (a DynamicsOptions:
     traction, mu, kalker_grid, lubricant, u_min, drag, churning, fixed_tilt are used; integrator settings
@@ -144,9 +183,16 @@ class TriboQuasiStaticModel:
     #: residual evaluations (0: none)
     fast_dtau0 = 1.0e4
     fast_budget = 120
+    #: tolerance of the Jones-Harris start (QuasiStaticModel.solve's scaled ring residual). Measured: 1e-6
+    #: or 1e-8 save 1-3 of its ~10 iterations (~0.05 ms), but the start then moves by round-off, and that
+    #: flips the outcome of cases that end in the fallback stages (at 1e-8, 2 of bench_tribo_qs.py --speed's
+    #: 87 converging cases fail; at 1e-6, 7218B Coulomb at 10,000 rpm under Fz 3.2 kN fails)
+    jones_harris_tol = 1e-10
+    #: step cap of the ring tilts from a previous solution [10 urad]
+    warm_tilt_cap = 10.0
 
     def __init__(self, geometry: BearingGeometry, options=None):
-        from .dynamics import DynamicModel, DynamicsOptions
+        from .dynamics import DynamicsOptions
         opt = DynamicsOptions() if options is None else options
         if opt.coupling != "load":
             raise BearingInputError("coupling", opt.coupling, "load (the quasi-static model takes loads)")
@@ -154,17 +200,21 @@ class TriboQuasiStaticModel:
             raise BearingInputError("outer_mount", opt.outer_mount, "fixed (quasi-static model)")
         geometry.require_two_point("quasi-static tribological model")
         self.g = geometry
-        self.opt = replace(opt, reduced="full", thermal=False)
-        self._dm = DynamicModel(geometry, self.opt)
+        try:
+            self.opt = _checked_options(geometry, opt)
+        except TypeError:                      # options with unhashable fields: no memo
+            self.opt = _checked_options.__wrapped__(geometry, opt)
 
     def solve(self, omega: float, loads, tol: float = 1e-7, maxit: int = 3000,
               start: TriboQuasiStaticResult | None = None) -> TriboQuasiStaticResult:
         """Steady state at inner-ring speed omega [rad/s] (>= 1: the ball motion comes from rolling) under
         loads (Fx, Fy, Fz, Mx, My) [N, N m]. tol: convergence when max |residual| < tol times the load scale
         (largest of |F|, |M|/(dm/2) and 1 N); maxit: residual evaluations of one solve. start: a previous
-        solution to start from (speeds scaled to omega), else the Jones-Harris solution; if that start does
-        not converge, the solution is continued in speed from 100 rpm (or omega, if lower) in steps of
-        x2 (a quarter of maxit each). Raises ConvergenceError if no step converges."""
+        solution to start from (speeds scaled to omega; e.g. the neighbouring load case of a sweep: no
+        Jones-Harris solve, the result's jones_harris is None), else the Jones-Harris solution; if the
+        previous solution does not lead to a solution, the Jones-Harris start follows; if that does not
+        converge, the solution is continued in speed from 100 rpm (or omega, if lower) in steps of x2 (a
+        quarter of maxit each). Raises ConvergenceError if no step converges."""
         omega = check_range("omega", omega, 1.0, 2.0e4, unit="rad/s")
         check_range("tol", tol, 1e-12, 1e-2)
         if not isinstance(maxit, int) or not 1 <= maxit <= 100000:
@@ -173,11 +223,18 @@ class TriboQuasiStaticModel:
         if loads.size != 5 or not np.all(np.isfinite(loads)):
             raise BearingInputError("loads", loads.tolist(), "5 finite values (Fx, Fy, Fz, Mx, My)")
         try:
-            return self._solve_one(omega, loads, tol, maxit, start)
+            return self._solve_one(omega, loads, tol, maxit, start, need_jh=False)
         except BearingInputError:
             raise
         except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
             first = e
+        if start is not None:                  # a previous solution that does not lead here: Jones-Harris
+            try:
+                return self._solve_one(omega, loads, tol, maxit, None)
+            except BearingInputError:
+                raise
+            except (ConvergenceError, np.linalg.LinAlgError, ValueError):
+                pass
         w_lo = min(omega, 100.0 * math.pi / 30.0)
         speeds = [w_lo]
         while speeds[-1] < omega:
@@ -185,7 +242,7 @@ class TriboQuasiStaticModel:
         prev = None
         for w in speeds:
             try:
-                prev = self._solve_one(w, loads, tol, max(maxit // 4, 50), prev)
+                prev = self._solve_one(w, loads, tol, max(maxit // 4, 50), prev, need_jh=(w == speeds[-1]))
             except BearingInputError:
                 raise
             except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
@@ -193,26 +250,54 @@ class TriboQuasiStaticModel:
                     from None
         return prev
 
-    def _solve_one(self, omega, loads, tol, maxit, start):
-        g = self.g
-        dmod = self._dm
-        dmod.initialize(omega, loads)          # Jones-Harris start (outer raceway control)
-        jh = dmod.qs
-        P, U = dmod.P, dmod.U
-        # Free balls, centred cage (module docstring): the cage takes no part, so its oil films (pocket shear,
-        # flooded-land drag) are left out too; otherwise they would load the balls and drag a cage whose
-        # torque balance is not an equation here, and power in would not equal heat out.
-        P[K.P_LUBE] = 0.0
-        P[K.P_ETA_LAND] = 0.0
+    def _setup(self, omega):
+        """(running geometry, P, U-less kernel tables) for a solve at omega: copies of _kernel_setup's
+        memoised arrays (every model gets its own)."""
+        o = self.opt
+        w = abs(float(omega)) if o.ring_growth else 0.0
+        try:
+            s = _kernel_setup(self.g, o, w)
+        except TypeError:                      # options with unhashable fields: no memo
+            s = _kernel_setup.__wrapped__(self.g, o, w)
+        g, P, ti, to, ta0, tda, tp, quad = s
+        return g, P.copy(), (ti.copy(), to.copy(), ta0, tda, tp.copy(), *(q.copy() for q in quad))
+
+    def _jones_harris(self, g, omega, loads):
+        """Jones-Harris solution (outer raceway control) of the running geometry g, as DynamicModel.initialize
+        solves it (without the stiffness matrix: the ring does not move, its support damping does not act)."""
+        if getattr(self, "_qsm_g", None) is not g:
+            self._qsm = quasistatic_model(g, "outer", fixed_tilt=self.opt.fixed_tilt)
+            self._qsm_g = g
+        return self._qsm.solve(omega, loads, stiffness=False, tol=self.jones_harris_tol)
+
+    def _solve_one(self, omega, loads, tol, maxit, start, need_jh=True):
+        """One solve from start (None: the Jones-Harris solution); need_jh: solve Jones-Harris also when
+        starting from a previous solution (for the result's jones_harris)."""
+        g, P, tabs = self._setup(omega)
         Z = g.Z
-        y = dmod.y.copy()
-        y[5:10] = 0.0
-        y[10] = 0.0
-        y[12:20] = 0.0
+        jh = self._jones_harris(g, omega, loads) if (start is None or need_jh) else None
+        U = np.zeros(K.NU)
+        U[K.U_W0] = U[K.U_W1] = omega
+        U[K.U_FX:K.U_MY + 1] = loads
+        t = 0.0
+        # dynamics state of the start (DynamicModel.initialize's Jones-Harris state): ring at rest, centred
+        # cage, balls at their pocket centres (free orbits)
+        y = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
         b = K.NSTATE_FIXED + K.NSB * np.arange(Z)
-        psi = y[b].copy()
-        y[b + 4] = 0.0
-        y[b + 5] = 0.0
+        psi = 2.0 * np.pi * np.arange(Z) / Z if jh is None else jh.psi.copy()
+        y[b] = psi
+        if start is None:
+            Roo = 0.5 * g.dm - (g.fo - 0.5) * g.D * math.cos(g.alpha0)
+            Zoo = -(g.fo - 0.5) * g.D * math.sin(g.alpha0)
+            w_cage = jh.cage_speed
+            y[0:5] = jh.u
+            y[11] = w_cage
+            y[b + 1] = Roo + jh.X[:, 0]
+            y[b + 2] = Zoo + jh.X[:, 1]
+            y[b + 3] = jh.omega_m
+            for j in range(Z):                 # math.sin / cos: DynamicModel.initialize's state to the bit
+                y[b[j] + 6] = -jh.omega_R[j] * math.sin(jh.beta[j])
+                y[b[j] + 8] = jh.omega_R[j] * math.cos(jh.beta[j]) + jh.omega_m[j]
         hdm = 0.5 * g.dm
         act = np.ones(NGLOB, dtype=bool)
         if self.opt.fixed_tilt:
@@ -220,8 +305,6 @@ class TriboQuasiStaticModel:
         act[5] = False                         # free orbits: no cage unknown
         scale = max(np.max(np.abs(loads[:3])), np.max(np.abs(loads[3:])) / hdm, 1.0)
         ftol = tol * scale
-        tabs = (dmod._tab_i, dmod._tab_o, dmod._ta0, dmod._tda, dmod._tp, *dmod._quad)
-        t = dmod.t
         iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
 
         xl = np.zeros((Z, NLOC))
@@ -233,6 +316,7 @@ class TriboQuasiStaticModel:
             xl[:, 5] = y[b + 3]
             xg[:5] = y[0:5]
             xg[5] = y[11]
+            w_cage = abs(w_cage)
         else:                                  # previous solution, speeds scaled to this shaft speed
             ratio = omega / start.omega
             xl[:, 0] = start.y[b + 1]
@@ -241,6 +325,7 @@ class TriboQuasiStaticModel:
             xl[:, 5] = start.orbit_speed * ratio
             xg[:5] = start.u
             xg[5] = start.cage_speed * ratio
+            w_cage = abs(xg[5])
 
         # residuals, Jacobian, linear solves and the pseudo-transient loop: quasistatic_tribo_kernels
         # (numba), on the scaled unknowns (positions in um, speeds in omega, forces in N; the tilts in
@@ -252,7 +337,10 @@ class TriboQuasiStaticModel:
                   diag=np.zeros(K.NOUT), bd=np.zeros((Z, K.NBD)), Rl=np.empty((Z, NLOC)), Rg=np.empty(NGLOB),
                   share=np.empty((Z, NGLOB)))
 
+        last = [None]                          # the point whose outputs wk holds from a fresh evaluation
+
         def fun(v):
+            last[0] = None
             R = np.empty(n)
             TK.scaled_residual(t, y, v, xs_l, xs_g, act, iF, iM, P, U, *tabs, wk["xl"], wk["xg"], wk["yy"],
                                wk["dy"], wk["diag"], wk["bd"], wk["Rl"], wk["Rg"], wk["share"], R)
@@ -291,20 +379,35 @@ class TriboQuasiStaticModel:
         # through). A stage that ends where a ball that carried load at the start has lost both raceway
         # contacts or a ball has (nearly) stopped orbiting (spurious roots: a ball without contact load and
         # without orbital speed has zero residuals) counts as failed.
+        # step cap of the ring tilts [10 urad]: 3 urad from the Jones-Harris start (measured: larger caps
+        # cost more evaluations there, 58 -> 73 for 7218B, 3000 rpm, Fx 1 kN, Fz 3 kN at 10 urad); from a
+        # previous solution the tilt may have to move by ~0.5 mrad (a new radial load), which at 3 urad a
+        # step took some hundred steps (median 347 evaluations over bench_tribo_qs.py --sweep's kind of
+        # sweeps, 36 at 100 urad). The later stages keep 3 urad (the smaller steps get through where the
+        # near-Newton stage fails: 7218B, Coulomb, 10,000 rpm load sweep).
+        cap_tilt = 0.3 if start is None else self.warm_tilt_cap
         bd0 = wk["bd"]
         loaded0 = (bd0[:, K.BD_QI] > 0.0) | (bd0[:, K.BD_QO] > 0.0)
 
         def ptc(lazy, budget, dtau0=1.0):
             v = v0.copy()
             r, nf, _ = TK.ptc(t, y, v, xs_l, xs_g, act, float(omega), float(ftol), int(budget), lazy,
-                              float(dtau0), dtau0 >= TK.DTAU_NEWTON, iF, iM, P, U, *tabs)
+                              float(dtau0), dtau0 >= TK.DTAU_NEWTON,
+                              float(cap_tilt if dtau0 >= TK.DTAU_NEWTON else 0.3), iF, iM, P, U, *tabs)
             return v, r, nf
 
-        def spurious(v):
+        def evaluate(v):
+            # residual with the outputs and ball details computed afresh (as dynamics_kernels.evaluate)
+            wk["diag"][:] = 0.0
+            wk["bd"][:] = 0.0
             fun(v)
+            last[0] = v
+
+        def spurious(v):
+            evaluate(v)
             bd1 = wk["bd"]
             lost = loaded0 & (bd1[:, K.BD_QI] <= 0.0) & (bd1[:, K.BD_QO] <= 0.0)
-            stopped = np.abs(wk["xl"][:, 5]) < 0.1 * abs(jh.cage_speed)
+            stopped = np.abs(wk["xl"][:, 5]) < 0.1 * w_cage
             return bool(np.any(lost | stopped))
 
         nfev = 0
@@ -340,7 +443,8 @@ class TriboQuasiStaticModel:
         class sol:   # noqa: N801
             x = best_v
         sol.nfev = nfev
-        fun(sol.x)
+        if last[0] is not sol.x:
+            evaluate(sol.x)
         xl, xg, yy = wk["xl"].copy(), wk["xg"].copy(), wk["yy"].copy()
         res = max(np.max(np.abs(wk["Rl"])), np.max(np.abs(wk["Rg"])))
         if not res <= ftol:
@@ -348,15 +452,12 @@ class TriboQuasiStaticModel:
                                    f"converge in {sol.nfev} evaluations (residual {res:.3g} N, tolerance "
                                    f"{ftol:.3g} N)")
         xg[5] = float(np.mean(xl[:, 5]))
-        return self._result(omega, loads, xl, xg, yy, res, sol.nfev, jh, psi)
+        return self._result(omega, loads, xl, xg, yy, res, sol.nfev, jh, psi, wk["diag"], wk["bd"])
 
-    def _result(self, omega, loads, xl, xg, yy, res, it, jh, psi):
+    def _result(self, omega, loads, xl, xg, yy, res, it, jh, psi, diag, bd):
+        """Result at the solution (xl, xg) with the dynamics state yy, its outputs diag and ball details bd
+        (dynamics_kernels.evaluate at yy)."""
         g = self.g
-        dmod = self._dm
-        diag = np.zeros(K.NOUT)
-        bd = np.zeros((g.Z, K.NBD))
-        K.evaluate(dmod.t, yy, dmod.P, dmod.U, dmod._tab_i, dmod._tab_o, dmod._ta0, dmod._tda, dmod._tp,
-                   *dmod._quad, diag, bd)
         I = K.OUT_INDEX
         wc = xg[5]
         W = xl[:, 2:5]

@@ -2,6 +2,8 @@
 cases, and a seed 000 Table 1 analogue (Jones-Harris vs quasi-static tribological vs tribo-dynamic model).
 
     python bench/bench_tribo_qs.py [--quick] [--out out/]
+    python bench/bench_tribo_qs.py --speed [--repeat N] [--save ref.npz] [--compare ref.npz] [--only SUBSTR]
+    python bench/bench_tribo_qs.py --sweep [--repeat N]
 
 (a) matrix: 7218B; traction Kalker mu 0.1 and 0.001, Coulomb 0.1, lubricated; 1000 / 3000 / 10,000 rpm;
     loads (Fx, Fz) = (0, 3000), (1000, 3000), (3000, 2000) N: converged or not, residual evaluations, wall
@@ -13,6 +15,16 @@ cases, and a seed 000 Table 1 analogue (Jones-Harris vs quasi-static tribologica
     0.3 s run (full model, started from the tribological solution): inner-ring displacements and cage speed
     averaged over the last 0.1 s, ball quantities a snapshot at the end of the ball nearest azimuth 0.
 Writes out/bench_tribo_qs.json.
+
+--speed: cost per load case instead (thread CPU time of solve_tribo_quasistatic, the whole call: model
+set-up, Jones-Harris start and solve; median of --repeat warm runs) over 7218B and 7008-ma2023;
+1000 / 3000 / 10,000 / 20,000 rpm; light (Fz = s / 3), combined (Fx = s / 3, Fz = s) and heavy combined
+(Fx = s, Fz = 2 s) loads with s = Z (D / 22.2 mm)^2 200 N (3.2 kN for 7218B); traction 'lubricated' (oil
+regime), 'lubricated-curve' (oil), 'kalker' mu 0.1 (solid) and 'coulomb' mu 0.1 (dry regime). --save
+writes each converged case's solution (u, cage speed, ball loads, contact angles, ball speeds, friction
+torque, drive power) to an .npz; --compare prints the largest difference from such a file (relative to
+the largest value of each quantity in the case). --sweep: load sweeps, each case solved cold and from the
+previous case's solution (docstring of sweep()).
 """
 from __future__ import annotations
 
@@ -27,7 +39,7 @@ import numpy as np
 from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
 from bearing_core.errors import ConvergenceError
 from bearing_core.geometry import load_preset
-from bearing_core.quasistatic_tribo import solve_tribo_quasistatic
+from bearing_core.quasistatic_tribo import TriboQuasiStaticModel, solve_tribo_quasistatic
 
 RPM = math.pi / 30
 
@@ -58,6 +70,130 @@ def matrix(g, quick):
                          f"(J-H {row['jh_cage_rpm']:8.1f}) rpm" if row["ok"] else f"FAIL {row['wall_s']:6.2f} s"),
                       flush=True)
     return rows
+
+
+SPEED_PRESETS = ("7218B", "7008-ma2023")
+SPEED_RPM = (1000.0, 3000.0, 10000.0, 20000.0)
+SPEED_TRACTIONS = (("lubricated", "oil"), ("lubricated-curve", "oil"), ("kalker", "solid"), ("coulomb", "dry"))
+SAVED = ("u", "cage_speed", "Q_i", "Q_o", "alpha_i", "alpha_o", "omega_ball", "orbit_speed", "friction_torque")
+
+
+def speed_loads(g):
+    """(name, loads) scaled to the bearing (s = 3.2 kN for 7218B)."""
+    s = g.Z * (g.D / 0.0222) ** 2 * 200.0
+    return (("light", (0.0, 0.0, s / 3, 0.0, 0.0)), ("combined", (s / 3, 0.0, s, 0.0, 0.0)),
+            ("heavy", (s, 0.0, 2 * s, 0.0, 0.0)))
+
+
+def speed_cases():
+    for p in SPEED_PRESETS:
+        g = load_preset(p)
+        for tr, lub in SPEED_TRACTIONS:
+            opt = DynamicsOptions(traction=tr, mu=0.1, lubrication=lub)
+            for n in SPEED_RPM:
+                for lname, loads in speed_loads(g):
+                    yield f"{p}|{tr}|{n:g}|{lname}", g, opt, n * RPM, loads
+
+
+def speed(repeat, save, compare, only):
+    """Cost per load case (module docstring, --speed)."""
+    ref = np.load(compare) if compare else None
+    saved, rows, worst = {}, [], {}
+    for key, g, opt, w, loads in speed_cases():
+        if only and only not in key:
+            continue
+        c0 = time.thread_time()
+        try:
+            q = solve_tribo_quasistatic(g, w, loads, opt)
+        except ConvergenceError:
+            rows.append(dict(case=key, ok=False, ms=1e3 * (time.thread_time() - c0)))
+            print(f"{key:40s} FAIL {rows[-1]['ms']:8.1f} ms", flush=True)
+            continue
+        ts = []
+        for _ in range(repeat):
+            c0 = time.thread_time()
+            solve_tribo_quasistatic(g, w, loads, opt)
+            ts.append(time.thread_time() - c0)
+        row = dict(case=key, ok=True, ms=1e3 * float(np.median(ts)), ms_min=1e3 * float(np.min(ts)),
+                   evaluations=q.iterations)
+        msg = ""
+        for f in SAVED:
+            v = np.asarray(getattr(q, f), dtype=float)
+            saved[f"{key}|{f}"] = v
+            if ref is not None and f"{key}|{f}" in ref:
+                o = ref[f"{key}|{f}"]
+                d = float(np.max(np.abs(v - o)) / max(np.max(np.abs(o)), 1e-300))
+                row[f"diff_{f}"] = d
+                worst[f] = max(worst.get(f, 0.0), d)
+        if ref is not None:
+            msg = "  max rel diff " + " ".join(f"{f} {row.get('diff_' + f, float('nan')):.1e}" for f in
+                                              ("u", "cage_speed", "Q_i", "omega_ball"))
+        rows.append(row)
+        print(f"{key:40s} {row['ms']:8.2f} ms (min {row['ms_min']:6.2f})  {q.iterations:5d} evals{msg}", flush=True)
+    ok = [r for r in rows if r["ok"]]
+    summ = dict(cases=len(rows), failed=len(rows) - len(ok))
+    if ok:
+        ms = np.array([r["ms"] for r in ok])
+        summ.update(median_ms=float(np.median(ms)), max_ms=float(ms.max()), le_2ms=int(np.sum(ms <= 2.0)),
+                    median_evaluations=float(np.median([r["evaluations"] for r in ok])))
+    if worst:
+        summ["max_rel_diff"] = worst
+    if save:
+        np.savez(save, **saved)
+    print(json.dumps(summ, indent=1))
+    return rows, summ
+
+
+def sweep(repeat):
+    """Load sweeps (--sweep): each preset, 'lubricated' (oil) and 'coulomb' (dry), 3000 and 10,000 rpm, the
+    radial load from 0 to s in 9 steps at Fz = s (s as in --speed); every case solved cold
+    (solve_tribo_quasistatic) and from the previous case's solution (TriboQuasiStaticModel.solve(start=)):
+    thread CPU per case (median of --repeat sweeps), evaluations, failures and the largest difference of
+    the warm-started solutions from the cold ones."""
+    out = []
+    for p in SPEED_PRESETS:
+        g = load_preset(p)
+        s = g.Z * (g.D / 0.0222) ** 2 * 200.0
+        loads = [np.array((fx, 0.0, s, 0.0, 0.0)) for fx in np.linspace(0.0, s, 9)]
+        for tr, lub in (("lubricated", "oil"), ("coulomb", "dry")):
+            opt = DynamicsOptions(traction=tr, mu=0.1, lubrication=lub)
+            for n in (3000.0, 10000.0):
+                w = n * RPM
+                res = {}
+                for mode in ("cold", "warm"):
+                    ts, ev, fail, sols = [], [], 0, []
+                    for k in range(repeat + 1):
+                        prev, c0, ev, fail, sols = None, time.thread_time(), [], 0, []
+                        m = TriboQuasiStaticModel(g, opt)
+                        for L in loads:
+                            try:
+                                q = (solve_tribo_quasistatic(g, w, L, opt) if mode == "cold" or prev is None
+                                     else m.solve(w, L, start=prev))
+                                ev.append(q.iterations)
+                                sols.append(q)
+                                prev = q
+                            except ConvergenceError:
+                                fail += 1
+                                sols.append(None)
+                                prev = None
+                        if k > 0:        # the first sweep warms up
+                            ts.append((time.thread_time() - c0) / len(loads))
+                    res[mode] = dict(ms_per_case=1e3 * float(np.median(ts)), evaluations=ev, failed=fail, sols=sols)
+                dc = max((abs(a.cage_speed / b.cage_speed - 1) for a, b in zip(res["warm"]["sols"], res["cold"]["sols"])
+                          if a is not None and b is not None), default=float("nan"))
+                dq = max((np.max(np.abs(a.Q_i - b.Q_i)) / np.max(b.Q_i) for a, b in
+                          zip(res["warm"]["sols"], res["cold"]["sols"]) if a is not None and b is not None),
+                         default=float("nan"))
+                row = dict(case=f"{p}|{tr}|{n:g}", cold_ms=res["cold"]["ms_per_case"], warm_ms=res["warm"]["ms_per_case"],
+                           cold_evaluations=res["cold"]["evaluations"], warm_evaluations=res["warm"]["evaluations"],
+                           cold_failed=res["cold"]["failed"], warm_failed=res["warm"]["failed"],
+                           cage_speed_rel_diff=dc, Q_i_rel_diff=dq)
+                out.append(row)
+                print(f"{row['case']:30s} cold {row['cold_ms']:6.2f} ms/case ({row['cold_failed']} failed)  warm "
+                      f"{row['warm_ms']:6.2f} ms/case ({row['warm_failed']} failed)  evaluations cold "
+                      f"{np.median(row['cold_evaluations'] or [0]):.0f} warm {np.median(row['warm_evaluations'] or [0]):.0f}"
+                      f"  warm-cold: cage {dc:.1e}, Q_i {dq:.1e}", flush=True)
+    return out
 
 
 def table1(g, quick):
@@ -116,7 +252,25 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="a few cases only")
     ap.add_argument("--out", default="out")
+    ap.add_argument("--speed", action="store_true", help="cost per load case over a matrix (docstring)")
+    ap.add_argument("--sweep", action="store_true", help="load sweeps solved cold and from the previous case")
+    ap.add_argument("--repeat", type=int, default=5, help="--speed, --sweep: warm runs per case (median)")
+    ap.add_argument("--save", help="--speed: write the solutions to this .npz")
+    ap.add_argument("--compare", help="--speed: compare the solutions with this .npz")
+    ap.add_argument("--only", help="--speed: cases whose key contains this string")
     a = ap.parse_args()
+    if a.sweep:
+        rows = sweep(a.repeat)
+        out = Path(a.out)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "bench_tribo_qs_sweep.json").write_text(json.dumps(rows, indent=1))
+        return
+    if a.speed:
+        rows, summ = speed(a.repeat, a.save, a.compare, a.only)
+        out = Path(a.out)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "bench_tribo_qs_speed.json").write_text(json.dumps(dict(summary=summ, cases=rows), indent=1))
+        return
     g = load_preset("7218B")
     res = {"matrix": matrix(g, a.quick), "table1": table1(g, a.quick)}
     ok = sum(r["ok"] for r in res["matrix"])

@@ -155,3 +155,22 @@ def test_fixed_tilt_moments_are_reactions():
     assert abs(R[4]) > 1.0     # a moment reaction appears
     free = QuasiStaticModel(g).solve(3000 * RPM, (2000.0, 0.0, 3000.0, 0.0, 0.0), stiffness=False)
     assert abs(free.u[4]) > 1e-4
+
+
+def test_start_from_a_neighbouring_solution_falls_back_to_the_rigid_ring_start():
+    """A start u0 from the neighbouring load case of a sweep (7218B, 20,000 rpm, (3040, 912, 912) ->
+    (3200, 960, 960) N) that fails the line search falls back to the rigid-ring start and returns the
+    equilibrium: the sum of the ball forces on the inner ring equals the applied load within 1e-6
+    relative (Newton's third law at the ring, as test_equilibrium_residual_over_sweep), the same
+    displacement as the solve without u0 (to 1e-9 m)."""
+    g = load_preset("7218B")
+    m = QuasiStaticModel(g)
+    w = 20000 * RPM
+    loads = np.array((3200.0, 960.0, 960.0, 0.0, 0.0))
+    u_prev = m.solve(w, 0.95 * loads, stiffness=False).u
+    with pytest.raises(ConvergenceError):       # the direct solve from the neighbour alone fails
+        m._solve(w, loads, u_prev, 1e-10, 30, False)
+    r = m.solve(w, loads, u0=u_prev, stiffness=False)
+    assert np.linalg.norm(r.ring_reaction() + loads) <= 1e-6 * np.linalg.norm(loads)
+    cold = m.solve(w, loads, stiffness=False)
+    assert np.max(np.abs(r.u - cold.u)) < 1e-9

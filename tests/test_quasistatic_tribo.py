@@ -137,3 +137,70 @@ def test_cli_quasistatic_traction_json(capsys):
     assert abs(d["cage_speed_rpm"] / d["jones_harris"]["cage_speed_rpm"] - 1) < 0.01
     assert cli_main(["quasistatic", "--bearing", "7218B", "--speed-rpm", "0", "--fz", "3000",
                      "--traction", "kalker"]) != 0
+
+
+def test_start_from_the_previous_load_case():
+    """A sweep's next case solved from the previous case's solution (solve(start=...): no Jones-Harris
+    solve) reaches the steady state of the solve from the Jones-Harris start: both are equilibria of
+    the same equations, so the inner ring's reaction equals the applied load to the solver tolerance
+    (1e-7 of the load: Newton's third law at the ring), and the two agree to a few times that tolerance
+    (cage speed 1e-6 relative, contact loads 1e-5 of the largest)."""
+    opt = _opt("lubricated")
+    m = TriboQuasiStaticModel(G, opt)
+    w = 3000 * RPM
+    loads = np.array((1000.0, 0.0, 3000.0, 0.0, 0.0))
+    prev = m.solve(w, (800.0, 0.0, 3000.0, 0.0, 0.0))
+    warm = m.solve(w, loads, start=prev)
+    cold = m.solve(w, loads)
+    assert warm.jones_harris is None and cold.jones_harris is not None
+    for q in (warm, cold):
+        assert np.max(np.abs(q.reaction + loads)) <= 1e-7 * 3000.0 * 1.001
+    assert abs(warm.cage_speed / cold.cage_speed - 1) < 1e-6
+    assert np.max(np.abs(warm.Q_i - cold.Q_i)) < 1e-5 * np.max(cold.Q_i)
+    assert np.max(np.abs(warm.u - cold.u)) < 1e-5 * np.max(np.abs(cold.u))
+
+
+def test_start_that_fails_falls_back_to_jones_harris():
+    """A start that does not lead to a steady state (here: non-finite ball speeds) falls back to the
+    Jones-Harris start and returns that solve's equilibrium (reaction equal to the load to 1e-7 of it):
+    the same state as the solve without a start, to the bit (the same computation; the continuation in
+    speed, the next fallback, would end elsewhere within the tolerance)."""
+    from dataclasses import replace
+    m = TriboQuasiStaticModel(G, _opt("coulomb"))
+    w = 3000 * RPM
+    loads = np.array((1000.0, 0.0, 3000.0, 0.0, 0.0))
+    prev = m.solve(w, loads)
+    bad = replace(prev, omega_ball=np.full_like(prev.omega_ball, np.nan))
+    q = m.solve(w, loads, start=bad)
+    assert q.jones_harris is not None
+    assert np.max(np.abs(q.reaction + loads)) <= 1e-7 * 3000.0 * 1.001
+    assert np.array_equal(q.y, prev.y) and q.iterations == prev.iterations
+
+
+@pytest.mark.parametrize("options", [dict(traction="lubricated"), dict(traction="kalker", mu=0.1),
+                                     dict(traction="coulomb", fits="fit20", ring_growth=True)])
+def test_memoised_parameters_equal_the_dynamic_models(options):
+    """The memoised kernel parameters of the quasi-static solve are those DynamicModel.initialize sets
+    (the same bearing, options and speed; with ring growth the running geometry at that speed), except
+    the entries the quasi-static model sets itself: the cage's oil films off and the ring's support
+    damping (zero velocity at rest) left at 0. Exact equality: the same code computes them."""
+    from bearing_core.quasistatic_tribo import _kernel_setup
+    from bearing_core.ring_fits import RingFits
+    g = G
+    if options.get("fits") == "fit20":
+        options = dict(options, fits=RingFits(shaft_interference=20e-6))
+        g = load_preset("7218B", bore=0.090, outside_diameter=0.160)     # ISO 15 boundary dimensions
+    m = TriboQuasiStaticModel(g, DynamicsOptions(**options))
+    w = 6000 * RPM
+    gq, P, tabs = m._setup(w)
+    d = DynamicModel(g, m.opt)
+    d.initialize(w, (1000.0, 0.0, 3000.0, 0.0, 0.0))
+    Pd = d.P.copy()
+    Pd[K.P_LUBE] = 0.0
+    Pd[K.P_ETA_LAND] = 0.0
+    Pd[K.P_CRX:K.P_CRTY + 1] = 0.0
+    assert np.array_equal(P, Pd)
+    assert (gq.D, gq.dm, gq.fi, gq.fo, gq.alpha0) == (d.g.D, d.g.dm, d.g.fi, d.g.fo, d.g.alpha0)
+    for a, b in zip(tabs, (d._tab_i, d._tab_o, d._ta0, d._tda, d._tp, *d._quad)):
+        assert np.array_equal(a, b)
+    assert _kernel_setup.cache_info().currsize >= 1
