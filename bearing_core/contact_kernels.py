@@ -52,7 +52,7 @@ import numpy as np
 from .hertz import hertz_table_coefs
 
 from . import ehl_traction as EHL
-from .jit import hot
+from .jit import CONTRACT, hot
 
 # traction model selectors
 TRACTION_COULOMB = 0      # mu = mu0 tanh(|v| / v_reg)
@@ -108,6 +108,67 @@ def ellipse_quadrature(n_major, n_minor):
     wz = 0.5 * (wz + wz[::-1])
     return (np.ascontiguousarray(xi), np.ascontiguousarray(wxi), np.ascontiguousarray(zeta),
             np.ascontiguousarray(wz))
+
+
+# --------------------------------------------------------------------------------------------------
+# 0. arctangent inline (no C library call in the per-ball code): fdlibm s_atan.c (Sun Microsystems, 1993),
+# error < 1 ulp: |x| reduced to [0, 7/16] by atan(x) = atan(c) + atan((x - c) / (1 + c x)) with c = 0, 1/2,
+# 1, 3/2 or infinity, then an odd polynomial of degree 23; atan(c) split into a high and a low part.
+_ATAN_HI = (4.63647609000806093515e-01, 7.85398163397448278999e-01, 9.82793723247329054082e-01,
+            1.57079632679489655800e+00)
+_ATAN_LO = (2.26987774529616870924e-17, 3.06161699786838301793e-17, 1.39033110312309984516e-17,
+            6.12323399573676603587e-17)
+(_AT0, _AT1, _AT2, _AT3, _AT4, _AT5, _AT6, _AT7, _AT8, _AT9, _AT10) = (
+    3.33333333333329318027e-01, -1.99999999998764832476e-01, 1.42857142725034663711e-01,
+    -1.11111104054623557880e-01, 9.09088713343650656196e-02, -7.69187620504482999495e-02,
+    6.66107313738753120669e-02, -5.83357013379057348645e-02, 4.97687799461593236017e-02,
+    -3.65315727442169155270e-02, 1.62858201153657823623e-02)
+
+
+@hot(fastmath=CONTRACT)
+def _atan_series(x):
+    """x * (s1 + s2): the odd series of atan(x) - x for |x| <= 7/16 (fdlibm)."""
+    z = x * x
+    w = z * z
+    s1 = z * (_AT0 + w * (_AT2 + w * (_AT4 + w * (_AT6 + w * (_AT8 + w * _AT10)))))
+    s2 = w * (_AT1 + w * (_AT3 + w * (_AT5 + w * (_AT7 + w * _AT9))))
+    return x * (s1 + s2)
+
+
+@hot(fastmath=CONTRACT)
+def atan(x):
+    """Arctangent [rad] of x, error < 1 ulp (fdlibm s_atan.c); NaN propagates, +-inf gives +-pi/2."""
+    ax = abs(x)
+    if ax < 0.4375:
+        return x - _atan_series(x)
+    if ax < 0.6875:
+        k = 0
+        t = (2.0 * ax - 1.0) / (2.0 + ax)
+    elif ax < 1.1875:
+        k = 1
+        t = (ax - 1.0) / (ax + 1.0)
+    elif ax < 2.4375:
+        k = 2
+        t = (ax - 1.5) / (1.0 + 1.5 * ax)
+    else:               # also NaN: -1 / NaN stays NaN
+        k = 3
+        t = -1.0 / ax
+    r = _ATAN_HI[k] - ((_atan_series(t) - _ATAN_LO[k]) - t)
+    return r if x >= 0.0 else -r
+
+
+@hot
+def atan2(y, x):
+    """atan2(y, x) [rad]: atan(y / x) inline for x > 0 (within 2 ulp), the C library otherwise."""
+    if x > 0.0:
+        return atan(y / x)
+    return math.atan2(y, x)
+
+
+@hot
+def wrap_angle(a):
+    """Angle a [rad] wrapped to [-pi, pi) as (a + pi) % (2 pi) - pi."""
+    return (a + math.pi) % (2.0 * math.pi) - math.pi
 
 
 # --------------------------------------------------------------------------------------------------
@@ -346,8 +407,15 @@ def ball_pocket_contact(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_
     f = -mu_cb F_n tanh(|v_s| / v_reg) v_s/|v_s|, v_s in (r, z).
     Returns (F_n [N], F_t, F_r, F_z [N] force on the ball, M_r, M_z [N m] its moment about the
     ball centre); the cage gets the opposite force."""
-    dth = theta_b - theta_c
-    dth = (dth + math.pi) % (2.0 * math.pi) - math.pi
+    return ball_pocket_contact_rel(wrap_angle(theta_b - theta_c), dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb,
+                                   mu_cb, v_reg, D, vr, vz, wr, wz, vcr, vcz)
+
+
+@hot
+def ball_pocket_contact_rel(dth, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu_cb, v_reg, D, vr, vz, wr, wz, vcr,
+                            vcz):
+    """ball_pocket_contact from dth [rad], the ball azimuth minus the pocket-centre azimuth already wrapped
+    to [-pi, pi) (the right-hand side forms it without an arctangent of the ball position)."""
     sig = 1.0 if dth >= 0.0 else -1.0
     pen = abs(dth) * r_p - c_p
     if not pen > 0.0:
@@ -440,7 +508,7 @@ def _hd_ball_flat_film(u, eta, alpha_pv, R, E_red, F):
 def _brewe_hamrock_taylor(ar):
     """Isoviscous-rigid dimensionless minimum-film load number H_min,IR(a_r) (Brewe, Hamrock & Taylor 1979)."""
     ph = 1.0 / (1.0 + 2.0 / (3.0 * ar))
-    c = 0.131 * math.atan(0.5 * ar) + 1.683
+    c = 0.131 * atan(0.5 * ar) + 1.683
     return 128.0 * ar * ph * ph * c * c
 
 
@@ -459,8 +527,16 @@ def ball_pocket_lubricated(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb,
     wall offset), P_loss [W] film and friction dissipation (>= 0 on average; the hydrodynamic normal
     force can return power while the gap opens), P_damp [W] penalty damping dissipation, U_el [J]
     elastic energy of the penalty)."""
-    dth = theta_b - theta_c
-    dth = (dth + math.pi) % (2.0 * math.pi) - math.pi
+    return ball_pocket_lubricated_rel(wrap_angle(theta_b - theta_c), dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb,
+                                      mu_bl, mu_ehl, v_reg, eta, alpha_pv, E_red, sigma, D, vr, vz, wr, wz, vcr,
+                                      vcz)
+
+
+@hot
+def ball_pocket_lubricated_rel(dth, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu_bl, mu_ehl, v_reg, eta,
+                               alpha_pv, E_red, sigma, D, vr, vz, wr, wz, vcr, vcz):
+    """ball_pocket_lubricated from dth [rad], the ball azimuth minus the pocket-centre azimuth already
+    wrapped to [-pi, pi)."""
     R = 0.5 * D
     hfl = sigma if sigma > 1e-9 else 1e-9
     # conformal cylindrical pocket: curvature 1/R along the pocket axis r, 1/R - 1/(R + c_p) around it

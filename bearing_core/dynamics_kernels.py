@@ -46,8 +46,8 @@ import numpy as np
 from .jit import hot
 
 from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics, ellipse_traction,
-                              ball_pocket_contact, ball_pocket_lubricated, normal_contact_force, DAMP_LINEAR,
-                              TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
+                              ball_pocket_contact_rel, ball_pocket_lubricated_rel, normal_contact_force,
+                              atan2, wrap_angle, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
 from .ehl_traction import ehl_ellipse_traction_into, ehl_scratch
 from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 from .churning import cylinder_churning_torque
@@ -441,23 +441,29 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             TOz -= rb * ft2 + noz2 * mn2 + nor2 * mm2
         # ball-pocket contact (seed 000 Eq. 6, contact_kernels.ball_pocket_contact) in the frame of the
         # (possibly whirling) cage: ball azimuth about the cage centre against the pocket azimuth
-        phi = thc + 2.0 * math.pi * j / Z
+        # dth: azimuth of the ball centre about the cage centre minus the pocket azimuth thc + 2 pi j / Z,
+        # = (th - pocket azimuth) + the angle of the ball centre seen from the cage centre against the ball's
+        # radial direction (c, s), small (cage offset over pitch radius): no arctangent of a full angle, and
+        # a wrap only if the state puts the ball a turn away from its pocket
+        d0 = th - thc - 2.0 * math.pi * j / Z
+        if abs(d0) > math.pi:
+            d0 = wrap_angle(d0)
+        dth = d0 + atan2(xc * s - yc * c, rb - xc * c - yc * s)
         bx_ = rb * c - xc
         by_ = rb * s - yc
         rr2 = bx_ * bx_ + by_ * by_
-        thb = math.atan2(by_, bx_)
         vbx = rd * c - rb * thd * s - vxc
         vby = rd * s + rb * thd * c - vyc
         thb_d = (bx_ * vby - by_ * vbx) / rr2
         vcr_ = vxc * c + vyc * s
         rbc = math.sqrt(rr2)   # ball radius about the cage centre: the arm of the pocket force
         if lube:
-            (Fpk, fpt, fpr, fpz, mpr, mpz, tw_, pl_, pd_, ue_) = ball_pocket_lubricated(
-                thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, P[P_MUBL], P[P_MUEHL], 0.01, P[P_ETA_PK],
+            (Fpk, fpt, fpr, fpz, mpr, mpz, tw_, pl_, pd_, ue_) = ball_pocket_lubricated_rel(
+                dth, thb_d, wc, rbc, cpk, kpk, cpkd, P[P_MUBL], P[P_MUEHL], 0.01, P[P_ETA_PK],
                 P[P_ALPHA_PK], P[P_EPK], P[P_SIGPK], D, rd, zd, Wr, Wz, vcr_, 0.0)
         else:
-            Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact(thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, mupk,
-                                                               0.01, D, rd, zd, Wr, Wz, vcr_, 0.0)
+            Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact_rel(dth, thb_d, wc, rbc, cpk, kpk, cpkd, mupk,
+                                                                   0.01, D, rd, zd, Wr, Wz, vcr_, 0.0)
             tw_ = pl_ = pd_ = ue_ = 0.0
         if lube or Fpk > 0.0:
             # pocket force along the cage-frame tangential direction at the ball; the cage gets (-fx, -fy) at
@@ -481,7 +487,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         elif Fpk > 0.0:
             sg = 1.0 if fpt < 0.0 else -1.0                         # side of the pocket wall (+t or -t)
             TC += sg * 0.5 * D * fpr       # the wall friction acts at the offset sg D/2 t: torque on the cage
-            pen = rbc * abs(((thb - phi + math.pi) % (2.0 * math.pi)) - math.pi) - cpk
+            pen = rbc * abs(dth) - cpk
             Uel += 0.5 * kpk * pen * pen
             # dissipation: friction and damping of the pocket contact = -(power of its forces on the
             # relative motion) - d(elastic energy)/dt, evaluated from the relative velocities
