@@ -283,14 +283,15 @@ def test_inline_atan_against_c_library():
 def test_pocket_kernels_from_wrapped_angle():
     """ball_pocket_contact_rel / ball_pocket_lubricated_rel, given the wrapped azimuth difference, return
     what ball_pocket_contact / ball_pocket_lubricated return for the two azimuths (the same code after the
-    wrap; 1e-13 relative: the two compilations may contract other multiply-adds), also a full turn away."""
+    wrap), also a full turn away. Tolerance 1e-10 relative: the compilations may order the wrap's sums
+    differently (re-association), ~1e-15 rad on the angle, amplified ~1e3x in the penetration r_p |dth| - c_p."""
     for th_b, th_c in ((1.0 + 3e-3, 1.0), (7.0 - 2.5e-3, 7.0 + 2.0 * math.pi), (-20.0, -20.0 + 1e-4)):
         kw = (100.0, 99.0, 0.05, 0.1e-3, 1e7, 50.0)
         tail = (0.01, 0.3, -0.2, 50.0, -30.0, 0.01, 0.0)
         a = ck.ball_pocket_contact(th_b, th_c, *kw, 0.1, 1e-3, *tail)
         b = ck.ball_pocket_contact_rel(ck.wrap_angle(th_b - th_c), *kw, 0.1, 1e-3, *tail)
-        np.testing.assert_allclose(a, b, rtol=1e-13, atol=0.0)
+        np.testing.assert_allclose(a, b, rtol=1e-10, atol=0.0)
         lub = (0.15, 0.05, 0.01, 0.02, 2e-8, 2.3e9, 4e-7)
         a = ck.ball_pocket_lubricated(th_b, th_c, *kw, *lub, *tail)
         b = ck.ball_pocket_lubricated_rel(ck.wrap_angle(th_b - th_c), *kw, *lub, *tail)
-        np.testing.assert_allclose(a, b, rtol=1e-13, atol=0.0)
+        np.testing.assert_allclose(a, b, rtol=1e-10, atol=0.0)
