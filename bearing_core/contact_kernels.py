@@ -52,6 +52,7 @@ import numpy as np
 from .hertz import hertz_table_coefs
 
 from . import ehl_traction as EHL
+from . import mathx as MX
 from .jit import CONTRACT, hot
 
 # traction model selectors
@@ -180,9 +181,9 @@ def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
     nz = dz / L
     delta = L - rc
     if inner:
-        alpha = math.atan2(-nz, -nr)
+        alpha = atan2(-nz, -nr)
     else:
-        alpha = math.atan2(nz, nr)
+        alpha = atan2(nz, nr)
     if delta > 0.0:
         # hertz table at |alpha|, and Q = K delta^1.5, Q^(1/3) = K^(1/3) delta^(1/2) without pow of delta
         K, ac, bc = hertz_table_coefs(table, alpha0, dalpha, alpha)
@@ -235,7 +236,7 @@ def gothic_arch_contact(dr, dz, rc, fD, e, arc, table, alpha0, dalpha, inner):
     sa = -nz if inner else nz                 # sin(alpha) (contact_kernels convention above)
     valid = fD * sa >= e if arc == 1 else fD * sa < -e
     if not valid:
-        alpha = math.atan2(-nz, -nr) if inner else math.atan2(nz, nr)
+        alpha = atan2(-nz, -nr) if inner else atan2(nz, nr)
         return False, L - rc, nr, nz, alpha, 0.0, 0.0, 0.0, 0.0
     delta, nr, nz, alpha, Q, a, b, p = _one_contact(dr, dz, rc, table, alpha0, dalpha, inner)
     return True, delta, nr, nz, alpha, Q, a, b, p
@@ -507,7 +508,7 @@ def _hd_ball_flat_film(u, eta, alpha_pv, R, E_red, F):
 @hot
 def _brewe_hamrock_taylor(ar):
     """Isoviscous-rigid dimensionless minimum-film load number H_min,IR(a_r) (Brewe, Hamrock & Taylor 1979)."""
-    ph = 1.0 / (1.0 + 2.0 / (3.0 * ar))
+    ph = 3.0 * ar / (3.0 * ar + 2.0)          # (1 + 2 / (3 a_r))^-1
     c = 0.131 * atan(0.5 * ar) + 1.683
     return 128.0 * ar * ph * ph * c * c
 
@@ -561,17 +562,18 @@ def ball_pocket_lubricated_rel(dth, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu
         vsr = vr - vcr - w * R * (wz - dtheta_c)
         vsz = vz - vcz + w * R * wr
         vs = math.sqrt(vsr * vsr + vsz * vsz)
-        # radii along (Rs) and across (Rt) the entrainment direction (Euler)
+        # radii along (Rs) and across (Rt) the entrainment direction (Euler), ar = Rt / Rs
         Rs = R
-        Rt = R
+        ar = 1.0
         if vs > 0.0:
             c2 = (vsr / vs) ** 2
-            Rs = 1.0 / (c2 * kr + (1.0 - c2) * kz)
-            Rt = 1.0 / ((1.0 - c2) * kr + c2 * kz)
-        ar = Rt / Rs
+            ks = c2 * kr + (1.0 - c2) * kz
+            Rs = 1.0 / ks
+            ar = ks / ((1.0 - c2) * kr + c2 * kz)
+        ih = 1.0 / h
         # film normal force (entrainment + squeeze), never tensile
-        Ff = (eta * 0.5 * vs * Rs * math.sqrt(_brewe_hamrock_taylor(ar) * Rs / h)
-              - 6.0 * math.pi * eta * R * R * gdot / h)
+        Ff = (eta * 0.5 * vs * Rs * math.sqrt(_brewe_hamrock_taylor(ar) * Rs * ih)
+              - 6.0 * math.pi * eta * R * R * gdot * ih)
         if Ff < 0.0:
             Ff = 0.0
         # solid / EHL contact (penalty) beyond the clearance
@@ -590,24 +592,24 @@ def ball_pocket_lubricated_rel(dth, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu
         Pl += Ff * (-gdot)     # work of the film force on the closing gap
         # friction on the ball surface at the wall: viscous shear of the film + EHL / mixed friction
         if vs > 0.0:
-            lr = math.log(R / h)
+            lr = MX.log(R * ih)
             if lr < 0.0:
                 lr = 0.0
-            fv = math.pi * eta * R * vs * (3.2 * lr + 3.05)
-            mu = mu_ehl
+            f = math.pi * eta * R * vs * (3.2 * lr + 3.05)       # viscous shear
             if Fc > 0.0:
                 hm = _hd_pocket_film(0.5 * vs, eta, alpha_pv, Rs, 1.0339 * ar ** 0.636, E_red, Fc)
                 ff = EHL.fluid_fraction(hm / hfl)
                 mu_f = mu_ehl
                 if hm > 0.0:
-                    ae = (3.0 * Fc * math.sqrt(Rs * Rt) / (2.0 * E_red)) ** (1.0 / 3.0)
+                    ae = (3.0 * Fc * Rs * math.sqrt(ar) / (2.0 * E_red)) ** (1.0 / 3.0)
                     pm = Fc / (math.pi * ae * ae)
                     ap = alpha_pv * pm
                     mu_n = eta * math.exp(ap if ap < 30.0 else 30.0) * vs / (hm * pm)
                     if mu_n < mu_f:
                         mu_f = mu_n
                 mu = (1.0 - ff) * mu_bl + ff * mu_f
-            f = (fv + mu * Fc * math.tanh(vs / v_reg)) / vs
+                f += mu * Fc * math.tanh(vs / v_reg)             # mixed / EHL friction in contact
+            f /= vs
             fr = -f * vsr
             fz = -f * vsz
             Fr += fr
