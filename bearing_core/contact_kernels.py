@@ -53,6 +53,7 @@ from .hertz import hertz_table_coefs
 
 from . import ehl_traction as EHL
 from . import mathx as MX
+from .mathx import _bits_f64, _f64_bits
 from .jit import CONTRACT, hot
 
 # traction model selectors
@@ -112,13 +113,11 @@ def ellipse_quadrature(n_major, n_minor):
 
 
 # --------------------------------------------------------------------------------------------------
-# 0. arctangent inline (no C library call in the per-ball code): fdlibm s_atan.c (Sun Microsystems, 1993),
-# error < 1 ulp: |x| reduced to [0, 7/16] by atan(x) = atan(c) + atan((x - c) / (1 + c x)) with c = 0, 1/2,
-# 1, 3/2 or infinity, then an odd polynomial of degree 23; atan(c) split into a high and a low part.
-_ATAN_HI = (4.63647609000806093515e-01, 7.85398163397448278999e-01, 9.82793723247329054082e-01,
-            1.57079632679489655800e+00)
-_ATAN_LO = (2.26987774529616870924e-17, 3.06161699786838301793e-17, 1.39033110312309984516e-17,
-            6.12323399573676603587e-17)
+# 0. arctangent and cube root inline (no C library call in the per-ball code)
+# atan: fdlibm s_atan.c (Sun Microsystems, 1993), error < 1 ulp: |x| reduced to [0, 7/16] by
+# atan(x) = atan(c) + atan((x - c) / (1 + c x)) with c = 0, 1/2, 1, 3/2 or infinity, then an odd polynomial of
+# degree 23; atan(c) split into a high and a low part. Written branch-free (the reduction's constants chosen
+# by comparisons, one division), so that LLVM inlines it into the callers.
 (_AT0, _AT1, _AT2, _AT3, _AT4, _AT5, _AT6, _AT7, _AT8, _AT9, _AT10) = (
     3.33333333333329318027e-01, -1.99999999998764832476e-01, 1.42857142725034663711e-01,
     -1.11111104054623557880e-01, 9.09088713343650656196e-02, -7.69187620504482999495e-02,
@@ -127,42 +126,72 @@ _ATAN_LO = (2.26987774529616870924e-17, 3.06161699786838301793e-17, 1.3903311031
 
 
 @hot(fastmath=CONTRACT)
-def _atan_series(x):
-    """x * (s1 + s2): the odd series of atan(x) - x for |x| <= 7/16 (fdlibm)."""
-    z = x * x
+def atan_ratio(ay, x):
+    """atan(ay / x) [rad] for ay >= 0 and x > 0 (finite), with one division: the reduction's argument
+    (ay / x - c) / (1 + c ay / x) is formed from ay and x directly, (ay - c x) / (x + c ay) (fdlibm s_atan.c
+    otherwise; error within 2 ulp). NaN propagates."""
+    # t = (A ay + B x) / (C x + E ay) and atan(c) = hi + lo for c = 0, 1/2, 1, 3/2, infinity
+    A = 1.0; B = 0.0; C = 1.0; E = 0.0; hi = 0.0; lo = 0.0
+    if ay >= 0.4375 * x:
+        A = 2.0; B = -1.0; C = 2.0; E = 1.0
+        hi = 4.63647609000806093515e-01; lo = 2.26987774529616870924e-17
+    if ay >= 0.6875 * x:
+        A = 1.0; B = -1.0; C = 1.0; E = 1.0
+        hi = 7.85398163397448278999e-01; lo = 3.06161699786838301793e-17
+    if ay >= 1.1875 * x:
+        A = 1.0; B = -1.5; C = 1.0; E = 1.5
+        hi = 9.82793723247329054082e-01; lo = 1.39033110312309984516e-17
+    if not ay < 2.4375 * x:          # also NaN: NaN / NaN below stays NaN
+        A = 0.0; B = -1.0; C = 0.0; E = 1.0
+        hi = 1.57079632679489655800e+00; lo = 6.12323399573676603587e-17
+    t = (A * ay + B * x) / (C * x + E * ay)
+    z = t * t
     w = z * z
     s1 = z * (_AT0 + w * (_AT2 + w * (_AT4 + w * (_AT6 + w * (_AT8 + w * _AT10)))))
     s2 = w * (_AT1 + w * (_AT3 + w * (_AT5 + w * (_AT7 + w * _AT9))))
-    return x * (s1 + s2)
+    return hi - ((t * (s1 + s2) - lo) - t)
+
+
+@hot
+def atan(x):
+    """Arctangent [rad] of x, error within 2 ulp (atan_ratio); NaN propagates, +-inf gives +-pi/2."""
+    ax = abs(x)
+    if ax > 1e300:               # +-inf (NaN passes on)
+        ax = 1e300
+    r = atan_ratio(ax, 1.0)
+    return r if x >= 0.0 else -r
+
+
+# cube root: FreeBSD s_cbrt.c (B. Evans, after fdlibm), error < 0.667 ulp: a first guess from the exponent
+# bits, a polynomial to 23 bits, one Newton step to 53 bits
+_CBRT_B1 = 715094163           # (1023 - 1023 / 3 - 0.03306235651) 2^20
+(_CP0, _CP1, _CP2, _CP3, _CP4) = (1.87595182427177009643, -1.88497979543377169875, 1.621429720105354466140,
+                                  -0.758397934778766047437, 0.145996192886612446982)
 
 
 @hot(fastmath=CONTRACT)
-def atan(x):
-    """Arctangent [rad] of x, error < 1 ulp (fdlibm s_atan.c); NaN propagates, +-inf gives +-pi/2."""
-    ax = abs(x)
-    if ax < 0.4375:
-        return x - _atan_series(x)
-    if ax < 0.6875:
-        k = 0
-        t = (2.0 * ax - 1.0) / (2.0 + ax)
-    elif ax < 1.1875:
-        k = 1
-        t = (ax - 1.0) / (ax + 1.0)
-    elif ax < 2.4375:
-        k = 2
-        t = (ax - 1.5) / (1.0 + 1.5 * ax)
-    else:               # also NaN: -1 / NaN stays NaN
-        k = 3
-        t = -1.0 / ax
-    r = _ATAN_HI[k] - ((_atan_series(t) - _ATAN_LO[k]) - t)
-    return r if x >= 0.0 else -r
+def cbrt_pos(x):
+    """Cube root of x > 0 [-] (FreeBSD s_cbrt.c, error < 0.667 ulp) for normal finite x; any other x (0,
+    subnormal, inf, NaN, negative) through numpy's cbrt."""
+    if not (x >= 2.2250738585072014e-308 and x <= 1.7976931348623157e308):
+        return np.cbrt(x)
+    hx = _f64_bits(x) >> 32
+    t = _bits_f64((hx // 3 + _CBRT_B1) << 32)
+    r = (t * t) * (t / x)
+    t = t * ((_CP0 + r * (_CP1 + r * _CP2)) + ((r * r) * r) * (_CP3 + r * _CP4))
+    t = _bits_f64((_f64_bits(t) + 0x80000000) & -0x40000000)     # round away from zero to 23 bits
+    s = t * t                                                       # exact
+    r = x / s
+    r = (r - t) / (t + t + r)
+    return t + t * r
 
 
 @hot
 def atan2(y, x):
-    """atan2(y, x) [rad]: atan(y / x) inline for x > 0 (within 2 ulp), the C library otherwise."""
-    if x > 0.0:
-        return atan(y / x)
+    """atan2(y, x) [rad]: atan_ratio inline for finite x > 0 (within 2 ulp), the C library otherwise."""
+    if x > 0.0 and x < 1e300 and abs(y) < 1e300:
+        r = atan_ratio(abs(y), x)
+        return r if y >= 0.0 else -r
     return math.atan2(y, x)
 
 
@@ -177,19 +206,21 @@ def wrap_angle(a):
 @hot(inline="always")
 def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
     L = math.sqrt(dr * dr + dz * dz)
-    nr = dr / L
-    nz = dz / L
+    iL = 1.0 / L
+    nr = dr * iL
+    nz = dz * iL
     delta = L - rc
+    # contact angle from (dr, dz) = L n directly: not waiting for the normalisation
     if inner:
-        alpha = atan2(-nz, -nr)
+        alpha = atan2(-dz, -dr)
     else:
-        alpha = atan2(nz, nr)
+        alpha = atan2(dz, dr)
     if delta > 0.0:
         # hertz table at |alpha|, and Q = K delta^1.5, Q^(1/3) = K^(1/3) delta^(1/2) without pow of delta
         K, ac, bc = hertz_table_coefs(table, alpha0, dalpha, alpha)
         sd = math.sqrt(delta)
         Q = K * delta * sd
-        q3 = np.cbrt(K) * sd
+        q3 = cbrt_pos(K) * sd
         a = ac * q3
         b = bc * q3
         p = 1.5 * Q / (math.pi * a * b)
@@ -508,9 +539,16 @@ def _hd_ball_flat_film(u, eta, alpha_pv, R, E_red, F):
 @hot
 def _brewe_hamrock_taylor(ar):
     """Isoviscous-rigid dimensionless minimum-film load number H_min,IR(a_r) (Brewe, Hamrock & Taylor 1979)."""
-    ph = 3.0 * ar / (3.0 * ar + 2.0)          # (1 + 2 / (3 a_r))^-1
-    c = 0.131 * atan(0.5 * ar) + 1.683
-    return 128.0 * ar * ph * ph * c * c
+    return 128.0 * ar * _bht_factor(ar, 1.0)
+
+
+@hot
+def _bht_factor(ks, kt):
+    """phi_r^2 [0.131 atan(a_r / 2) + 1.683]^2 of _brewe_hamrock_taylor at a_r = ks / kt (curvatures along
+    and across the entrainment), two divisions: H_min,IR = 128 a_r (this)."""
+    ph = 3.0 * ks / (3.0 * ks + 2.0 * kt)     # phi_r = (1 + 2 / (3 a_r))^-1
+    c = 0.131 * atan_ratio(0.5 * ks, kt) + 1.683
+    return ph * ph * c * c
 
 
 @hot
@@ -562,17 +600,20 @@ def ball_pocket_lubricated_rel(dth, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu
         vsr = vr - vcr - w * R * (wz - dtheta_c)
         vsz = vz - vcz + w * R * wr
         vs = math.sqrt(vsr * vsr + vsz * vsz)
-        # radii along (Rs) and across (Rt) the entrainment direction (Euler), ar = Rt / Rs
-        Rs = R
-        ar = 1.0
+        # curvatures along (ks = 1 / Rs) and across (kt = 1 / Rt) the entrainment direction (Euler)
+        ks = kr
+        kt = kr
+        ivs = 0.0
         if vs > 0.0:
-            c2 = (vsr / vs) ** 2
+            ivs = 1.0 / vs
+            c2 = (vsr * ivs) ** 2
             ks = c2 * kr + (1.0 - c2) * kz
-            Rs = 1.0 / ks
-            ar = ks / ((1.0 - c2) * kr + c2 * kz)
+            kt = (1.0 - c2) * kr + c2 * kz
+        rk = 1.0 / (ks * kt)
+        Rs = kt * rk
         ih = 1.0 / h
-        # film normal force (entrainment + squeeze), never tensile
-        Ff = (eta * 0.5 * vs * Rs * math.sqrt(_brewe_hamrock_taylor(ar) * Rs * ih)
+        # film normal force (entrainment + squeeze), never tensile; H_min,IR at a_r = Rt / Rs = ks / kt
+        Ff = (eta * 0.5 * vs * Rs * math.sqrt(128.0 * ks * ks * rk * _bht_factor(ks, kt) * Rs * ih)
               - 6.0 * math.pi * eta * R * R * gdot * ih)
         if Ff < 0.0:
             Ff = 0.0
@@ -597,6 +638,7 @@ def ball_pocket_lubricated_rel(dth, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu
                 lr = 0.0
             f = math.pi * eta * R * vs * (3.2 * lr + 3.05)       # viscous shear
             if Fc > 0.0:
+                ar = ks * ks * rk
                 hm = _hd_pocket_film(0.5 * vs, eta, alpha_pv, Rs, 1.0339 * ar ** 0.636, E_red, Fc)
                 ff = EHL.fluid_fraction(hm / hfl)
                 mu_f = mu_ehl
@@ -609,7 +651,7 @@ def ball_pocket_lubricated_rel(dth, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu
                         mu_f = mu_n
                 mu = (1.0 - ff) * mu_bl + ff * mu_f
                 f += mu * Fc * math.tanh(vs / v_reg)             # mixed / EHL friction in contact
-            f /= vs
+            f *= ivs
             fr = -f * vsr
             fz = -f * vsz
             Fr += fr

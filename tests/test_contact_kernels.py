@@ -295,3 +295,13 @@ def test_pocket_kernels_from_wrapped_angle():
         a = ck.ball_pocket_lubricated(th_b, th_c, *kw, *lub, *tail)
         b = ck.ball_pocket_lubricated_rel(ck.wrap_angle(th_b - th_c), *kw, *lub, *tail)
         np.testing.assert_allclose(a, b, rtol=1e-10, atol=0.0)
+
+
+def test_inline_cbrt_against_numpy():
+    """contact_kernels.cbrt_pos (FreeBSD s_cbrt.c, error < 0.667 ulp) against numpy's cbrt (C library,
+    < 1 ulp): within 2 ulp over 1e-300..1e300 and at powers of two; 0, inf and NaN through numpy."""
+    x = np.concatenate([np.geomspace(1e-300, 1e300, 6001), 2.0 ** np.arange(-1000, 1001, 7), [1.0, 8.0, 27.0]])
+    got = np.array([ck.cbrt_pos(v) for v in x])
+    ref = np.cbrt(x)
+    assert np.all(np.abs(got - ref) <= 2.0 * np.spacing(ref))
+    assert ck.cbrt_pos(0.0) == 0.0 and ck.cbrt_pos(math.inf) == math.inf and math.isnan(ck.cbrt_pos(math.nan))
