@@ -313,6 +313,13 @@ def contact_kinematics(r_b, vr, vt, vz, wr, wt, wz, Omega_race, vrr, vrt, vrz, n
       u_roll [m/s]: rolling (entrainment) speed along t, the mean of the ball and race surface
       speeds relative to the contact point, which moves with the ball's orbital angular speed
       vt / r_b (signed; < 0 for the usual rolling of the outer race)."""
+    return contact_kinematics_orb(r_b, vr, vt, vz, vt / r_b, wr, wt, wz, Omega_race, vrr, vrt, vrz, n_r, n_z, D)
+
+
+@hot
+def contact_kinematics_orb(r_b, vr, vt, vz, w_orb, wr, wt, wz, Omega_race, vrr, vrt, vrz, n_r, n_z, D):
+    """contact_kinematics with the ball's orbital angular speed w_orb = vt / r_b [rad/s] given (the right-hand
+    side has it as a state: no division)."""
     h = 0.5 * D
     pr = h * n_r
     pz = h * n_z
@@ -332,7 +339,7 @@ def contact_kinematics(r_b, vr, vt, vz, wr, wt, wz, Omega_race, vrr, vrt, vrz, n
     w_spin = wr * n_r + wzr * n_z
     w_roll_m = -n_z * wr + n_r * wzr
     w_roll_t = wt
-    v_cp = vt / r_b * Rp
+    v_cp = w_orb * Rp
     u_roll = 0.5 * (vbt + vct) - v_cp
     return vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll
 

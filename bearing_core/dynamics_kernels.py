@@ -45,7 +45,7 @@ import math
 import numpy as np
 from .jit import hot
 
-from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics, ellipse_traction,
+from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics_orb, ellipse_traction,
                               ball_pocket_contact_rel, ball_pocket_lubricated_rel, normal_contact_force,
                               atan2, wrap_angle, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
 from .ehl_traction import ehl_ellipse_traction_into, ehl_scratch
@@ -173,7 +173,7 @@ def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wr
 
 
 @hot
-def _raceway_contact(delta, n_r, n_z, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz, D, dm,
+def _raceway_contact(delta, n_r, n_z, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz, D, gD,
                      zeta, mb):
     """Normal force and kinematics of one ball-raceway contact of the ball (rb, rd, thd, zd, Wr, Wt, Wz: state
     in its local frame) with a race turning at w_race [rad/s] whose curvature centre moves at (vcr, vct, vcz)
@@ -182,7 +182,7 @@ def _raceway_contact(delta, n_r, n_z, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vc
     stiffness 1.5 Q / delta, only in contact and never pulling (contact_kernels.normal_contact_force);
     contact kinematics (contact_kernels.contact_kinematics); effective radius of the contact along the
     rolling direction Rx = D/2 (1 -+ D cos(alpha) / dm), inner / outer (Hamrock-Dowson), with
-    cos(alpha) = -+ n_r.
+    cos(alpha) = -+ n_r; gD = D / dm.
     Returns (F_n [N] normal force with damping, P_damp [W], U_el [J] elastic energy 0.4 Q delta, Rx [m],
     then the kinematics vs_t, vs_m [m/s], w_spin, w_roll_m, w_roll_t [rad/s], u_roll [m/s]) for the
     traction (_race_traction). Scalar arguments only: no reference counting per contact."""
@@ -194,10 +194,10 @@ def _raceway_contact(delta, n_r, n_z, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vc
         Fn = normal_contact_force(Q, delta, dd, DAMP_LINEAR, 2.0 * zeta * math.sqrt(1.5 * Q / delta * mb))
         pdamp = (Fn - Q) * dd
         uel = 0.4 * Q * delta
-    vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz,
-                                                       n_r, n_z, D)
+    vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics_orb(rb, rd, rb * thd, zd, thd, Wr, Wt, Wz, w_race, vcr, vct,
+                                                           vcz, n_r, n_z, D)
     # cos(alpha) = -n_r (inner) or n_r (outer): the contact angle from the normal (contact_kernels)
-    Rx = 0.5 * D * (1.0 + D * n_r / dm)
+    Rx = 0.5 * D * (1.0 + gD * n_r)
     return Fn, pdamp, uel, Rx, vs_t, vs_m, wsp, wrm, wrt, ur
 
 
@@ -293,6 +293,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     lube = P[P_LUBE] > 0.5
     sco = 0.0; sci = 0.0; npr = 0.0        # pure-rolling cage speeds of the loaded balls
     gD = D / dm
+    imb = 1.0 / mb
+    iJb = 1.0 / Jb
     for j in range(nb):
         o = NSTATE_FIXED + NSB * j
         th = y[o]; rb = y[o + 1]; zb = y[o + 2]
@@ -353,13 +355,13 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # (_race_traction)
         (Fni, pd_i, ue_i, Rxi, vsti, vsmi, wspi, wrmi, wrti,
          uri) = _raceway_contact(dli, nir, niz, Qi, rb, rd, thd, zd, Wr, Wt, Wz, w, vri, vrt, vrz, D,
-                                 dm, zeta, mb)
+                                 gD, zeta, mb)
         fti, fmi, mni, mmi, mti, pli = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi, Rxi, Ryi, vsti, vsmi,
                                                       wspi, wrmi, wrti, uri, tmodel, tp, Gc, nuc, fnx, fny, qx,
                                                       qwx, qy, qwy, sc)
         (Fno, pd_o, ue_o, Rxo, vsto, vsmo, wspo, wrmo, wrto,
          uro) = _raceway_contact(dlo, nor, noz, Qo, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot, 0.0, D,
-                                 dm, zeta, mb)
+                                 gD, zeta, mb)
         fto, fmo, mno, mmo, mto, plo = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo, Rxo, Ryo, vsto, vsmo,
                                                       wspo, wrmo, wrto, uro, tmodel, tp, Gc, nuc, fnx, fny, qx,
                                                       qwx, qy, qwy, sc)
@@ -407,7 +409,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if Qi2 > 0.0:
             (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
              ur2) = _raceway_contact(dli2, nir2, niz2, Qi2, rb, rd, thd, zd, Wr, Wt, Wz, w,
-                                     vrr - zib * tdot, vrt, vrz, D, dm, zeta, mb)
+                                     vrr - zib * tdot, vrt, vrz, D, gD, zeta, mb)
             ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ai2_s, bi2_s, Qi2, pi2, D, Rdi, Rx2, Ryi, vst2,
                                                           vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
                                                           fny, qx, qwx, qy, qwy, sc)
@@ -424,7 +426,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if Qo2 > 0.0:
             (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
              ur2) = _raceway_contact(dlo2, nor2, noz2, Qo2, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot,
-                                     0.0, D, dm, zeta, mb)
+                                     0.0, D, gD, zeta, mb)
             ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ao2_s, bo2_s, Qo2, po2, D, Rdo, Rx2, Ryo, vst2,
                                                           vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
                                                           fny, qx, qwx, qy, qwy, sc)
@@ -454,9 +456,10 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         rr2 = bx_ * bx_ + by_ * by_
         vbx = rd * c - rb * thd * s - vxc
         vby = rd * s + rb * thd * c - vyc
-        thb_d = (bx_ * vby - by_ * vbx) / rr2
         vcr_ = vxc * c + vyc * s
         rbc = math.sqrt(rr2)   # ball radius about the cage centre: the arm of the pocket force
+        irbc = 1.0 / rbc
+        thb_d = (bx_ * vby - by_ * vbx) * (irbc * irbc)
         if lube:
             (Fpk, fpt, fpr, fpz, mpr, mpz, tw_, pl_, pd_, ue_) = ball_pocket_lubricated_rel(
                 dth, thb_d, wc, rbc, cpk, kpk, cpkd, P[P_MUBL], P[P_MUEHL], 0.01, P[P_ETA_PK],
@@ -468,8 +471,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if lube or Fpk > 0.0:
             # pocket force along the cage-frame tangential direction at the ball; the cage gets (-fx, -fy) at
             # the ball centre (a torque about its centre) and the films' shear torque tw_
-            tpx = -by_ / rbc          # (-sin, cos) of thb
-            tpy = bx_ / rbc
+            tpx = -by_ * irbc         # (-sin, cos) of the ball's azimuth about the cage centre
+            tpy = bx_ * irbc
             fx = fpt * tpx + fpr * c
             fy = fpt * tpy + fpr * s
             Fr += fx * c + fy * s
@@ -505,12 +508,12 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         dy[o] = thd
         dy[o + 1] = rd
         dy[o + 2] = zd
-        dy[o + 3] = (Ft / mb - 2.0 * rd * thd) / rb
-        dy[o + 4] = Fr / mb + rb * thd * thd
-        dy[o + 5] = Fz / mb
-        dy[o + 6] = Mr / Jb + thd * Wt
-        dy[o + 7] = Mt / Jb - thd * Wr
-        dy[o + 8] = Mz / Jb
+        dy[o + 3] = (Ft * imb - 2.0 * rd * thd) / rb
+        dy[o + 4] = Fr * imb + rb * thd * thd
+        dy[o + 5] = Fz * imb
+        dy[o + 6] = Mr * iJb + thd * Wt
+        dy[o + 7] = Mt * iJb - thd * Wr
+        dy[o + 8] = Mz * iJb
         # ring loads from ball j (global)
         gx = fr_ring * c - ft_ring * s
         gy = fr_ring * s + ft_ring * c
@@ -542,7 +545,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if Qi > 0.0:
             sai += ai_k; nai += 1.0
             Qimax = max(Qimax, Qi)
-            pmax = max(pmax, 1.5 * Qi / (math.pi * ai_s * bi_s))
+            pmax = max(pmax, pi_)          # p_max = 1.5 Q / (pi a b) of the contact kernel
         Qimin = min(Qimin, Qi)
         if Qi > 0.0 and Qo > 0.0:
             wco, wci = pure_rolling_cage_speeds_cs(w, -nir, sai_k, nor, sao_k, gD, wo)
@@ -550,20 +553,20 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if Qo > 0.0:
             sao += ao_k; nao += 1.0
             Qomax = max(Qomax, Qo)
-            pmax = max(pmax, 1.5 * Qo / (math.pi * ao_s * bo_s))
+            pmax = max(pmax, po)
         if Qi2 > 0.0:
             Qimax = max(Qimax, Qi2)
-            pmax = max(pmax, 1.5 * Qi2 / (math.pi * ai2_s * bi2_s))
+            pmax = max(pmax, pi2)
         if Qo2 > 0.0:
             Qomax = max(Qomax, Qo2)
-            pmax = max(pmax, 1.5 * Qo2 / (math.pi * ao2_s * bo2_s))
+            pmax = max(pmax, po2)
         if want_bd:
             bd[j, BD_QI2] = Qi2; bd[j, BD_AI2] = ai2; bd[j, BD_QO2] = Qo2; bd[j, BD_AO2] = ao2
             bd[j, BD_AI] = ai; bd[j, BD_AO] = ao; bd[j, BD_QI] = Qi; bd[j, BD_QO] = Qo
             bd[j, BD_DI] = dli; bd[j, BD_DO] = dlo
             bd[j, BD_AI_SEMI] = ai_s; bd[j, BD_BI] = bi_s; bd[j, BD_AO_SEMI] = ao_s; bd[j, BD_BO] = bo_s
-            bd[j, BD_PI] = 1.5 * Qi / (math.pi * ai_s * bi_s) if Qi > 0 else 0.0
-            bd[j, BD_PO] = 1.5 * Qo / (math.pi * ao_s * bo_s) if Qo > 0 else 0.0
+            bd[j, BD_PI] = pi_
+            bd[j, BD_PO] = po
             bd[j, BD_FTI] = tri_t; bd[j, BD_FMI] = tri_m; bd[j, BD_FTO] = tro_t; bd[j, BD_FMO] = tro_m
             bd[j, BD_VSI] = sl_i; bd[j, BD_VSO] = sl_o; bd[j, BD_UI] = u_i; bd[j, BD_UO] = u_o
             bd[j, BD_SPI] = sp_i; bd[j, BD_SPO] = sp_o; bd[j, BD_WSI] = sm_i; bd[j, BD_WSO] = sm_o
@@ -827,8 +830,11 @@ def pure_rolling_cage_speeds_cs(w, ca, sa, co, so, gD, wo=0.0):
     cbo = co + gD
     cbi = ca - gD
     wr = w - wo
-    c_o = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * (ca * cbo + sa * so) / (co * cbo + so * so))
-    c_i = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * (ca * cbi + sa * sa) / (co * cbi + so * sa))
+    # w_c = wo + wr (1 - gi) / [(1 - gi) + (1 + go) n / d], one division: wr (1 - gi) d / [(1 - gi) d + (1 + go) n]
+    d_o = co * cbo + so * so
+    d_i = co * cbi + so * sa
+    c_o = wo + wr * (1.0 - gi) * d_o / ((1.0 - gi) * d_o + (1.0 + go) * (ca * cbo + sa * so))
+    c_i = wo + wr * (1.0 - gi) * d_i / ((1.0 - gi) * d_i + (1.0 + go) * (ca * cbi + sa * sa))
     return c_o, c_i
 
 
