@@ -52,7 +52,9 @@ import numpy as np
 from .hertz import hertz_table_coefs
 
 from . import ehl_traction as EHL
-from .jit import hot
+from . import mathx as MX
+from .mathx import _bits_f64, _f64_bits
+from .jit import CONTRACT, hot
 
 # traction model selectors
 TRACTION_COULOMB = 0      # mu = mu0 tanh(|v| / v_reg)
@@ -111,23 +113,114 @@ def ellipse_quadrature(n_major, n_minor):
 
 
 # --------------------------------------------------------------------------------------------------
+# 0. arctangent and cube root inline (no C library call in the per-ball code)
+# atan: fdlibm s_atan.c (Sun Microsystems, 1993), error < 1 ulp: |x| reduced to [0, 7/16] by
+# atan(x) = atan(c) + atan((x - c) / (1 + c x)) with c = 0, 1/2, 1, 3/2 or infinity, then an odd polynomial of
+# degree 23; atan(c) split into a high and a low part. Written branch-free (the reduction's constants chosen
+# by comparisons, one division), so that LLVM inlines it into the callers.
+(_AT0, _AT1, _AT2, _AT3, _AT4, _AT5, _AT6, _AT7, _AT8, _AT9, _AT10) = (
+    3.33333333333329318027e-01, -1.99999999998764832476e-01, 1.42857142725034663711e-01,
+    -1.11111104054623557880e-01, 9.09088713343650656196e-02, -7.69187620504482999495e-02,
+    6.66107313738753120669e-02, -5.83357013379057348645e-02, 4.97687799461593236017e-02,
+    -3.65315727442169155270e-02, 1.62858201153657823623e-02)
+
+
+@hot(fastmath=CONTRACT)
+def atan_ratio(ay, x):
+    """atan(ay / x) [rad] for ay >= 0 and x > 0 (finite), with one division: the reduction's argument
+    (ay / x - c) / (1 + c ay / x) is formed from ay and x directly, (ay - c x) / (x + c ay) (fdlibm s_atan.c
+    otherwise; error within 2 ulp). NaN propagates."""
+    # t = (A ay + B x) / (C x + E ay) and atan(c) = hi + lo for c = 0, 1/2, 1, 3/2, infinity
+    A = 1.0; B = 0.0; C = 1.0; E = 0.0; hi = 0.0; lo = 0.0
+    if ay >= 0.4375 * x:
+        A = 2.0; B = -1.0; C = 2.0; E = 1.0
+        hi = 4.63647609000806093515e-01; lo = 2.26987774529616870924e-17
+    if ay >= 0.6875 * x:
+        A = 1.0; B = -1.0; C = 1.0; E = 1.0
+        hi = 7.85398163397448278999e-01; lo = 3.06161699786838301793e-17
+    if ay >= 1.1875 * x:
+        A = 1.0; B = -1.5; C = 1.0; E = 1.5
+        hi = 9.82793723247329054082e-01; lo = 1.39033110312309984516e-17
+    if not ay < 2.4375 * x:          # also NaN: NaN / NaN below stays NaN
+        A = 0.0; B = -1.0; C = 0.0; E = 1.0
+        hi = 1.57079632679489655800e+00; lo = 6.12323399573676603587e-17
+    t = (A * ay + B * x) / (C * x + E * ay)
+    z = t * t
+    w = z * z
+    s1 = z * (_AT0 + w * (_AT2 + w * (_AT4 + w * (_AT6 + w * (_AT8 + w * _AT10)))))
+    s2 = w * (_AT1 + w * (_AT3 + w * (_AT5 + w * (_AT7 + w * _AT9))))
+    return hi - ((t * (s1 + s2) - lo) - t)
+
+
+@hot
+def atan(x):
+    """Arctangent [rad] of x, error within 2 ulp (atan_ratio); NaN propagates, +-inf gives +-pi/2."""
+    ax = abs(x)
+    if ax > 1e300:               # +-inf (NaN passes on)
+        ax = 1e300
+    r = atan_ratio(ax, 1.0)
+    return r if x >= 0.0 else -r
+
+
+# cube root: FreeBSD s_cbrt.c (B. Evans, after fdlibm), error < 0.667 ulp: a first guess from the exponent
+# bits, a polynomial to 23 bits, one Newton step to 53 bits
+_CBRT_B1 = 715094163           # (1023 - 1023 / 3 - 0.03306235651) 2^20
+(_CP0, _CP1, _CP2, _CP3, _CP4) = (1.87595182427177009643, -1.88497979543377169875, 1.621429720105354466140,
+                                  -0.758397934778766047437, 0.145996192886612446982)
+
+
+@hot(fastmath=CONTRACT)
+def cbrt_pos(x):
+    """Cube root of x > 0 [-] (FreeBSD s_cbrt.c, error < 0.667 ulp) for normal finite x; any other x (0,
+    subnormal, inf, NaN, negative) through numpy's cbrt."""
+    if not (x >= 2.2250738585072014e-308 and x <= 1.7976931348623157e308):
+        return np.cbrt(x)
+    hx = _f64_bits(x) >> 32
+    t = _bits_f64((hx // 3 + _CBRT_B1) << 32)
+    r = (t * t) * (t / x)
+    t = t * ((_CP0 + r * (_CP1 + r * _CP2)) + ((r * r) * r) * (_CP3 + r * _CP4))
+    t = _bits_f64((_f64_bits(t) + 0x80000000) & -0x40000000)     # round away from zero to 23 bits
+    s = t * t                                                       # exact
+    r = x / s
+    r = (r - t) / (t + t + r)
+    return t + t * r
+
+
+@hot
+def atan2(y, x):
+    """atan2(y, x) [rad]: atan_ratio inline for finite x > 0 (within 2 ulp), the C library otherwise."""
+    if x > 0.0 and x < 1e300 and abs(y) < 1e300:
+        r = atan_ratio(abs(y), x)
+        return r if y >= 0.0 else -r
+    return math.atan2(y, x)
+
+
+@hot
+def wrap_angle(a):
+    """Angle a [rad] wrapped to [-pi, pi) as (a + pi) % (2 pi) - pi."""
+    return (a + math.pi) % (2.0 * math.pi) - math.pi
+
+
+# --------------------------------------------------------------------------------------------------
 # 1. ball-race normal contact
 @hot(inline="always")
 def _one_contact(dr, dz, rc, table, alpha0, dalpha, inner):
     L = math.sqrt(dr * dr + dz * dz)
-    nr = dr / L
-    nz = dz / L
+    iL = 1.0 / L
+    nr = dr * iL
+    nz = dz * iL
     delta = L - rc
+    # contact angle from (dr, dz) = L n directly: not waiting for the normalisation
     if inner:
-        alpha = math.atan2(-nz, -nr)
+        alpha = atan2(-dz, -dr)
     else:
-        alpha = math.atan2(nz, nr)
+        alpha = atan2(dz, dr)
     if delta > 0.0:
         # hertz table at |alpha|, and Q = K delta^1.5, Q^(1/3) = K^(1/3) delta^(1/2) without pow of delta
         K, ac, bc = hertz_table_coefs(table, alpha0, dalpha, alpha)
         sd = math.sqrt(delta)
         Q = K * delta * sd
-        q3 = np.cbrt(K) * sd
+        q3 = cbrt_pos(K) * sd
         a = ac * q3
         b = bc * q3
         p = 1.5 * Q / (math.pi * a * b)
@@ -174,7 +267,7 @@ def gothic_arch_contact(dr, dz, rc, fD, e, arc, table, alpha0, dalpha, inner):
     sa = -nz if inner else nz                 # sin(alpha) (contact_kernels convention above)
     valid = fD * sa >= e if arc == 1 else fD * sa < -e
     if not valid:
-        alpha = math.atan2(-nz, -nr) if inner else math.atan2(nz, nr)
+        alpha = atan2(-nz, -nr) if inner else atan2(nz, nr)
         return False, L - rc, nr, nz, alpha, 0.0, 0.0, 0.0, 0.0
     delta, nr, nz, alpha, Q, a, b, p = _one_contact(dr, dz, rc, table, alpha0, dalpha, inner)
     return True, delta, nr, nz, alpha, Q, a, b, p
@@ -220,6 +313,13 @@ def contact_kinematics(r_b, vr, vt, vz, wr, wt, wz, Omega_race, vrr, vrt, vrz, n
       u_roll [m/s]: rolling (entrainment) speed along t, the mean of the ball and race surface
       speeds relative to the contact point, which moves with the ball's orbital angular speed
       vt / r_b (signed; < 0 for the usual rolling of the outer race)."""
+    return contact_kinematics_orb(r_b, vr, vt, vz, vt / r_b, wr, wt, wz, Omega_race, vrr, vrt, vrz, n_r, n_z, D)
+
+
+@hot
+def contact_kinematics_orb(r_b, vr, vt, vz, w_orb, wr, wt, wz, Omega_race, vrr, vrt, vrz, n_r, n_z, D):
+    """contact_kinematics with the ball's orbital angular speed w_orb = vt / r_b [rad/s] given (the right-hand
+    side has it as a state: no division)."""
     h = 0.5 * D
     pr = h * n_r
     pz = h * n_z
@@ -239,7 +339,7 @@ def contact_kinematics(r_b, vr, vt, vz, wr, wt, wz, Omega_race, vrr, vrt, vrz, n
     w_spin = wr * n_r + wzr * n_z
     w_roll_m = -n_z * wr + n_r * wzr
     w_roll_t = wt
-    v_cp = vt / r_b * Rp
+    v_cp = w_orb * Rp
     u_roll = 0.5 * (vbt + vct) - v_cp
     return vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll
 
@@ -346,8 +446,15 @@ def ball_pocket_contact(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_
     f = -mu_cb F_n tanh(|v_s| / v_reg) v_s/|v_s|, v_s in (r, z).
     Returns (F_n [N], F_t, F_r, F_z [N] force on the ball, M_r, M_z [N m] its moment about the
     ball centre); the cage gets the opposite force."""
-    dth = theta_b - theta_c
-    dth = (dth + math.pi) % (2.0 * math.pi) - math.pi
+    return ball_pocket_contact_rel(wrap_angle(theta_b - theta_c), dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb,
+                                   mu_cb, v_reg, D, vr, vz, wr, wz, vcr, vcz)
+
+
+@hot
+def ball_pocket_contact_rel(dth, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu_cb, v_reg, D, vr, vz, wr, wz, vcr,
+                            vcz):
+    """ball_pocket_contact from dth [rad], the ball azimuth minus the pocket-centre azimuth already wrapped
+    to [-pi, pi) (the right-hand side forms it without an arctangent of the ball position)."""
     sig = 1.0 if dth >= 0.0 else -1.0
     pen = abs(dth) * r_p - c_p
     if not pen > 0.0:
@@ -439,9 +546,16 @@ def _hd_ball_flat_film(u, eta, alpha_pv, R, E_red, F):
 @hot
 def _brewe_hamrock_taylor(ar):
     """Isoviscous-rigid dimensionless minimum-film load number H_min,IR(a_r) (Brewe, Hamrock & Taylor 1979)."""
-    ph = 1.0 / (1.0 + 2.0 / (3.0 * ar))
-    c = 0.131 * math.atan(0.5 * ar) + 1.683
-    return 128.0 * ar * ph * ph * c * c
+    return 128.0 * ar * _bht_factor(ar, 1.0)
+
+
+@hot
+def _bht_factor(ks, kt):
+    """phi_r^2 [0.131 atan(a_r / 2) + 1.683]^2 of _brewe_hamrock_taylor at a_r = ks / kt (curvatures along
+    and across the entrainment), two divisions: H_min,IR = 128 a_r (this)."""
+    ph = 3.0 * ks / (3.0 * ks + 2.0 * kt)     # phi_r = (1 + 2 / (3 a_r))^-1
+    c = 0.131 * atan_ratio(0.5 * ks, kt) + 1.683
+    return ph * ph * c * c
 
 
 @hot
@@ -459,8 +573,16 @@ def ball_pocket_lubricated(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb,
     wall offset), P_loss [W] film and friction dissipation (>= 0 on average; the hydrodynamic normal
     force can return power while the gap opens), P_damp [W] penalty damping dissipation, U_el [J]
     elastic energy of the penalty)."""
-    dth = theta_b - theta_c
-    dth = (dth + math.pi) % (2.0 * math.pi) - math.pi
+    return ball_pocket_lubricated_rel(wrap_angle(theta_b - theta_c), dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb,
+                                      mu_bl, mu_ehl, v_reg, eta, alpha_pv, E_red, sigma, D, vr, vz, wr, wz, vcr,
+                                      vcz)
+
+
+@hot
+def ball_pocket_lubricated_rel(dth, dtheta_b, dtheta_c, r_p, c_p, K_cb, C_cb, mu_bl, mu_ehl, v_reg, eta,
+                               alpha_pv, E_red, sigma, D, vr, vz, wr, wz, vcr, vcz):
+    """ball_pocket_lubricated from dth [rad], the ball azimuth minus the pocket-centre azimuth already
+    wrapped to [-pi, pi)."""
     R = 0.5 * D
     hfl = sigma if sigma > 1e-9 else 1e-9
     # conformal cylindrical pocket: curvature 1/R along the pocket axis r, 1/R - 1/(R + c_p) around it
@@ -485,17 +607,21 @@ def ball_pocket_lubricated(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb,
         vsr = vr - vcr - w * R * (wz - dtheta_c)
         vsz = vz - vcz + w * R * wr
         vs = math.sqrt(vsr * vsr + vsz * vsz)
-        # radii along (Rs) and across (Rt) the entrainment direction (Euler)
-        Rs = R
-        Rt = R
+        # curvatures along (ks = 1 / Rs) and across (kt = 1 / Rt) the entrainment direction (Euler)
+        ks = kr
+        kt = kr
+        ivs = 0.0
         if vs > 0.0:
-            c2 = (vsr / vs) ** 2
-            Rs = 1.0 / (c2 * kr + (1.0 - c2) * kz)
-            Rt = 1.0 / ((1.0 - c2) * kr + c2 * kz)
-        ar = Rt / Rs
-        # film normal force (entrainment + squeeze), never tensile
-        Ff = (eta * 0.5 * vs * Rs * math.sqrt(_brewe_hamrock_taylor(ar) * Rs / h)
-              - 6.0 * math.pi * eta * R * R * gdot / h)
+            ivs = 1.0 / vs
+            c2 = (vsr * ivs) ** 2
+            ks = c2 * kr + (1.0 - c2) * kz
+            kt = (1.0 - c2) * kr + c2 * kz
+        rk = 1.0 / (ks * kt)
+        Rs = kt * rk
+        ih = 1.0 / h
+        # film normal force (entrainment + squeeze), never tensile; H_min,IR at a_r = Rt / Rs = ks / kt
+        Ff = (eta * 0.5 * vs * Rs * math.sqrt(128.0 * ks * ks * rk * _bht_factor(ks, kt) * Rs * ih)
+              - 6.0 * math.pi * eta * R * R * gdot * ih)
         if Ff < 0.0:
             Ff = 0.0
         # solid / EHL contact (penalty) beyond the clearance
@@ -514,24 +640,25 @@ def ball_pocket_lubricated(theta_b, theta_c, dtheta_b, dtheta_c, r_p, c_p, K_cb,
         Pl += Ff * (-gdot)     # work of the film force on the closing gap
         # friction on the ball surface at the wall: viscous shear of the film + EHL / mixed friction
         if vs > 0.0:
-            lr = math.log(R / h)
+            lr = MX.log(R * ih)
             if lr < 0.0:
                 lr = 0.0
-            fv = math.pi * eta * R * vs * (3.2 * lr + 3.05)
-            mu = mu_ehl
+            f = math.pi * eta * R * vs * (3.2 * lr + 3.05)       # viscous shear
             if Fc > 0.0:
+                ar = ks * ks * rk
                 hm = _hd_pocket_film(0.5 * vs, eta, alpha_pv, Rs, 1.0339 * ar ** 0.636, E_red, Fc)
                 ff = EHL.fluid_fraction(hm / hfl)
                 mu_f = mu_ehl
                 if hm > 0.0:
-                    ae = (3.0 * Fc * math.sqrt(Rs * Rt) / (2.0 * E_red)) ** (1.0 / 3.0)
+                    ae = (3.0 * Fc * Rs * math.sqrt(ar) / (2.0 * E_red)) ** (1.0 / 3.0)
                     pm = Fc / (math.pi * ae * ae)
                     ap = alpha_pv * pm
                     mu_n = eta * math.exp(ap if ap < 30.0 else 30.0) * vs / (hm * pm)
                     if mu_n < mu_f:
                         mu_f = mu_n
                 mu = (1.0 - ff) * mu_bl + ff * mu_f
-            f = (fv + mu * Fc * math.tanh(vs / v_reg)) / vs
+                f += mu * Fc * math.tanh(vs / v_reg)             # mixed / EHL friction in contact
+            f *= ivs
             fr = -f * vsr
             fz = -f * vsz
             Fr += fr

@@ -45,9 +45,9 @@ import math
 import numpy as np
 from .jit import hot
 
-from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics, ellipse_traction,
-                              ball_pocket_contact, ball_pocket_lubricated, normal_contact_force, DAMP_LINEAR,
-                              TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
+from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics_orb, ellipse_traction,
+                              ball_pocket_contact_rel, ball_pocket_lubricated_rel, normal_contact_force,
+                              atan2, wrap_angle, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
 from .ehl_traction import ehl_ellipse_traction_into, ehl_scratch
 from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 from .churning import cylinder_churning_torque
@@ -139,8 +139,10 @@ def _shaft(U, t):
     return U[U_W0] + acc * (t - t0), acc
 
 
-# the EHL traction kernel compiled once more without reference counting, for _race_traction (see there)
-_ehl_traction_norc = hot(nrt=False, cache=False)(ehl_ellipse_traction_into.py_func)
+# the EHL traction kernel without reference counting, for _race_traction (see there): the kernel itself where
+# ehl_traction compiles it with jit.hot(nrt=False), else a second dispatcher of its source, compiled so
+_ehl_traction_norc = (ehl_ellipse_traction_into if ehl_ellipse_traction_into.targetoptions.get("_nrt") is False
+                      else hot(nrt=False, cache=False)(ehl_ellipse_traction_into.py_func))
 
 
 @hot(nrt=True)
@@ -161,8 +163,9 @@ def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wr
     (ehl_traction.ehl_ellipse_traction_into; Rx, Ry [m] the contact's effective radii; sc =
     ehl_traction.ehl_scratch of the quadrature) or the ellipse-integrated curve / Coulomb law
     (contact_kernels.ellipse_traction). Compiled without reference counting (jit.hot(nrt=False)), as are
-    ellipse_traction and the copy _ehl_traction_norc of the EHL kernel (the same source, its own dispatcher,
-    not cached on its own: numba's disk cache does not tell the flags apart): the parameter, quadrature and
+    ellipse_traction and the EHL kernel (_ehl_traction_norc: without reference counting, either itself or a
+    second dispatcher of its source, not cached on its own as numba's disk cache does not tell the flags
+    apart): the parameter, quadrature and
     scratch arrays, owned by the caller, are not reference-counted per contact (two atomic operations per
     array and call otherwise, ~2 us per right-hand side)."""
     if kalker:
@@ -173,7 +176,7 @@ def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wr
 
 
 @hot
-def _raceway_contact(delta, n_r, n_z, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz, D, dm,
+def _raceway_contact(delta, n_r, n_z, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz, D, gD,
                      zeta, mb):
     """Normal force and kinematics of one ball-raceway contact of the ball (rb, rd, thd, zd, Wr, Wt, Wz: state
     in its local frame) with a race turning at w_race [rad/s] whose curvature centre moves at (vcr, vct, vcz)
@@ -182,7 +185,7 @@ def _raceway_contact(delta, n_r, n_z, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vc
     stiffness 1.5 Q / delta, only in contact and never pulling (contact_kernels.normal_contact_force);
     contact kinematics (contact_kernels.contact_kinematics); effective radius of the contact along the
     rolling direction Rx = D/2 (1 -+ D cos(alpha) / dm), inner / outer (Hamrock-Dowson), with
-    cos(alpha) = -+ n_r.
+    cos(alpha) = -+ n_r; gD = D / dm.
     Returns (F_n [N] normal force with damping, P_damp [W], U_el [J] elastic energy 0.4 Q delta, Rx [m],
     then the kinematics vs_t, vs_m [m/s], w_spin, w_roll_m, w_roll_t [rad/s], u_roll [m/s]) for the
     traction (_race_traction). Scalar arguments only: no reference counting per contact."""
@@ -194,10 +197,10 @@ def _raceway_contact(delta, n_r, n_z, Q, rb, rd, thd, zd, Wr, Wt, Wz, w_race, vc
         Fn = normal_contact_force(Q, delta, dd, DAMP_LINEAR, 2.0 * zeta * math.sqrt(1.5 * Q / delta * mb))
         pdamp = (Fn - Q) * dd
         uel = 0.4 * Q * delta
-    vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics(rb, rd, rb * thd, zd, Wr, Wt, Wz, w_race, vcr, vct, vcz,
-                                                       n_r, n_z, D)
+    vs_t, vs_m, wsp, wrm, wrt, ur = contact_kinematics_orb(rb, rd, rb * thd, zd, thd, Wr, Wt, Wz, w_race, vcr, vct,
+                                                           vcz, n_r, n_z, D)
     # cos(alpha) = -n_r (inner) or n_r (outer): the contact angle from the normal (contact_kernels)
-    Rx = 0.5 * D * (1.0 + D * n_r / dm)
+    Rx = 0.5 * D * (1.0 + gD * n_r)
     return Fn, pdamp, uel, Rx, vs_t, vs_m, wsp, wrm, wrt, ur
 
 
@@ -293,6 +296,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     lube = P[P_LUBE] > 0.5
     sco = 0.0; sci = 0.0; npr = 0.0        # pure-rolling cage speeds of the loaded balls
     gD = D / dm
+    imb = 1.0 / mb
+    iJb = 1.0 / Jb
     for j in range(nb):
         o = NSTATE_FIXED + NSB * j
         th = y[o]; rb = y[o + 1]; zb = y[o + 2]
@@ -353,13 +358,13 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         # (_race_traction)
         (Fni, pd_i, ue_i, Rxi, vsti, vsmi, wspi, wrmi, wrti,
          uri) = _raceway_contact(dli, nir, niz, Qi, rb, rd, thd, zd, Wr, Wt, Wz, w, vri, vrt, vrz, D,
-                                 dm, zeta, mb)
+                                 gD, zeta, mb)
         fti, fmi, mni, mmi, mti, pli = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi, Rxi, Ryi, vsti, vsmi,
                                                       wspi, wrmi, wrti, uri, tmodel, tp, Gc, nuc, fnx, fny, qx,
                                                       qwx, qy, qwy, sc)
         (Fno, pd_o, ue_o, Rxo, vsto, vsmo, wspo, wrmo, wrto,
          uro) = _raceway_contact(dlo, nor, noz, Qo, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot, 0.0, D,
-                                 dm, zeta, mb)
+                                 gD, zeta, mb)
         fto, fmo, mno, mmo, mto, plo = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo, Rxo, Ryo, vsto, vsmo,
                                                       wspo, wrmo, wrto, uro, tmodel, tp, Gc, nuc, fnx, fny, qx,
                                                       qwx, qy, qwy, sc)
@@ -407,7 +412,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if Qi2 > 0.0:
             (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
              ur2) = _raceway_contact(dli2, nir2, niz2, Qi2, rb, rd, thd, zd, Wr, Wt, Wz, w,
-                                     vrr - zib * tdot, vrt, vrz, D, dm, zeta, mb)
+                                     vrr - zib * tdot, vrt, vrz, D, gD, zeta, mb)
             ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ai2_s, bi2_s, Qi2, pi2, D, Rdi, Rx2, Ryi, vst2,
                                                           vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
                                                           fny, qx, qwx, qy, qwy, sc)
@@ -424,7 +429,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if Qo2 > 0.0:
             (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
              ur2) = _raceway_contact(dlo2, nor2, noz2, Qo2, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot,
-                                     0.0, D, dm, zeta, mb)
+                                     0.0, D, gD, zeta, mb)
             ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ao2_s, bo2_s, Qo2, po2, D, Rdo, Rx2, Ryo, vst2,
                                                           vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
                                                           fny, qx, qwx, qy, qwy, sc)
@@ -441,29 +446,36 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             TOz -= rb * ft2 + noz2 * mn2 + nor2 * mm2
         # ball-pocket contact (seed 000 Eq. 6, contact_kernels.ball_pocket_contact) in the frame of the
         # (possibly whirling) cage: ball azimuth about the cage centre against the pocket azimuth
-        phi = thc + 2.0 * math.pi * j / Z
+        # dth: azimuth of the ball centre about the cage centre minus the pocket azimuth thc + 2 pi j / Z,
+        # = (th - pocket azimuth) + the angle of the ball centre seen from the cage centre against the ball's
+        # radial direction (c, s), small (cage offset over pitch radius): no arctangent of a full angle, and
+        # a wrap only if the state puts the ball a turn away from its pocket
+        d0 = th - thc - 2.0 * math.pi * j / Z
+        if abs(d0) > math.pi:
+            d0 = wrap_angle(d0)
+        dth = d0 + atan2(xc * s - yc * c, rb - xc * c - yc * s)
         bx_ = rb * c - xc
         by_ = rb * s - yc
         rr2 = bx_ * bx_ + by_ * by_
-        thb = math.atan2(by_, bx_)
         vbx = rd * c - rb * thd * s - vxc
         vby = rd * s + rb * thd * c - vyc
-        thb_d = (bx_ * vby - by_ * vbx) / rr2
         vcr_ = vxc * c + vyc * s
         rbc = math.sqrt(rr2)   # ball radius about the cage centre: the arm of the pocket force
+        irbc = 1.0 / rbc
+        thb_d = (bx_ * vby - by_ * vbx) * (irbc * irbc)
         if lube:
-            (Fpk, fpt, fpr, fpz, mpr, mpz, tw_, pl_, pd_, ue_) = ball_pocket_lubricated(
-                thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, P[P_MUBL], P[P_MUEHL], 0.01, P[P_ETA_PK],
+            (Fpk, fpt, fpr, fpz, mpr, mpz, tw_, pl_, pd_, ue_) = ball_pocket_lubricated_rel(
+                dth, thb_d, wc, rbc, cpk, kpk, cpkd, P[P_MUBL], P[P_MUEHL], 0.01, P[P_ETA_PK],
                 P[P_ALPHA_PK], P[P_EPK], P[P_SIGPK], D, rd, zd, Wr, Wz, vcr_, 0.0)
         else:
-            Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact(thb, phi, thb_d, wc, rbc, cpk, kpk, cpkd, mupk,
-                                                               0.01, D, rd, zd, Wr, Wz, vcr_, 0.0)
+            Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact_rel(dth, thb_d, wc, rbc, cpk, kpk, cpkd, mupk,
+                                                                   0.01, D, rd, zd, Wr, Wz, vcr_, 0.0)
             tw_ = pl_ = pd_ = ue_ = 0.0
         if lube or Fpk > 0.0:
             # pocket force along the cage-frame tangential direction at the ball; the cage gets (-fx, -fy) at
             # the ball centre (a torque about its centre) and the films' shear torque tw_
-            tpx = -by_ / rbc          # (-sin, cos) of thb
-            tpy = bx_ / rbc
+            tpx = -by_ * irbc         # (-sin, cos) of the ball's azimuth about the cage centre
+            tpy = bx_ * irbc
             fx = fpt * tpx + fpr * c
             fy = fpt * tpy + fpr * s
             Fr += fx * c + fy * s
@@ -481,7 +493,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         elif Fpk > 0.0:
             sg = 1.0 if fpt < 0.0 else -1.0                         # side of the pocket wall (+t or -t)
             TC += sg * 0.5 * D * fpr       # the wall friction acts at the offset sg D/2 t: torque on the cage
-            pen = rbc * abs(((thb - phi + math.pi) % (2.0 * math.pi)) - math.pi) - cpk
+            pen = rbc * abs(dth) - cpk
             Uel += 0.5 * kpk * pen * pen
             # dissipation: friction and damping of the pocket contact = -(power of its forces on the
             # relative motion) - d(elastic energy)/dt, evaluated from the relative velocities
@@ -499,12 +511,12 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         dy[o] = thd
         dy[o + 1] = rd
         dy[o + 2] = zd
-        dy[o + 3] = (Ft / mb - 2.0 * rd * thd) / rb
-        dy[o + 4] = Fr / mb + rb * thd * thd
-        dy[o + 5] = Fz / mb
-        dy[o + 6] = Mr / Jb + thd * Wt
-        dy[o + 7] = Mt / Jb - thd * Wr
-        dy[o + 8] = Mz / Jb
+        dy[o + 3] = (Ft * imb - 2.0 * rd * thd) / rb
+        dy[o + 4] = Fr * imb + rb * thd * thd
+        dy[o + 5] = Fz * imb
+        dy[o + 6] = Mr * iJb + thd * Wt
+        dy[o + 7] = Mt * iJb - thd * Wr
+        dy[o + 8] = Mz * iJb
         # ring loads from ball j (global)
         gx = fr_ring * c - ft_ring * s
         gy = fr_ring * s + ft_ring * c
@@ -536,7 +548,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if Qi > 0.0:
             sai += ai_k; nai += 1.0
             Qimax = max(Qimax, Qi)
-            pmax = max(pmax, 1.5 * Qi / (math.pi * ai_s * bi_s))
+            pmax = max(pmax, pi_)          # p_max = 1.5 Q / (pi a b) of the contact kernel
         Qimin = min(Qimin, Qi)
         if Qi > 0.0 and Qo > 0.0:
             wco, wci = pure_rolling_cage_speeds_cs(w, -nir, sai_k, nor, sao_k, gD, wo)
@@ -544,20 +556,20 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         if Qo > 0.0:
             sao += ao_k; nao += 1.0
             Qomax = max(Qomax, Qo)
-            pmax = max(pmax, 1.5 * Qo / (math.pi * ao_s * bo_s))
+            pmax = max(pmax, po)
         if Qi2 > 0.0:
             Qimax = max(Qimax, Qi2)
-            pmax = max(pmax, 1.5 * Qi2 / (math.pi * ai2_s * bi2_s))
+            pmax = max(pmax, pi2)
         if Qo2 > 0.0:
             Qomax = max(Qomax, Qo2)
-            pmax = max(pmax, 1.5 * Qo2 / (math.pi * ao2_s * bo2_s))
+            pmax = max(pmax, po2)
         if want_bd:
             bd[j, BD_QI2] = Qi2; bd[j, BD_AI2] = ai2; bd[j, BD_QO2] = Qo2; bd[j, BD_AO2] = ao2
             bd[j, BD_AI] = ai; bd[j, BD_AO] = ao; bd[j, BD_QI] = Qi; bd[j, BD_QO] = Qo
             bd[j, BD_DI] = dli; bd[j, BD_DO] = dlo
             bd[j, BD_AI_SEMI] = ai_s; bd[j, BD_BI] = bi_s; bd[j, BD_AO_SEMI] = ao_s; bd[j, BD_BO] = bo_s
-            bd[j, BD_PI] = 1.5 * Qi / (math.pi * ai_s * bi_s) if Qi > 0 else 0.0
-            bd[j, BD_PO] = 1.5 * Qo / (math.pi * ao_s * bo_s) if Qo > 0 else 0.0
+            bd[j, BD_PI] = pi_
+            bd[j, BD_PO] = po
             bd[j, BD_FTI] = tri_t; bd[j, BD_FMI] = tri_m; bd[j, BD_FTO] = tro_t; bd[j, BD_FMO] = tro_m
             bd[j, BD_VSI] = sl_i; bd[j, BD_VSO] = sl_o; bd[j, BD_UI] = u_i; bd[j, BD_UO] = u_o
             bd[j, BD_SPI] = sp_i; bd[j, BD_SPO] = sp_o; bd[j, BD_WSI] = sm_i; bd[j, BD_WSO] = sm_o
@@ -821,8 +833,11 @@ def pure_rolling_cage_speeds_cs(w, ca, sa, co, so, gD, wo=0.0):
     cbo = co + gD
     cbi = ca - gD
     wr = w - wo
-    c_o = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * (ca * cbo + sa * so) / (co * cbo + so * so))
-    c_i = wo + wr * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * (ca * cbi + sa * sa) / (co * cbi + so * sa))
+    # w_c = wo + wr (1 - gi) / [(1 - gi) + (1 + go) n / d], one division: wr (1 - gi) d / [(1 - gi) d + (1 + go) n]
+    d_o = co * cbo + so * so
+    d_i = co * cbi + so * sa
+    c_o = wo + wr * (1.0 - gi) * d_o / ((1.0 - gi) * d_o + (1.0 + go) * (ca * cbo + sa * so))
+    c_i = wo + wr * (1.0 - gi) * d_i / ((1.0 - gi) * d_i + (1.0 + go) * (ca * cbi + sa * sa))
     return c_o, c_i
 
 

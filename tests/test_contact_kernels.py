@@ -256,3 +256,52 @@ def test_pocket_friction():
     assert Mz < 0 and Mz == pytest.approx(-0.005 * Fr, rel=1e-12)
     out = _pocket(th, vz=-3.0, wz=100.0)   # ball wz = cage speed: pure axial sliding
     assert out[3] == pytest.approx(0.1 * out[0], rel=1e-9)
+
+
+# ---- 5. inline arctangent ----------------------------------------------------------------------------
+def test_inline_atan_against_c_library():
+    """contact_kernels.atan / atan2 (fdlibm s_atan.c, error < 1 ulp) against the C library's atan / atan2
+    (IEEE double, correctly rounded to < 1 ulp, glibc): within 2 ulp over 1e-12..1e12 of both signs, at
+    the breakpoints of the argument reduction, and for the contact normals of all quadrants (atan2, x > 0
+    inline, the C library otherwise); NaN propagates, +-inf gives +-pi/2."""
+    x = np.concatenate([np.geomspace(1e-12, 1e12, 4001), [0.4375, 0.6875, 1.1875, 2.4375],
+                        np.nextafter([0.4375, 0.6875, 1.1875, 2.4375], 0.0)])
+    x = np.concatenate([x, -x, [0.0]])
+    got = np.array([ck.atan(v) for v in x])
+    ref = np.arctan(x)
+    assert np.all(np.abs(got - ref) <= 2.0 * np.spacing(np.abs(ref)) + 1e-300)
+    assert math.isnan(ck.atan(math.nan))
+    assert ck.atan(math.inf) == pytest.approx(0.5 * math.pi, rel=1e-16)
+    ang = np.linspace(-math.pi, math.pi, 721)
+    for r in (1e-6, 1.0, 3e3):
+        yy, xx = r * np.sin(ang), r * np.cos(ang)
+        got = np.array([ck.atan2(a, b) for a, b in zip(yy, xx)])
+        ref = np.arctan2(yy, xx)
+        assert np.all(np.abs(got - ref) <= 2.0 * np.spacing(np.abs(ref)) + 1e-300)
+
+
+def test_pocket_kernels_from_wrapped_angle():
+    """ball_pocket_contact_rel / ball_pocket_lubricated_rel, given the wrapped azimuth difference, return
+    what ball_pocket_contact / ball_pocket_lubricated return for the two azimuths (the same code after the
+    wrap), also a full turn away. Tolerance 1e-10 relative: the compilations may order the wrap's sums
+    differently (re-association), ~1e-15 rad on the angle, amplified ~1e3x in the penetration r_p |dth| - c_p."""
+    for th_b, th_c in ((1.0 + 3e-3, 1.0), (7.0 - 2.5e-3, 7.0 + 2.0 * math.pi), (-20.0, -20.0 + 1e-4)):
+        kw = (100.0, 99.0, 0.05, 0.1e-3, 1e7, 50.0)
+        tail = (0.01, 0.3, -0.2, 50.0, -30.0, 0.01, 0.0)
+        a = ck.ball_pocket_contact(th_b, th_c, *kw, 0.1, 1e-3, *tail)
+        b = ck.ball_pocket_contact_rel(ck.wrap_angle(th_b - th_c), *kw, 0.1, 1e-3, *tail)
+        np.testing.assert_allclose(a, b, rtol=1e-10, atol=0.0)
+        lub = (0.15, 0.05, 0.01, 0.02, 2e-8, 2.3e9, 4e-7)
+        a = ck.ball_pocket_lubricated(th_b, th_c, *kw, *lub, *tail)
+        b = ck.ball_pocket_lubricated_rel(ck.wrap_angle(th_b - th_c), *kw, *lub, *tail)
+        np.testing.assert_allclose(a, b, rtol=1e-10, atol=0.0)
+
+
+def test_inline_cbrt_against_numpy():
+    """contact_kernels.cbrt_pos (FreeBSD s_cbrt.c, error < 0.667 ulp) against numpy's cbrt (C library,
+    < 1 ulp): within 2 ulp over 1e-300..1e300 and at powers of two; 0, inf and NaN through numpy."""
+    x = np.concatenate([np.geomspace(1e-300, 1e300, 6001), 2.0 ** np.arange(-1000, 1001, 7), [1.0, 8.0, 27.0]])
+    got = np.array([ck.cbrt_pos(v) for v in x])
+    ref = np.cbrt(x)
+    assert np.all(np.abs(got - ref) <= 2.0 * np.spacing(ref))
+    assert ck.cbrt_pos(0.0) == 0.0 and ck.cbrt_pos(math.inf) == math.inf and math.isnan(ck.cbrt_pos(math.nan))
