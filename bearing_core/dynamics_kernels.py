@@ -139,12 +139,6 @@ def _shaft(U, t):
     return U[U_W0] + acc * (t - t0), acc
 
 
-# the EHL traction kernel without reference counting, for _race_traction (see there): the kernel itself where
-# ehl_traction compiles it with jit.hot(nrt=False), else a second dispatcher of its source, compiled so
-_ehl_traction_norc = (ehl_ellipse_traction_into if ehl_ellipse_traction_into.targetoptions.get("_nrt") is False
-                      else hot(nrt=False, cache=False)(ehl_ellipse_traction_into.py_func))
-
-
 @hot(nrt=True)
 def _kalker_traction(a, b, Q, mu, Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, D):
     """Traction of one ball-race contact by FASTSIM (fastsim.fastsim_traction_fast; seed 000 Eqs. 7-9), as
@@ -163,15 +157,13 @@ def _race_traction(kalker, a, b, Q, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wr
     (ehl_traction.ehl_ellipse_traction_into; Rx, Ry [m] the contact's effective radii; sc =
     ehl_traction.ehl_scratch of the quadrature) or the ellipse-integrated curve / Coulomb law
     (contact_kernels.ellipse_traction). Compiled without reference counting (jit.hot(nrt=False)), as are
-    ellipse_traction and the EHL kernel (_ehl_traction_norc: without reference counting, either itself or a
-    second dispatcher of its source, not cached on its own as numba's disk cache does not tell the flags
-    apart): the parameter, quadrature and
-    scratch arrays, owned by the caller, are not reference-counted per contact (two atomic operations per
-    array and call otherwise, ~2 us per right-hand side)."""
+    ellipse_traction and ehl_ellipse_traction_into: the parameter, quadrature and scratch arrays, owned by
+    the caller, are not reference-counted per contact (two atomic operations per array and call otherwise,
+    ~2 us per right-hand side)."""
     if kalker:
         return _kalker_traction(a, b, Q, tp[0], Gc, nuc, vs_t, vs_m, wsp, ur, fnx, fny, D)
     if tmodel == TRACTION_EHL:
-        return _ehl_traction_norc(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, sc)
+        return ehl_ellipse_traction_into(a, b, p, D, Rdef, Rx, Ry, vs_t, vs_m, wsp, wrm, wrt, ur, tp, sc)
     return ellipse_traction(a, b, p, D, Rdef, vs_t, vs_m, wsp, wrm, wrt, ur, tmodel, tp, qx, qwx, qy, qwy)
 
 

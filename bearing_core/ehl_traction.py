@@ -301,7 +301,7 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
                                      u_roll, params, ehl_scratch(xi, wxi, zeta, wzeta))
 
 
-@hot
+@hot(nrt=False)     # called per contact from the right-hand side: no reference counts of its arrays
 def ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
                               params, sc):
     """Rheology-based EHL traction on the ball, integrated over the Hertz ellipse (module docstring).

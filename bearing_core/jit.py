@@ -36,7 +36,7 @@ if PLAIN_MATH:
 
 
 def hot(fn=None, *, inline: str = "never", nogil: bool = False, nrt: bool | None = None,
-        cache: bool = True, fastmath: frozenset | None = None):
+        fastmath: frozenset | None = None):
     """numba.njit with the module's flags and cache=True; use as @hot, @hot(inline='always') or
     @hot(nogil=True) (integration loops that release the GIL for threaded batches). nrt=False: compiled
     without numba's reference-counting runtime, for a small kernel called very often that neither
@@ -44,13 +44,11 @@ def hot(fn=None, *, inline: str = "never", nogil: bool = False, nrt: bool | None
     count per call. numba passes the choice on to the callees it compiles for such a kernel unless they set
     their own: nrt=True sets it explicitly, for a kernel that allocates and is called from an nrt=False one
     (default None: taken over from the caller, reference counting when compiled on its own).
-    cache=False: not cached on disk, for a second dispatcher of a function that has its own cached one
-    (numba's cache is keyed by the source function and signature, not by the flags); the kernels that call
-    it are cached with its code linked in. fastmath=CONTRACT: contraction only instead of FASTMATH, for
-    polynomial kernels with error-compensating steps (compiled on their own, inline='never': LLVM inlines
-    them into the callers keeping these flags on their instructions)."""
+    fastmath=CONTRACT: contraction only instead of FASTMATH, for polynomial kernels with error-compensating
+    steps (compiled on their own, inline='never': LLVM inlines them into the callers keeping these flags on
+    their instructions)."""
     fm = FASTMATH if fastmath is None else fastmath
-    kw = dict(cache=cache, error_model=ERROR_MODEL, fastmath=set(fm) if fm else False,
+    kw = dict(cache=True, error_model=ERROR_MODEL, fastmath=set(fm) if fm else False,
               inline=inline, nogil=nogil)
     if nrt is not None:
         kw["_nrt"] = nrt
