@@ -161,20 +161,31 @@ def _root_bisect(lX, K):
     return 0.5 * (lo + hi)
 
 
+def _thermal_roots():
+    """ehl_traction.thermal_eyring_root mapped over arrays (lX, K) -> s, compiled once per process."""
+    global _ROOTS
+    if _ROOTS is None:
+        from numba import njit
+        from bearing_core.ehl_traction import thermal_eyring_root
+
+        @njit
+        def roots(lX, K):
+            out = np.empty(lX.size)
+            for i in range(lX.size):
+                out[i] = thermal_eyring_root(lX[i], K[i])
+            return out
+        _ROOTS = roots
+    return _ROOTS
+
+
+_ROOTS = None
+
+
 def test_thermal_eyring_root_error_bounds():
     """Bounds stated in ehl_traction.thermal_eyring_root: relative error <= 2e-14 for K <= 3, <= 2e-12
     for K <= 10, <= 1e-9 for K <= 31.6, over ln X in [-28, 50] (Eyring argument 7e-13 ... 5e21, beyond
     both ends of the quadrature points of bearing contacts)."""
-    from bearing_core.ehl_traction import thermal_eyring_root
-    from numba import njit
-
-    @njit
-    def roots(lX, K):
-        out = np.empty(lX.size)
-        for i in range(lX.size):
-            out[i] = thermal_eyring_root(lX[i], K[i])
-        return out
-
+    roots = _thermal_roots()
     LX, KK = np.meshgrid(np.linspace(-28.0, 50.0, 521), np.concatenate(([0.0], 10 ** np.linspace(-7, 1.5, 240))))
     lX, K = LX.ravel(), KK.ravel()
     s = roots(lX, K)
@@ -189,6 +200,7 @@ def test_thermal_eyring_root_error_bounds():
     # the seed and first step from a coarse ln X (off by up to 3e-5, as the traction kernel's) reach the
     # same bounds: the last step, on the exact ln X, removes the difference
     from bearing_core.ehl_traction import _thermal_eyring_root
+    from numba import njit
 
     @njit
     def roots_c(lXc, lX, K):
@@ -203,20 +215,11 @@ def test_thermal_eyring_root_error_bounds():
             assert rel[K <= kmax].max() <= bound, (dl, kmax, rel[K <= kmax].max())
 
 
-
 def test_thermal_eyring_root_extremes():
     """Far outside the contacts' range (ln X in [-745, 700], K up to 1e6) the root stays finite and
     positive, within 1e-9 of the bisection root for K <= 31.6 and ln X >= -700 (where the exp of
     bearing_core.mathx stops at -708); NaN in ln X or K gives NaN."""
-    from bearing_core.ehl_traction import thermal_eyring_root
-    from numba import njit
-
-    @njit
-    def roots(lX, K):
-        out = np.empty(lX.size)
-        for i in range(lX.size):
-            out[i] = thermal_eyring_root(lX[i], K[i])
-        return out
+    roots = _thermal_roots()
 
     LX, KK = np.meshgrid(np.linspace(-745.0, 700.0, 290), np.concatenate(([0.0], 10 ** np.linspace(-12, 6, 55))))
     lX, K = LX.ravel(), KK.ravel()
@@ -233,6 +236,7 @@ def test_thermal_eyring_root_extremes():
             hi = np.where(g >= 0.0, mid, hi)
     assert np.max(np.abs(s[m] / (0.5 * (lo + hi)) - 1.0)) <= 1e-9
     assert np.all(np.isnan(roots(np.array([np.nan, 1.0]), np.array([1.0, np.nan]))))
+
 
 def _root_full_precision(lX, K):
     """thermal_eyring_root's algorithm (seed, Householder step in ln s, Chebyshev step) with numpy's exp / log
@@ -270,15 +274,7 @@ def test_thermal_eyring_root_coarse_steps():
     """The coarse exp / log of the root's seed and Householder step and the Pade form of that step's e^{-d}
     move the root by < 5e-12 relative against the same algorithm in full precision (its docstring), over
     ln X in [-28, 50] and K in [0, 31.6]: the last, full-precision Chebyshev step cubes their error."""
-    from bearing_core.ehl_traction import thermal_eyring_root
-    from numba import njit
-
-    @njit
-    def roots(lX, K):
-        out = np.empty(lX.size)
-        for i in range(lX.size):
-            out[i] = thermal_eyring_root(lX[i], K[i])
-        return out
+    roots = _thermal_roots()
 
     LX, KK = np.meshgrid(np.linspace(-28.0, 50.0, 1301), np.concatenate(([0.0], 10 ** np.linspace(-7, 1.5, 400))))
     lX, K = LX.ravel(), KK.ravel()
