@@ -293,11 +293,14 @@ def ehl_scratch(xi, wxi, zeta, wzeta):
     ny = zeta.shape[0]
     npt = nx * ny
     npad = (npt + 15) // 16 * 16
-    buf = np.zeros((_NROWS, 2 * npad))
+    buf = np.empty((_NROWS, 2 * npad))      # the work rows are written before they are read
     for h in range(2):
         o = h * npad
         for n in range(npt, npad):
+            buf[_XI, o + n] = 0.0
+            buf[_WXI, o + n] = 0.0
             buf[_ZETA, o + n] = 1.0
+            buf[_WZETA, o + n] = 0.0
         for i in range(nx):
             for j in range(ny):
                 buf[_XI, o + i * ny + j] = xi[i]
