@@ -48,7 +48,7 @@ from .jit import hot
 from .contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics_orb, ellipse_traction,
                               ball_pocket_contact_rel, ball_pocket_lubricated_rel, normal_contact_force,
                               atan2, wrap_angle, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
-from .ehl_traction import ehl_ellipse_traction_into, ehl_scratch
+from .ehl_traction import ehl_ellipse_traction_into, ehl_pair_traction_into, ehl_scratch
 from .fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 from .churning import cylinder_churning_torque
 from .film import ellipticity_nb, film_parameter_nb, film_thickness_nb
@@ -217,6 +217,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     Z = P[P_Z]
     tmodel = int(tp[P_LUBMODEL]) if P[P_TRACTION] < 0.5 else TRACTION_COULOMB   # lubricated: EHL or curve
     kalker = P[P_TRACTION] > 1.5          # Kalker's simplified theory (FASTSIM), seed 000 Eqs. 7-9
+    ehl = (not kalker) and tmodel == TRACTION_EHL
     sc = ehl_scratch(qx, qwx, qy, qwy)    # EHL traction's point quadrature and scratch, shared by all contacts
     Gc = P[P_GCOMB]
     nuc = P[P_NUCOMB]
@@ -351,15 +352,21 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         (Fni, pd_i, ue_i, Rxi, vsti, vsmi, wspi, wrmi, wrti,
          uri) = _raceway_contact(dli, nir, niz, Qi, rb, rd, thd, zd, Wr, Wt, Wz, w, vri, vrt, vrz, D,
                                  gD, zeta, mb)
-        fti, fmi, mni, mmi, mti, pli = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi, Rxi, Ryi, vsti, vsmi,
-                                                      wspi, wrmi, wrti, uri, tmodel, tp, Gc, nuc, fnx, fny, qx,
-                                                      qwx, qy, qwy, sc)
         (Fno, pd_o, ue_o, Rxo, vsto, vsmo, wspo, wrmo, wrto,
          uro) = _raceway_contact(dlo, nor, noz, Qo, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot, 0.0, D,
                                  gD, zeta, mb)
-        fto, fmo, mno, mmo, mto, plo = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo, Rxo, Ryo, vsto, vsmo,
-                                                      wspo, wrmo, wrto, uro, tmodel, tp, Gc, nuc, fnx, fny, qx,
-                                                      qwx, qy, qwy, sc)
+        if ehl:     # EHL traction: the inner and the outer contact together (ehl_pair_traction_into)
+            (fti, fmi, mni, mmi, mti, pli,
+             fto, fmo, mno, mmo, mto, plo) = ehl_pair_traction_into(ai_s, bi_s, pi_, Rdi, Rxi, vsti, vsmi, wspi,
+                                                                    wrmi, wrti, uri, ao_s, bo_s, po, Rdo, Rxo,
+                                                                    vsto, vsmo, wspo, wrmo, wrto, uro, D, tp, sc)
+        else:
+            fti, fmi, mni, mmi, mti, pli = _race_traction(kalker, ai_s, bi_s, Qi, pi_, D, Rdi, Rxi, Ryi, vsti,
+                                                          vsmi, wspi, wrmi, wrti, uri, tmodel, tp, Gc, nuc, fnx,
+                                                          fny, qx, qwx, qy, qwy, sc)
+            fto, fmo, mno, mmo, mto, plo = _race_traction(kalker, ao_s, bo_s, Qo, po, D, Rdo, Rxo, Ryo, vsto,
+                                                          vsmo, wspo, wrmo, wrto, uro, tmodel, tp, Gc, nuc, fnx,
+                                                          fny, qx, qwx, qy, qwy, sc)
         P_dp += pd_i
         Uel += ue_i
         P_dp += pd_o

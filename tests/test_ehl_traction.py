@@ -264,3 +264,42 @@ def test_roughness_is_a_geometry_parameter():
         dataclasses.replace(g, race_roughness=-1e-7)
     with pytest.raises(BearingInputError, match="mu_boundary"):
         DynamicModel(g, DynamicsOptions(mu_boundary=1.5))
+
+
+@pytest.mark.parametrize("rq,thermal,elastic,quad", [(0.3e-6, True, True, (4, 4)), (0.0, False, False, (6, 3)),
+                                                     (0.05e-6, True, True, (6, 2))])
+def test_pair_kernel_equals_two_single_contacts(rq, thermal, elastic, quad):
+    """ehl_pair_traction_into (a ball's inner and outer contact in one kernel, the right-hand side's EHL
+    path) against two ehl_ellipse_traction_into calls: the same arithmetic per point, only the shear law's
+    loop runs over both contacts' points, so the results agree to 1e-14 of each output's largest value
+    (an identity of the two code paths, no external reference). Random loaded contact states of both
+    rolling directions, with mixed lubrication, shear heating and elasticity on or off, and pairs with one
+    unloaded contact (the single-contact fallback); quadratures filling 16 and 32 columns."""
+    rng = np.random.default_rng(7)
+    prm = L.rheology_traction_params(ck.traction_params(u_min=0.5), "iso-vg68-mineral", 330.0, 2.26e11,
+                                     80e9 * 3.4 if elastic else 0.0, rq, thermal=thermal)
+    if not elastic:
+        prm[E.R_GFILM] = 0.0
+    sc = E.ehl_scratch(*ck.ellipse_quadrature(*quad))
+    Dd = 0.02
+    Rd = (2 * 0.52 * Dd / (2 * 0.52 + 1), 2 * 0.53 * Dd / (2 * 0.53 + 1))
+    single, pair = [], []
+    for it in range(60):
+        args = []
+        for c in range(2):
+            a = rng.uniform(0.3e-3, 3e-3)
+            b = a / rng.uniform(1.0, 10.0)
+            Q = 0.0 if (it % 10 == 9 and c == it // 10 % 2) else rng.uniform(10.0, 3000.0)
+            p = 1.5 * Q / (math.pi * a * b)
+            st = rng.normal(size=5) * np.array([1.0, 0.3, 500.0, 2000.0, 200.0])
+            u = rng.normal() * 10
+            args.append((a, b, p, Rd[c], rng.uniform(0.007, 0.011), *st, u))
+        r = E.ehl_pair_traction_into(*args[0], *args[1], Dd, prm, sc)
+        for c in range(2):
+            a, b, p, R, Rx = args[c][:5]
+            single.append(E.ehl_ellipse_traction_into(a, b, p, Dd, R, Rx, 0.01, *args[c][5:], prm, sc))
+            pair.append(r[6 * c:6 * c + 6])
+    single, pair = np.array(single), np.array(pair)
+    scale = np.max(np.abs(single), axis=0)
+    assert np.all(scale > 0)
+    assert np.all(np.abs(pair - single) <= 1e-14 * scale)
