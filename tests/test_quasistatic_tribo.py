@@ -122,6 +122,9 @@ def test_input_errors():
         TriboQuasiStaticModel(G, DynamicsOptions(coupling="displacement"))
     with pytest.raises(BearingInputError, match="start"):
         DynamicModel(G, _opt("kalker")).initialize(100.0, (0, 0, 3000, 0, 0), start="guess")
+    for bad in ("previous", 1.0, np.zeros(10)):               # a start must be an earlier solve's result
+        with pytest.raises(BearingInputError, match="start"):
+            m.solve(100.0, (0, 0, 3000, 0, 0), start=bad)
 
 
 def test_cli_quasistatic_traction_json(capsys):
