@@ -320,6 +320,16 @@ def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_ro
 
 
 @hot(inline="always")
+def _law_params(params):
+    """The oil's shear-law parameters as scalars (lubricants.rheology_traction_params): Roelands
+    ln(eta_0) + 9.67 and z, beta [1/K], Eyring tau_0 [Pa], limiting shear tau_L0 [Pa] and gamma_L [-], the
+    thermal switch, kgam [1/K] (relative fall of the limiting shear stress with the film heating), the
+    boundary-friction sliding speed scale v_bl [m/s]."""
+    return (params[R_LNE], params[R_Z], params[R_BETA], params[R_TAU0], params[R_TAUL0], params[R_GAML],
+            params[R_THERMAL] > 0.5, params[R_KGAM], params[R_VBL])
+
+
+@hot(inline="always")
 def _ehl_contact(a, b, p_max, Rx, u_roll, params):
     """Per-contact values of the EHL traction (film, load sharing, elasticity, heating factors): (u, h, f,
     mubl, ghu, lxh, cfilm, cflash, sgn, fluid, lnU, lnG, lnW) for a loaded contact (p_max, a, b > 0)."""
@@ -451,16 +461,8 @@ def ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin,
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     u, h, f, mubl, ghu, lxh, cfilm, cflash, sgn, fluid, lnU, lnG, lnW = _ehl_contact(a, b, p_max, Rx, u_roll,
                                                                                      params)
-    lne = params[R_LNE]
-    z = params[R_Z]
-    beta = params[R_BETA]
-    tau0 = params[R_TAU0]
-    tauL0 = params[R_TAUL0]
-    gamL = params[R_GAML]
-    thermal = params[R_THERMAL] > 0.5
-    kgam = params[R_KGAM]
+    lne, z, beta, tau0, tauL0, gamL, thermal, kgam, vbl = _law_params(params)
     elastic = ghu > 0.0
-    vbl = params[R_VBL]
     npad = sc.shape[1] // 2
     # ---- pass 1: sliding field over the ellipse
     _ehl_field(sc, 0, npad, a, b, p_max, D, R_def, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, sgn)
@@ -506,16 +508,8 @@ def ehl_pair_traction_into(a1, b1, p1, R1, Rx1, vt1, vm1, ws1, wm1, wt1, ur1,
         r1 = ehl_ellipse_traction_into(a1, b1, p1, D, R1, Rx1, 0.0, vt1, vm1, ws1, wm1, wt1, ur1, params, sc)
         r2 = ehl_ellipse_traction_into(a2, b2, p2, D, R2, Rx2, 0.0, vt2, vm2, ws2, wm2, wt2, ur2, params, sc)
         return r1 + r2
-    lne = params[R_LNE]
-    z = params[R_Z]
-    beta = params[R_BETA]
-    tau0 = params[R_TAU0]
-    tauL0 = params[R_TAUL0]
-    gamL = params[R_GAML]
-    thermal = params[R_THERMAL] > 0.5
-    kgam = params[R_KGAM]
+    lne, z, beta, tau0, tauL0, gamL, thermal, kgam, vbl = _law_params(params)
     elastic = gh1 > 0.0
-    vbl = params[R_VBL]
     boundary = mb1 > 0.0 or mb2 > 0.0
     npad = sc.shape[1] // 2
     # ---- pass 1 per contact, with the contact's values of the shear law in every column
