@@ -223,7 +223,8 @@ class TriboQuasiStaticModel:
         if loads.size != 5 or not np.all(np.isfinite(loads)):
             raise BearingInputError("loads", loads.tolist(), "5 finite values (Fx, Fy, Fz, Mx, My)")
         if start is not None and not isinstance(start, TriboQuasiStaticResult):
-            raise BearingInputError("start", type(start).__name__, "None or a TriboQuasiStaticResult of an earlier solve")
+            raise BearingInputError("start", type(start).__name__,
+                                    "None or a TriboQuasiStaticResult of an earlier solve")
         try:
             return self._solve_one(omega, loads, tol, maxit, start, need_jh=False)
         except BearingInputError:
