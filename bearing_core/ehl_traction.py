@@ -485,6 +485,19 @@ def ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin,
     return Ft, Fm, Mn, Mm - MR, Mt, P + PR
 
 
+@hot(inline="always")
+def _contact_rows(sc, n0, n1, lx, gh, cf, cl, f, mb):
+    """One contact's values of the shear law (ln(eta_0 / (tau_0 h)), G_e / (h u), film and flash heating
+    factors, fluid share, boundary friction) into columns n0 .. n1 - 1 of the pair kernel's scratch."""
+    for n in range(n0, n1):
+        sc[_LX, n] = lx
+        sc[_GH, n] = gh
+        sc[_CF, n] = cf
+        sc[_CL, n] = cl
+        sc[_FF, n] = f
+        sc[_MB, n] = mb
+
+
 @hot(nrt=False)     # called per ball from the right-hand side: no reference counts of its arrays
 def ehl_pair_traction_into(a1, b1, p1, R1, Rx1, vt1, vm1, ws1, wm1, wt1, ur1,
                            a2, b2, p2, R2, Rx2, vt2, vm2, ws2, wm2, wt2, ur2, D, params, sc):
@@ -497,17 +510,15 @@ def ehl_pair_traction_into(a1, b1, p1, R1, Rx1, vt1, vm1, ws1, wm1, wt1, ur1,
     if sc.shape[0] != _NROWS:
         raise ValueError("ehl_pair_traction_into: sc is not an ehl_scratch array")
     if not (p1 > 0.0 and a1 > 0.0 and b1 > 0.0 and p2 > 0.0 and a2 > 0.0 and b2 > 0.0):
-        r1 = ehl_ellipse_traction_into(a1, b1, p1, D, R1, Rx1, 0.0, vt1, vm1, ws1, wm1, wt1, ur1, params, sc)
-        r2 = ehl_ellipse_traction_into(a2, b2, p2, D, R2, Rx2, 0.0, vt2, vm2, ws2, wm2, wt2, ur2, params, sc)
-        return r1 + r2
+        return (ehl_ellipse_traction_into(a1, b1, p1, D, R1, Rx1, 0.0, vt1, vm1, ws1, wm1, wt1, ur1, params, sc)
+                + ehl_ellipse_traction_into(a2, b2, p2, D, R2, Rx2, 0.0, vt2, vm2, ws2, wm2, wt2, ur2, params, sc))
     (u1, h1, f1, mb1, gh1, lx1, cf1, cl1, sg1, fl1, lnU1, lnG1,
      lnW1) = _ehl_contact(a1, b1, p1, Rx1, ur1, params)
     (u2, h2, f2, mb2, gh2, lx2, cf2, cl2, sg2, fl2, lnU2, lnG2,
      lnW2) = _ehl_contact(a2, b2, p2, Rx2, ur2, params)
     if not (fl1 and fl2 and (gh1 > 0.0) == (gh2 > 0.0)):
-        r1 = ehl_ellipse_traction_into(a1, b1, p1, D, R1, Rx1, 0.0, vt1, vm1, ws1, wm1, wt1, ur1, params, sc)
-        r2 = ehl_ellipse_traction_into(a2, b2, p2, D, R2, Rx2, 0.0, vt2, vm2, ws2, wm2, wt2, ur2, params, sc)
-        return r1 + r2
+        return (ehl_ellipse_traction_into(a1, b1, p1, D, R1, Rx1, 0.0, vt1, vm1, ws1, wm1, wt1, ur1, params, sc)
+                + ehl_ellipse_traction_into(a2, b2, p2, D, R2, Rx2, 0.0, vt2, vm2, ws2, wm2, wt2, ur2, params, sc))
     lne, z, beta, tau0, tauL0, gamL, thermal, kgam, vbl = _law_params(params)
     elastic = gh1 > 0.0
     boundary = mb1 > 0.0 or mb2 > 0.0
@@ -515,20 +526,8 @@ def ehl_pair_traction_into(a1, b1, p1, R1, Rx1, vt1, vm1, ws1, wm1, wt1, ur1,
     # ---- pass 1 per contact, with the contact's values of the shear law in every column
     _ehl_field(sc, 0, npad, a1, b1, p1, D, R1, vt1, vm1, ws1, wm1, wt1, sg1)
     _ehl_field(sc, npad, npad, a2, b2, p2, D, R2, vt2, vm2, ws2, wm2, wt2, sg2)
-    for n in range(npad):
-        sc[_LX, n] = lx1
-        sc[_GH, n] = gh1
-        sc[_CF, n] = cf1
-        sc[_CL, n] = cl1
-        sc[_FF, n] = f1
-        sc[_MB, n] = mb1
-    for n in range(npad, 2 * npad):
-        sc[_LX, n] = lx2
-        sc[_GH, n] = gh2
-        sc[_CF, n] = cf2
-        sc[_CL, n] = cl2
-        sc[_FF, n] = f2
-        sc[_MB, n] = mb2
+    _contact_rows(sc, 0, npad, lx1, gh1, cf1, cl1, f1, mb1)
+    _contact_rows(sc, npad, 2 * npad, lx2, gh2, cf2, cl2, f2, mb2)
     # ---- pass 2: shear stress at the points of both contacts (one vectorised loop)
     for n in range(2 * npad):
         vt = sc[_VT, n]
