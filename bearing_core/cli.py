@@ -103,7 +103,7 @@ def build_parser() -> argparse.ArgumentParser:
     th.add_argument("--bearing", required=True)
     th.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"))
     _add_loads(th)
-    th.add_argument("--oil", default="iso-vg32-mineral", help="oil name (bearing_core.lubricants)")
+    th.add_argument("--oil", default="iso-vg32-mineral", help="oil name (bearing_core.lubrication.lubricants)")
     th.add_argument("--oil-fraction", type=_finite("--oil-fraction"), default=0.05,
                     help="oil volume fraction of the oil-air mixture [-]")
     th.add_argument("--ambient-c", type=_finite("--ambient-c"), default=35.0, help="ambient temperature [degC]")
@@ -180,8 +180,8 @@ def quasistatic_dict(res) -> dict:
 
 
 def cmd_quasistatic(a) -> int:
-    from .geometry import load_preset
-    from .quasistatic import solve_quasistatic
+    from .bearing.geometry import load_preset
+    from .models.quasistatic import solve_quasistatic
 
     if not 0.0 <= a.speed_rpm <= 190000.0:
         raise _BadArg(f"--speed-rpm = {a.speed_rpm} is invalid; allowed: 0 <= speed <= 190000 rpm")
@@ -192,7 +192,7 @@ def cmd_quasistatic(a) -> int:
     res = solve_quasistatic(g, a.speed_rpm * RPM, (a.fx, a.fy, a.fz, a.mx, a.my), control=a.control)
     d = quasistatic_dict(res)
     if g.is_four_point:
-        from .quasistatic import CONTACT_NAMES
+        from .models.quasistatic import CONTACT_NAMES
         d["four_point"] = {
             "contacts": list(CONTACT_NAMES),
             "inner_groove_offset_mm": g.inner_groove_offset * 1e3,
@@ -286,8 +286,8 @@ def tribo_quasistatic_dict(res) -> dict:
 
 
 def _tribo_quasistatic(a, g) -> int:
-    from .dynamics import DynamicsOptions
-    from .quasistatic_tribo import solve_tribo_quasistatic
+    from .models.dynamics import DynamicsOptions
+    from .models.quasistatic_tribo import solve_tribo_quasistatic
     if a.speed_rpm * RPM < 1.0:
         raise _BadArg(f"--speed-rpm = {a.speed_rpm} is invalid with --traction; allowed: 10 <= speed <= 190000 rpm "
                       "(the tribological model needs rolling)")
@@ -350,7 +350,7 @@ outputs (OUT/): sweep.csv, sweep.parquet, sweep.nc (grids), sweep_skid_map.png, 
 
 
 def _add_sweep_parser(sub):
-    from .sweep import MODEL_NAMES, VARIABLES
+    from .maps.sweep import MODEL_NAMES, VARIABLES
     sw = sub.add_parser(
         "sweep", help="operating maps on Dask: grids or point lists over speed, loads, preload, oil, friction, "
                       "clearances, bearing; skid, torque and heat maps; minimum-preload curve",
@@ -413,7 +413,7 @@ def _add_sweep_parser(sub):
 
 def sweep_spec_from_args(a):
     """SweepSpec of the `bearing sweep` arguments (validated later, before any work)."""
-    from .sweep import SweepSpec, parse_assignment, parse_values, read_points_csv, VARIABLES
+    from .maps.sweep import SweepSpec, parse_assignment, parse_values, read_points_csv, VARIABLES
     from .errors import BearingInputError
     base = {}
     if a.bearing is not None:
@@ -467,7 +467,7 @@ def sweep_spec_from_args(a):
 
 
 def cmd_sweep(a) -> int:
-    from .sweep import min_preload_curve, parse_values, plot_maps, plot_min_preload, run_sweep, write_results
+    from .maps.sweep import min_preload_curve, parse_values, plot_maps, plot_min_preload, run_sweep, write_results
     from .errors import check_range
     from .postprocess import write_csv, plot_quasistatic_sweep
 
@@ -510,7 +510,7 @@ def cmd_sweep(a) -> int:
                 "omega_R_rpm", "spin_roll_i", "spin_roll_o", "p_max_i_Pa", "dz_m", "dx_m")
         ok = df[df["status"] == "ok"]
         if len(ok):
-            from .sweep import resolve_geometry
+            from .maps.sweep import resolve_geometry
             name = resolve_geometry(spec.points()[0]).name
             rows = [{k: float(r[k]) for k in keys} for _, r in ok.iterrows()]
             loads = tuple(float(x) for x in (a.fx, a.fy, a.fz, a.mx, a.my))
@@ -529,12 +529,12 @@ def cmd_sweep(a) -> int:
 def cmd_dynamics(a) -> int:
     import time
     from pathlib import Path
-    from .dynamics import DynamicModel, DynamicsOptions, records_to_dict, simulate_profile
-    from .dynamics_kernels import OUT_NAMES
-    from .geometry import load_preset
+    from .models.dynamics import DynamicModel, DynamicsOptions, records_to_dict, simulate_profile
+    from .models.dynamics_kernels import OUT_NAMES
+    from .bearing.geometry import load_preset
     from .postprocess import plot_dynamics, write_records_csv
 
-    from .dynamics import read_profile
+    from .models.dynamics import read_profile
     t_prof, n_prof, prof_loads = read_profile(a.profile)
     prof_loads = dict(prof_loads or {})
     n_outer = prof_loads.pop("outer_speed_rpm", None)
@@ -584,8 +584,8 @@ def cmd_dynamics(a) -> int:
         "rhs_calls": int(m.stats[2]),
         "lubrication": opt.regime, "race_traction": opt.race_traction,
     }
-    # kinematic reference at the loaded balls' contact angles and the skid classification (bearing_core.skid)
-    from .skid import SKID_LABELS, SKID_TOL, classify_skid
+    # kinematic reference at the loaded balls' contact angles and the skid classification (bearing_core.models.skid)
+    from .models.skid import SKID_LABELS, SKID_TOL, classify_skid
     wo = float(d["cage_speed_pure_rolling_outer"][tail].mean())
     state, slip = classify_skid(summary["final_cage_speed_rpm"] * RPM, wo)
     summary.update({
@@ -608,8 +608,8 @@ def cmd_dynamics(a) -> int:
 
 def cmd_microslip(a) -> int:
     from pathlib import Path
-    from .dynamics import DynamicModel, DynamicsOptions
-    from .geometry import load_preset
+    from .models.dynamics import DynamicModel, DynamicsOptions
+    from .bearing.geometry import load_preset
     from .postprocess import microslip_map, plot_microslip
 
     if not (0.0 < a.time <= 10.0):
@@ -634,14 +634,14 @@ def cmd_microslip(a) -> int:
 
 def cmd_thermal(a) -> int:
     import math
-    from .dynamics import DynamicModel, DynamicsOptions
-    from .geometry import load_preset
-    from .thermal import ThermalData
+    from .models.dynamics import DynamicModel, DynamicsOptions
+    from .bearing.geometry import load_preset
+    from .heat.thermal import ThermalData
 
     T_amb = a.ambient_c + 273.15
     T_in = (a.oil_inlet_c if a.oil_inlet_c is not None else a.ambient_c) + 273.15
     td = ThermalData(T_amb=T_amb, T_in=T_in, flow_rate=a.oil_flow_lpm / 60000.0)
-    from .thermal import ThermalRunaway
+    from .heat.thermal import ThermalRunaway
     opts = DynamicsOptions(oil=a.oil, oil_fraction=a.oil_fraction, churning=not a.no_churning, thermal=True,
                            thermal_data=td, oil_temperature=T_in, lubrication=a.lubrication)
     m = DynamicModel(load_preset(a.bearing), opts)
@@ -683,7 +683,7 @@ def cmd_thermal(a) -> int:
 
 
 def cmd_wear(a) -> int:
-    from .wear import wear_report
+    from .models.wear import wear_report
 
     r = wear_report(a.bearing, a.speed_rpm, a.fx, a.fz, a.hours, fy=a.fy, mx=a.mx, my=a.my)
     if a.json:
@@ -696,7 +696,7 @@ def cmd_wear(a) -> int:
 
 
 def cmd_presets(a) -> int:
-    from .geometry import list_presets, preset_data
+    from .bearing.geometry import list_presets, preset_data
 
     rows = [{"name": n, "source": preset_data(n).get("source", "")} for n in list_presets()]
     if a.json:

@@ -135,7 +135,7 @@ def microslip_map(model, ball: int = 0, race: str = "inner", n: int = 40, mu: fl
     the slips and 'adhesion_fraction'."""
     import numpy as np
     from .errors import BearingInputError
-    from .fastsim import PRESSURE_HERTZ, combined_elastic, fastsim_map
+    from .contact.fastsim import PRESSURE_HERTZ, combined_elastic, fastsim_map
 
     if race not in ("inner", "outer"):
         raise BearingInputError("race", race, "inner | outer")

@@ -8,8 +8,6 @@ import sys
 from pathlib import Path
 
 from bearing_core import cli as core_cli
-
-
 # argparse takes "-1e-3" for an option name (its negative-number pattern has no exponent), so
 # "--step -1e-3" failed with "expected one argument"; numbers in any float notation are values.
 _NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.IGNORECASE)
@@ -54,7 +52,7 @@ def build_parser():
                         "e.g. --param integrator=rk4 --param thermal=true")
     s.add_argument("--lubrication", choices=("auto", "oil", "solid", "dry"), default="auto",
                    help="lubrication regime (FMU parameter lubrication): oil | solid | dry | auto (from --traction)")
-    s.add_argument("--oil", default="", help="oil name for viscosity (bearing_core.lubricants; default: the "
+    s.add_argument("--oil", default="", help="oil name for viscosity (bearing_core.lubrication.lubricants; default: the "
                                              "traction curve's oil)")
     s.add_argument("--oil-temperature-c", type=core_cli._finite("--oil-temperature-c"), default=40.0,
                    help="oil temperature [degC] (thermal network off)")

@@ -4,7 +4,7 @@
     python -m bearing_cosim.fmu_reference FMU OUTDIR      (run by `bearing build-fmu --with-reference`)
 
 The reference experiment is the FMU's default experiment (0 to 1 s, 1 ms communication steps) driven by the
-seed 000 acceleration profile (1000 rpm to 0.5 s, then 10,000 rpm/s; bearing_core.dynamics.SEED000_PROFILE) with
+seed 000 acceleration profile (1000 rpm to 0.5 s, then 10,000 rpm/s; bearing_core.models.dynamics.SEED000_PROFILE) with
 Fx = 1 kN, Fz = 3 kN held, run by fmpy's simulate_fmu (inputs sampled at each communication point and held over
 the step). Also writes <id>_ref.png, a plot of the run. Runs in its own process and leaves with os._exit after
 writing (docs/fmu.md: exit of processes that hosted the FMU).
@@ -27,7 +27,7 @@ LOADS = {"Fx": 1000.0, "Fz": 3000.0}
 def input_signal(start: float, stop: float):
     """The cross-check input table: time [s], shaft_speed [rad/s], Fx, Fz [N] at the profile's corners on
     [start, stop] (linear in between)."""
-    from bearing_core.dynamics import SEED000_PROFILE
+    from bearing_core.models.dynamics import SEED000_PROFILE
     t, n = (np.array(v, dtype=float) for v in zip(*SEED000_PROFILE))
     tt = np.unique(np.concatenate(([start, stop], t[(t > start) & (t < stop)])))
     w = np.interp(tt, t, n) * math.pi / 30.0

@@ -3,13 +3,13 @@
 One FMU instance per worker process: the FMU is unpacked once per process (the first point that needs it) and
 instantiated once (again only after a point failed inside the FMU); between points it is reset with fmi2Reset, its parameters are set again, and it is
 initialised at the point's speed and loads. The run then steps (communication step options['step_s'], default
-1e-3 s) in windows of options['window_s'] until steady by the criterion of bearing_core.sweep.DynamicWindow:
+1e-3 s) in windows of options['window_s'] until steady by the criterion of bearing_core.maps.sweep.DynamicWindow:
 between two consecutive windows the window mean of the cage speed changes by less than options['steady_tol'] and
 that of the friction torque by less than options['torque_tol'] (relative; torque plus 1e-6 N m), at most options['max_time_s']
 simulated. The pure-rolling cage speed is the FMU's output cage_speed_pure_rolling_outer (outer raceway control at
-each loaded ball's contact angles), as for the other models (bearing_core.skid).
+each loaded ball's contact angles), as for the other models (bearing_core.models.skid).
 
-Registered in bearing_core.sweep.PLUGINS as 'fmu' -> 'bearing_cosim.fmu_sweep:FMUEvaluator'.
+Registered in bearing_core.maps.sweep.PLUGINS as 'fmu' -> 'bearing_cosim.fmu_sweep:FMUEvaluator'.
 """
 from __future__ import annotations
 
@@ -21,7 +21,7 @@ import threading
 from pathlib import Path
 
 from bearing_core.errors import BearingInputError
-from bearing_core.sweep import RPM, DynamicWindow, _CAGE, _COMMON, _TRIBO, _ratio
+from bearing_core.maps.sweep import RPM, DynamicWindow, _CAGE, _COMMON, _TRIBO, _ratio
 
 # per-process FMU instances, keyed by the FMU file's content hash (one worker process = one instance)
 _INSTANCES: dict = {}

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 RPM = math.pi / 30.0
-from bearing_core.dynamics import PROFILE_LOAD_COLUMNS as LOAD_COLS, read_profile
+from bearing_core.models.dynamics import PROFILE_LOAD_COLUMNS as LOAD_COLS, read_profile
 
 def _clip_profile(t, n, loads, t_stop):
     """The profile on [t0, t_stop]: cut (interpolated at t_stop) or extended holding the last values."""
@@ -134,7 +134,7 @@ def simulate(fmu: str, profile: str, loads=(0.0, 0.0, 0.0, 0.0, 0.0), step: floa
                "final_heat_flux_W": float(res["heat_flux_total"][tail].mean()),
                "csv": str(csv_path), "plot": str(png), "friction_plot": str(fr_png)}
     if "cage_speed_pure_rolling_outer" in res.dtype.names:
-        from bearing_core.skid import SKID_LABELS, classify_skid
+        from bearing_core.models.skid import SKID_LABELS, classify_skid
         wc = float(res["cage_speed"][tail].mean())
         wo = float(res["cage_speed_pure_rolling_outer"][tail].mean())
         st, slip = classify_skid(wc, wo)
@@ -160,14 +160,14 @@ HEAT_SOURCES = (("heat_flux_race_inner", "ball-inner race"), ("heat_flux_race_ou
 
 def plot_friction_references(res, speed, params, path, loads, prof_loads, t_prof):
     """Friction torque of the run next to the SKF (2004) and Palmgren estimates at the same speed, loads and
-    oil viscosity (bearing_core.friction_models; oil at the oil_temperature parameter), and the heat by
+    oil viscosity (bearing_core.lubrication.friction_models; oil at the oil_temperature parameter), and the heat by
     source (stacked). Returns (png path, reference dict or None when the run is not oil-lubricated)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from bearing_core.geometry import load_preset
-    from bearing_core.lubricants import TRACTION_OIL, get_oil
-    from bearing_core.friction_models import reference_torques
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.lubrication.lubricants import TRACTION_OIL, get_oil
+    from bearing_core.lubrication.friction_models import reference_torques
 
     tt = res["time"]
     lub = params.get("lubrication", "auto")

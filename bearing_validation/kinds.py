@@ -22,7 +22,7 @@ def kind(fn):
 
 
 def _steel_reduced_modulus(inputs):
-    from bearing_core import hertz as hz
+    from bearing_core.contact import hertz as hz
     E, nu = inputs.get("E_Pa", 206e9), inputs.get("nu", 0.3)
     return hz.reduced_modulus(E, nu, E, nu)
 
@@ -35,7 +35,7 @@ def hertz_table(inputs):
     the library uses (hertz.hertz_exact: a = a_coef Q^(1/3), b = b_coef Q^(1/3), Q = K_load delta^1.5),
     by Harris & Kotzalas's definitions (Vol. 1 Ch. 6): a = a* (3Q/(E' sum_rho))^(1/3), same for b, and
     delta = delta* (3Q/(E' sum_rho))^(2/3) sum_rho/2."""
-    from bearing_core import hertz as hz
+    from bearing_core.contact import hertz as hz
     Ep = _steel_reduced_modulus(inputs)
     s, Q = 150.0, 1000.0           # arbitrary curvature sum [1/m] and load [N]: the stars do not depend on them
     c = 3.0 * Q / (Ep * s)
@@ -52,7 +52,7 @@ def hertz_table(inputs):
 @kind
 def hertz_curvature(inputs):
     """Curvature sum [1/mm] and difference [-] at the inner and outer contacts (contact_curvature)."""
-    from bearing_core import hertz as hz
+    from bearing_core.contact import hertz as hz
     D, dm, f = inputs["D_mm"] * 1e-3, inputs["dm_mm"] * 1e-3, inputs["r_groove_mm"] / inputs["D_mm"]
     al = math.radians(inputs.get("alpha_deg", 0.0))
     _, _, si, Fi = hz.contact_curvature(D, dm, f, al, True)
@@ -65,8 +65,8 @@ def hertz_curvature(inputs):
 @kind
 def quasistatic(inputs):
     """Jones-Harris quasi-static solution of one operating point; ball 0's speeds, angles and loads."""
-    from bearing_core.geometry import load_preset
-    from bearing_core.quasistatic import solve_quasistatic
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.models.quasistatic import solve_quasistatic
     g = load_preset(inputs["bearing"])
     r = solve_quasistatic(g, inputs["speed_rpm"] * RPM, tuple(inputs["loads_N_Nm"]),
                           control=inputs.get("control", "outer"))
@@ -82,8 +82,8 @@ def thrust_closed_form(inputs):
     Fa = Z Kn A^1.5 sin(a) (cos a0 / cos a - 1)^1.5 (Vol. 1 Ch. 7), Kn the series constant of the two
     contacts. Returns the relative differences in loaded contact angle and axial approach per load."""
     from scipy.optimize import brentq
-    from bearing_core.geometry import load_preset
-    from bearing_core.quasistatic import QuasiStaticModel
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.models.quasistatic import QuasiStaticModel
     g = load_preset(inputs["bearing"])
     m = QuasiStaticModel(g)
     A, a0 = g.A, g.alpha0
@@ -111,7 +111,7 @@ def kalker_nu_leave_one_out(inputs):
     """Kalker's nu = 0.25 column predicted from the nu = 0 and nu = 0.5 columns by the interpolation rule
     of fastsim (Lagrange in 1/C over nu), at the table rows g (a'/b' <= 1: case A, > 1: case B).
     Also the same prediction linear in C, for comparison."""
-    from bearing_core import fastsim as fs
+    from bearing_core.contact import fastsim as fs
     out = {}
     for k, name in enumerate(("C11", "C22", "C23")):
         pred, lin = [], []
@@ -129,7 +129,7 @@ def kalker_nu_leave_one_out(inputs):
 @kind
 def kalker_coefficients(inputs):
     """fastsim.kalker_coefficients at the given a'/b' and nu."""
-    from bearing_core import fastsim as fs
+    from bearing_core.contact import fastsim as fs
     C = [fs.kalker_coefficients(r, inputs["nu"]) for r in inputs["a_over_b"]]
     return {"C11": [c[0] for c in C], "C22": [c[1] for c in C], "C23": [c[2] for c in C],
             "a_over_b": list(inputs["a_over_b"])}
@@ -139,7 +139,7 @@ def kalker_coefficients(inputs):
 def kalker_asymptotes(inputs):
     """Relative difference of fastsim.kalker_coefficients from Kalker's slender-ellipse asymptotic
     expressions (Kalker 1967; closed forms as in CONTACT linrol) at very small / large a'/b'."""
-    from bearing_core import fastsim as fs
+    from bearing_core.contact import fastsim as fs
     err = 0.0
     for nu in inputs["nu"]:
         for r in inputs["a_over_b"]:
@@ -153,7 +153,7 @@ def kalker_asymptotes(inputs):
 def fastsim_linear_limit(inputs):
     """FASTSIM at a small creepage against Kalker's linear theory with the same coefficients:
     F_t = -G c^2 C11 xi, F_m = -G c^2 C22 eta, F_m = sign(u) G c^3 C23 phi. Returns FASTSIM / linear."""
-    from bearing_core import fastsim as fs
+    from bearing_core.contact import fastsim as fs
     G, nu = fs.combined_elastic(206e9, 0.3, 206e9, 0.3)
     Q, mu, n, u = inputs["Q_N"], inputs["mu"], inputs["grid"], inputs["u_roll_m_s"]
     out = {"Ft_over_linear": [], "Fm_over_linear": [], "spin_over_linear": []}
@@ -175,7 +175,7 @@ def fastsim_linear_limit(inputs):
 @kind
 def fastsim_case(inputs):
     """FASTSIM in Kalker's frame (fastsim_kalker): F_y/(mu F_n) and F_x/(mu F_n) for each traction bound."""
-    from bearing_core import fastsim as fs
+    from bearing_core.contact import fastsim as fs
     out = {}
     for name in inputs["pressures"]:
         p = fs.PRESSURE_PARABOLIC if name == "parabolic" else fs.PRESSURE_HERTZ
@@ -190,8 +190,8 @@ def fastsim_case(inputs):
 # ------------------------------------------------------------------------------------------------
 # seed 004: pure rolling lines and spin torque
 def _qs_rivera(alpha0_deg, rpm, Fz, control="outer"):
-    from bearing_core.geometry import load_preset
-    from bearing_core.quasistatic import solve_quasistatic
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.models.quasistatic import solve_quasistatic
     g = load_preset("7008-rivera2021", alpha0=math.radians(alpha0_deg))
     return solve_quasistatic(g, rpm * RPM, (0, 0, Fz, 0, 0), control=control, stiffness=False)
 
@@ -200,7 +200,7 @@ def _qs_rivera(alpha0_deg, rpm, Fz, control="outer"):
 def prl_c_values(inputs):
     """Houpert c-values of the pure rolling lines (spin_friction.analyse), in the paper's mirrored
     convention (c_paper = -c_ours, order swapped), every ball, inner then outer race."""
-    from bearing_core import spin_friction as sf
+    from bearing_core.contact import spin_friction as sf
     s = sf.analyse(_qs_rivera(inputs["alpha0_deg"], inputs["speed_rpm"], inputs["Fz_N"]))
     c1 = np.concatenate([-s.c2_i, -s.c2_o])
     c2 = np.concatenate([-s.c1_i, -s.c1_o])
@@ -212,7 +212,7 @@ def prl_counts(inputs):
     """Number of pure rolling lines on the inner and outer race per speed (all balls must agree, else -1).
     E_model 'eq15': seed 004 Eq. 15 and Houpert's c-values; 'kinematic': exact spin-to-roll ratio and the
     zero crossings of the exact slip profile."""
-    from bearing_core import spin_friction as sf
+    from bearing_core.contact import spin_friction as sf
     out = {"n_inner": [], "n_outer": [], "speed_rpm": list(inputs["speeds_rpm"])}
     for rpm in inputs["speeds_rpm"]:
         r = _qs_rivera(inputs["alpha0_deg"], rpm, inputs["Fz_N"], control=inputs.get("control", "outer"))
@@ -231,7 +231,7 @@ def prl_counts(inputs):
 def spin_torque_strip_vs_full(inputs):
     """Bearing spin torque (seed 004 Eq. 24) from the c-values (Eqs. 22-23) over the full integration
     (Eq. 19), minus 1, per speed; and both torques [N m]."""
-    from bearing_core import spin_friction as sf
+    from bearing_core.contact import spin_friction as sf
     out = {"Ms_c_over_full_minus_1": [], "Ms_full_Nm": [], "Ms_c_Nm": [], "speed_rpm": list(inputs["speeds_rpm"])}
     for rpm in inputs["speeds_rpm"]:
         s = sf.analyse(_qs_rivera(inputs["alpha0_deg"], rpm, inputs["Fz_N"]), mu=inputs["mu"])
@@ -244,7 +244,7 @@ def spin_torque_strip_vs_full(inputs):
 # ------------------------------------------------------------------------------------------------
 # seed 001 (churning, oils)
 def _seed001_bearing(b):
-    from bearing_core.geometry import from_dict
+    from bearing_core.bearing.geometry import from_dict
     return from_dict(dict(
         name="seed001-qj1044-estimate", ball_diameter_mm=b["ball_diameter_mm"], number_of_balls=b["number_of_balls"],
         pitch_diameter_mm=b["pitch_diameter_mm"], free_contact_angle_deg=b["free_contact_angle_deg"], fi=b["fi"],
@@ -258,8 +258,8 @@ def churning_share(inputs):
     """Churning (cage + balls + inner ring, seed 001 Eqs. 12-17) over churning plus race spin loss (Coulomb
     spin moment 3/8 mu Q a E(e), Harris & Kotzalas Vol. 2) from the quasi-static model, per axial load."""
     from scipy.special import ellipe
-    from bearing_core import churning as ch
-    from bearing_core.quasistatic import solve_quasistatic
+    from bearing_core.lubrication import churning as ch
+    from bearing_core.models.quasistatic import solve_quasistatic
     g = _seed001_bearing(inputs["bearing_estimate"])
     w = inputs["speed_rpm"] * RPM
     shares = []
@@ -281,7 +281,7 @@ def churning_share(inputs):
 @kind
 def oil_viscosity(inputs):
     """Dynamic viscosity [mPa s] of library oils at the given temperature [degC]."""
-    from bearing_core import lubricants as L
+    from bearing_core.lubrication import lubricants as L
     return {"eta_mPa_s": [float(L.get_oil(n).eta(inputs["temperature_C"] + 273.15) * 1e3) for n in inputs["oils"]]}
 
 
@@ -289,7 +289,7 @@ def oil_viscosity(inputs):
 def film_rolling_ball(inputs):
     """Hamrock-Dowson minimum film of a ball rolling down an inclined oiled plate (Stachowiak & Batchelor's
     conventions: R' = d/4 as Rx = Ry, U from v/2, E' = E/(1 - nu^2)); v = sqrt(10/7 g s sin(theta))."""
-    from bearing_core import film
+    from bearing_core.lubrication import film
     d, g = inputs["d_mm"] * 1e-3, 9.81
     th = math.radians(inputs["incline_deg"])
     W = inputs["rho_kg_m3"] * math.pi * d ** 3 / 6.0 * g * math.cos(th)
@@ -308,8 +308,8 @@ def film_rolling_ball(inputs):
 def wear_speed_sweep(inputs):
     """Wear coefficient k and h_min per loaded ball against speed (wear.operating_point_wear), and the
     largest contact-centre sliding speed. Monotonicity flags over the balls loaded at every speed."""
-    from bearing_core import wear
-    from bearing_core.geometry import load_preset
+    from bearing_core.models import wear
+    from bearing_core.bearing.geometry import load_preset
     g = load_preset(inputs["bearing"])
     ks = {"inner": [], "outer": []}
     hs = {"inner": [], "outer": []}
@@ -341,8 +341,8 @@ def wear_speed_sweep(inputs):
 def wear_radial_force_sweep(inputs):
     """Seed 003 Fig. 6 quantities: k at the force direction and opposite, per radial force; the number of
     local minima of k_i around the ring; its depth (max - min)."""
-    from bearing_core import wear
-    from bearing_core.geometry import load_preset
+    from bearing_core.models import wear
+    from bearing_core.bearing.geometry import load_preset
     g = load_preset(inputs["bearing"])
     runs = [wear.operating_point_wear(g, inputs["speed_rpm"] * RPM, (F, 0, inputs["Fz_N"], 0, 0))
             for F in inputs["Fx_N"]]
@@ -362,8 +362,8 @@ def wear_radial_force_sweep(inputs):
 @kind
 def wear_moment_zones(inputs):
     """Seed 003 Fig. 7: local maxima (bearing zones) of k_i around the ring under a moment M_y."""
-    from bearing_core import wear
-    from bearing_core.geometry import load_preset
+    from bearing_core.models import wear
+    from bearing_core.bearing.geometry import load_preset
     g = load_preset(inputs["bearing"])
     runs = [wear.operating_point_wear(g, inputs["speed_rpm"] * RPM, (0, 0, inputs["Fz_N"], 0, M))
             for M in inputs["My_Nm"]]
@@ -382,8 +382,8 @@ def wear_moment_zones(inputs):
 def wear_ellipse_sliding(inputs):
     """Seed 003 Fig. 12: asymmetry of the strip wear q(x) along the major axis, inner and outer race
     (max |q(x) - q(-x)| / max q over the balls)."""
-    from bearing_core import wear
-    from bearing_core.geometry import load_preset
+    from bearing_core.models import wear
+    from bearing_core.bearing.geometry import load_preset
     g = load_preset(inputs["bearing"])
     op = wear.operating_point_wear(g, inputs["speed_rpm"] * RPM, tuple(inputs["loads_N_Nm"]))
     asym = {}
@@ -396,7 +396,7 @@ def wear_ellipse_sliding(inputs):
 # ------------------------------------------------------------------------------------------------
 # dynamics (slow: full run only)
 def _seed000_profile(t_end):
-    from bearing_core.dynamics import SEED000_PROFILE
+    from bearing_core.models.dynamics import SEED000_PROFILE
     ts = [p[0] for p in SEED000_PROFILE]
     ns = [p[1] for p in SEED000_PROFILE]
     return [p for p in SEED000_PROFILE if p[0] < t_end] + [(t_end, float(np.interp(t_end, ts, ns)))]
@@ -415,8 +415,8 @@ def seed000_profile(inputs):
     16-ball model, per axial load: cage speed at the end, settle time (1 % band), CSR over the spin-free
     theoretical CSR (Eq. 26) at the end and its minimum after 0.5 s, peak |a_x| of the inner ring in the
     ramp (0.5-1.4 s); plus the cage-speed curves for the plot."""
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict, simulate_profile
-    from bearing_core.geometry import load_preset
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict, simulate_profile
+    from bearing_core.bearing.geometry import load_preset
     mu = inputs["mu"]
     t_end = inputs.get("t_end_s", 2.0)
     out = {"Fz_N": list(inputs["Fz_N"]), "cage_end_rpm": [], "settle_time_s": [], "csr_over_theory_end": [],
@@ -450,8 +450,8 @@ def held_speed_vibration(inputs):
     """7218B held at a constant speed (Seed 000 Table 3 analogue): RMS inner-ring x acceleration over the
     second half of the run and the share of time ball 0's inner contact is open, per axial load
     (25 % stepped down from a higher-load equilibrium where given)."""
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
-    from bearing_core.geometry import load_preset
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+    from bearing_core.bearing.geometry import load_preset
     mu = inputs["mu"]
     out = {"preload_pct": list(inputs["preload_pct"]), "rms_ir_ax_m_s2": [], "ball0_inner_open_share": []}
     for pct, start_pct in zip(inputs["preload_pct"], inputs["start_pct"]):
@@ -479,8 +479,8 @@ def held_speed_vibration(inputs):
 def microslip(inputs):
     """Adhesion / slip map of ball 0's contact after a short transient with Kalker traction
     (postprocess.microslip_map): adhesion fraction, and whether the stick zone lies at the leading edge."""
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions
-    from bearing_core.geometry import load_preset
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.bearing.geometry import load_preset
     from bearing_core.postprocess import microslip_map
     m = DynamicModel(load_preset(inputs["bearing"]), DynamicsOptions(traction="kalker", mu=inputs["mu"], rtol=1e-6))
     m.initialize(inputs["speed_rpm"] * RPM, tuple(inputs["loads_N_Nm"]))
@@ -501,8 +501,8 @@ def microslip(inputs):
 def seed002_unloaded_zone(inputs):
     """7008-ma2023 under a radial plus axial load (tilt held): does an unloaded inner-contact zone open
     (minimum inner load exactly 0 over the late half), per radial load; reaction errors."""
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
-    from bearing_core.geometry import load_preset
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+    from bearing_core.bearing.geometry import load_preset
     out = {"Fr_N": list(inputs["Fr_N"]), "unloaded_zone": [], "reaction_rel_error": []}
     for fr in inputs["Fr_N"]:
         m = DynamicModel(load_preset(inputs["bearing"]), DynamicsOptions(traction="lubricated", fixed_tilt=True))
@@ -520,8 +520,8 @@ def seed002_unloaded_zone(inputs):
 def seed002_sliding_in_oil(inputs):
     """7008-ma2023 with ball drag in an oil-air mixture and churning: inner contact-centre slip [mm/s] of
     ball 0 after a fixed time, per axial load."""
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions
-    from bearing_core.geometry import load_preset
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.bearing.geometry import load_preset
     slip = []
     for fz in inputs["Fa_N"]:
         m = DynamicModel(load_preset(inputs["bearing"]),
@@ -539,11 +539,11 @@ def seed002_sliding_in_oil(inputs):
 def friction_torque_vs_skf(inputs):
     """Steady friction torque [N m] of the oil-lubricated dynamics (mean of the second half of t_end_s from
     the Jones-Harris start) at every oil x (Fr, Fa) x speed, and its ratio to the SKF (2004) and Palmgren
-    models at the same oil viscosity (bearing_core.friction_models)."""
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
-    from bearing_core.friction_models import iso76_static_rating, palmgren_friction, skf_friction
-    from bearing_core.geometry import load_preset
-    from bearing_core.lubricants import get_oil
+    models at the same oil viscosity (bearing_core.lubrication.friction_models)."""
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+    from bearing_core.lubrication.friction_models import iso76_static_rating, palmgren_friction, skf_friction
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.lubrication.lubricants import get_oil
     g = load_preset(inputs["bearing"])
     C0 = iso76_static_rating(g)
     T = inputs["oil_temperature_C"] + 273.15
@@ -579,10 +579,10 @@ def power_loss_load_sensitivity(inputs):
     dFa. Returns the power at the base load per speed, the relative effects of Fr and of dFa on it, their
     ratio, and whether the operating points lie inside a stated range: N dm [mm rpm] and the largest load
     over the ISO 76 static rating C0 (friction_models.iso76_static_rating)."""
-    from bearing_core.dynamics import DynamicsOptions
-    from bearing_core.friction_models import iso76_static_rating
-    from bearing_core.geometry import load_preset
-    from bearing_core.quasistatic_tribo import solve_tribo_quasistatic
+    from bearing_core.models.dynamics import DynamicsOptions
+    from bearing_core.lubrication.friction_models import iso76_static_rating
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.models.quasistatic_tribo import solve_tribo_quasistatic
     g = load_preset(inputs["bearing"])
     kw = {}
     if inputs.get("oil"):

@@ -1,4 +1,4 @@
-"""Throughput of independent operating points in one process: bearing_core.dynamics.advance_many (a thread
+"""Throughput of independent operating points in one process: bearing_core.models.dynamics.advance_many (a thread
 pool over models whose integration kernels release the GIL) against the same models advanced one after the
 other, and the sweep's batch evaluator (sweep.DynamicWindow.run_batch, the points' windows advanced together)
 against its one-point-at-a-time call.
@@ -30,8 +30,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import numpy as np  # noqa: E402
 from numba import njit  # noqa: E402
 
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, advance_many  # noqa: E402
-from bearing_core.geometry import load_preset  # noqa: E402
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, advance_many  # noqa: E402
+from bearing_core.bearing.geometry import load_preset  # noqa: E402
 
 
 @njit(nogil=True, cache=True)
@@ -76,7 +76,7 @@ def _models(n):
 
 
 def _sweep_points(n):
-    from bearing_core import sweep as S
+    from bearing_core.maps import sweep as S
     rpm = np.linspace(3000.0, 12000.0, n).tolist()
     fz = [300.0 + 600.0 * (k % 3) / 2 for k in range(n)]
     return S.SweepSpec(model="dynamic", base={"bearing": "7008-ma2023"},
@@ -90,7 +90,7 @@ def main(argv=None):
     ap.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="threads")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args(argv)
-    from bearing_core import sweep as S
+    from bearing_core.maps import sweep as S
     c0 = free_cores(a.workers)
 
     seq = _models(a.points)

@@ -30,10 +30,10 @@ import time
 
 import numpy as np
 
-from bearing_core.dynamics import (DynamicModel, DynamicsOptions, SEED000_PROFILE, records_to_dict,
+from bearing_core.models.dynamics import (DynamicModel, DynamicsOptions, SEED000_PROFILE, records_to_dict,
                                    simulate_profile)
-from bearing_core.geometry import load_preset
-from bearing_core import dynamics_kernels as K
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models import dynamics_kernels as K
 from numba import njit
 
 

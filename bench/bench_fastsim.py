@@ -27,8 +27,8 @@ import time
 import numpy as np
 from numba import njit
 
-from bearing_core.contact_kernels import TRACTION_COULOMB, ellipse_quadrature, ellipse_traction, traction_params
-from bearing_core.fastsim import (PRESSURE_HERTZ, PRESSURE_PARABOLIC, combined_elastic, creepage_level,
+from bearing_core.contact.contact_kernels import TRACTION_COULOMB, ellipse_quadrature, ellipse_traction, traction_params
+from bearing_core.contact.fastsim import (PRESSURE_HERTZ, PRESSURE_PARABOLIC, combined_elastic, creepage_level,
                                   fastsim_traction, fastsim_traction_fast, kalker_coefficients)
 
 A, B, Q, MU = 1.15e-3, 0.17e-3, 300.0, 0.1
@@ -103,10 +103,10 @@ def dynamics_contacts(settle=0.02):
     from pathlib import Path
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     from bench_traction import LOADS, RPM, race_contacts
-    from bearing_core import dynamics_kernels as K
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions
-    from bearing_core.fastsim import SHORTCUT_LIN, SHORTCUT_SLIP, slip_level
-    from bearing_core.geometry import load_preset
+    from bearing_core.models import dynamics_kernels as K
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.contact.fastsim import SHORTCUT_LIN, SHORTCUT_SLIP, slip_level
+    from bearing_core.bearing.geometry import load_preset
     m = DynamicModel(load_preset("7218B"), DynamicsOptions(integrator="auto", reduced="full", traction="kalker",
                                                            mu=MU))
     m.initialize(1000.0 * RPM, LOADS)

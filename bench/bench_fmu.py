@@ -8,7 +8,7 @@ Builds the FMU (bearing_cosim.fmu_build.build, as ``bearing build-fmu``) into a 
 Reports per run the wall time of instantiate + initialisation, of the first doStep, and the marginal wall
 time per simulated second over the steps after the first (``wall_per_sim_s``; < 1 is faster than real
 time). The per-step overhead is the wall time per doStep that is not time integration: the same steps are
-run in process through bearing_core.cosim.CoSimSession (same arithmetic, same integrator choices) with the
+run in process through bearing_core.session.cosim.CoSimSession (same arithmetic, same integrator choices) with the
 integration kernels timed, and their time per step is subtracted from the FMU's wall time per step
 (``fmu_overhead_us``: FMI layer + session; ``session_overhead_us``: the session alone; medians over the
 steps). The ``*_vs_kernels_us`` figures subtract only the numba integration kernels, i.e. they also count the
@@ -113,9 +113,9 @@ def worker(fmu: str, t_end: float) -> dict:
 
 def in_process(t_end: float) -> dict:
     """The same steps through CoSimSession in this process, with the integration kernels timed."""
-    from bearing_core.cosim import CoSimParameters, CoSimSession
-    from bearing_core.cosim_spec import INPUT_NAMES
-    from bearing_core import dynamics
+    from bearing_core.session.cosim import CoSimParameters, CoSimSession
+    from bearing_core.session.cosim_spec import INPUT_NAMES
+    from bearing_core.models import dynamics
     sys.path.insert(0, str(ROOT / "fmu_src"))
     from bearing_fmu import INPUT_START
     inputs = {k: INPUT_START.get(k, 0.0) for k in INPUT_NAMES}

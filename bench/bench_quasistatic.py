@@ -1,6 +1,6 @@
-"""Warm wall time of one Jones-Harris quasi-static solve (bearing_core.quasistatic) over a matrix of cases,
+"""Warm wall time of one Jones-Harris quasi-static solve (bearing_core.models.quasistatic) over a matrix of cases,
 with and without the 5x5 stiffness matrix, and of the tribological quasi-static solve
-(bearing_core.quasistatic_tribo), which starts from it (7218B, lubricated, 3000 rpm, Fx 1 kN, Fz 3 kN;
+(bearing_core.models.quasistatic_tribo), which starts from it (7218B, lubricated, 3000 rpm, Fx 1 kN, Fz 3 kN;
 tribo_jones_harris_start_ms: the Jones-Harris start inside it, without stiffness, to the start's tolerance).
 
     python bench/bench_quasistatic.py [--quick] [--repeat N] [--matrix all|two-point|four-point]
@@ -29,8 +29,8 @@ import time
 import numpy as np
 
 from bearing_core.errors import ConvergenceError
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import FourPointQuasiStaticModel, QuasiStaticModel
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic import FourPointQuasiStaticModel, QuasiStaticModel
 
 RPM = math.pi / 30
 PRESETS = ("7218B", "7008-ma2023", "wan-105")
@@ -159,8 +159,8 @@ def main():
     if a.matrix != "two-point":
         summary.update(_summary(rows4, "fourpoint_"))
     if not a.no_tribo and a.matrix != "four-point":
-        from bearing_core.dynamics import DynamicsOptions
-        from bearing_core.quasistatic_tribo import TriboQuasiStaticModel, solve_tribo_quasistatic
+        from bearing_core.models.dynamics import DynamicsOptions
+        from bearing_core.models.quasistatic_tribo import TriboQuasiStaticModel, solve_tribo_quasistatic
         g = load_preset("7218B")
         for tr in ("lubricated",):
             opt = DynamicsOptions(traction=tr, mu=0.1)

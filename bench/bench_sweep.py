@@ -60,8 +60,7 @@ def main():
                              a.repeats)
     from distributed import Client, LocalCluster
     import numpy as np
-    from bearing_core import sweep as S
-
+    from bearing_core.maps import sweep as S
     sizes = [int(s) for s in a.sizes.split(",")]
     rows = []
     for model in a.models.split(","):
@@ -110,7 +109,7 @@ def batch_compare(models: str, sizes, json_path=None, repeats: int = 3):
     from distributed import Client, LocalCluster
     import numpy as np
     import pandas as pd
-    from bearing_core import sweep as S
+    from bearing_core.maps import sweep as S
     sys.path.insert(0, str(ROOT / "bench"))
     from bench_batch import free_cores
 

@@ -13,7 +13,7 @@ counted). The
 right-hand side (dynamics_kernels.rhs, lubricated, all balls and the cage) is timed the same way at the
 same state (rhs_us).
 
-The build follows bearing_core.jit: run once as is (fast build) and once with BEARING_PLAIN_MATH=1 (strict
+The build follows bearing_core.numerics.jit: run once as is (fast build) and once with BEARING_PLAIN_MATH=1 (strict
 IEEE, error_model='python') to compare; --both runs the two builds back to back in subprocesses.
 
     python bench/bench_traction.py [--json] [--both] [--settle 0.02] [--quad 6 2]
@@ -31,19 +31,19 @@ import time
 import numpy as np
 from numba import njit
 
-from bearing_core import dynamics_kernels as K
-from bearing_core.contact_kernels import (TRACTION_COULOMB, ball_race_contact, contact_kinematics,
+from bearing_core.models import dynamics_kernels as K
+from bearing_core.contact.contact_kernels import (TRACTION_COULOMB, ball_race_contact, contact_kinematics,
                                           ellipse_quadrature)
-from bearing_core.dynamics import DynamicModel, DynamicsOptions
-from bearing_core.ehl_traction import ehl_scratch
-from bearing_core.geometry import load_preset
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
+from bearing_core.lubrication.ehl_traction import ehl_scratch
+from bearing_core.bearing.geometry import load_preset
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_dynamics import _rhs_loop  # noqa: E402  (the right-hand-side timing loop, shared)
 
 try:
-    from bearing_core.jit import build_info
-except ImportError:          # trees without bearing_core.jit: numba defaults
+    from bearing_core.numerics.jit import build_info
+except ImportError:          # trees without bearing_core.numerics.jit: numba defaults
     def build_info():
         return {"plain_math": None, "fastmath": [], "error_model": "python"}
 

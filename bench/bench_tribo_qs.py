@@ -1,4 +1,4 @@
-"""Quasi-static tribological model (bearing_core.quasistatic_tribo): convergence and cost over a matrix of
+"""Quasi-static tribological model (bearing_core.models.quasistatic_tribo): convergence and cost over a matrix of
 cases, and a seed 000 Table 1 analogue (Jones-Harris vs quasi-static tribological vs tribo-dynamic model).
 
     python bench/bench_tribo_qs.py [--quick] [--out out/]
@@ -36,10 +36,10 @@ from pathlib import Path
 
 import numpy as np
 
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
 from bearing_core.errors import ConvergenceError
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic_tribo import TriboQuasiStaticModel, solve_tribo_quasistatic
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic_tribo import TriboQuasiStaticModel, solve_tribo_quasistatic
 
 RPM = math.pi / 30
 

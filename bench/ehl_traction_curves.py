@@ -1,4 +1,4 @@
-"""Traction curves of the rheology-based EHL model (bearing_core.ehl_traction) for the validation oils:
+"""Traction curves of the rheology-based EHL model (bearing_core.lubrication.ehl_traction) for the validation oils:
 Santotrac 50 and a mineral oil on a ball-on-disc / crowned-disc contact (Rx = Ry = 12.7 mm, steel), with the
 measured peak levels used in tests/test_ehl_traction.py, and the trends with pressure, speed and temperature.
 Writes docs/figures/ehl_traction_curves.png and docs/figures/ehl_traction_curves.json.
@@ -12,7 +12,7 @@ import os
 
 import numpy as np
 
-from bearing_core.ehl_traction import disc_traction_curve
+from bearing_core.lubrication.ehl_traction import disc_traction_curve
 
 R = 0.0127
 T40 = 313.15

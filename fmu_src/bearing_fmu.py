@@ -1,5 +1,5 @@
 """FMI 2.0 co-simulation slave of the angular-contact ball bearing (a pythonfmu Fmi2Slave). It only
-translates between FMI variables and bearing_core.cosim.CoSimSession; all physics lives in bearing_core.
+translates between FMI variables and bearing_core.session.cosim.CoSimSession; all physics lives in bearing_core.
 
 In the built FMU this file, bearing_core and pythonfmu are renamed to names carrying a hash of their
 content (build_fmu.py) and run by the FMU's own native FMI layer (fmu_src/native/), which also keeps the
@@ -14,7 +14,7 @@ from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Intege
 from pythonfmu.enums import Fmi2Initial, Fmi2Status
 from pythonfmu.default_experiment import DefaultExperiment
 
-from bearing_core.cosim_spec import INPUT_NAMES, INPUT_UNITS, INT_OUTPUT_SPEC, OUTPUT_SPEC  # light, no numba
+from bearing_core.session.cosim_spec import INPUT_NAMES, INPUT_UNITS, INT_OUTPUT_SPEC, OUTPUT_SPEC  # light, no numba
 
 # Start values of the inputs: a loaded bearing at a moderate speed, so that the default experiment
 # initialises and runs in every master (7218B: 3000 rpm, Fx 1 kN radial, Fz 3 kN axial; the axial load
@@ -64,7 +64,7 @@ ENUM_NAME = {"bearing": "bearing_preset"}
 
 def bearing_preset_items() -> tuple:
     """The presets the dynamics model takes: all of them (two-point and four-point-contact bearings)."""
-    from bearing_core.geometry import list_presets
+    from bearing_core.bearing.geometry import list_presets
     return tuple(list_presets())
 
 
@@ -77,7 +77,7 @@ _ENUM_DESC = {
                    "fixed-step RK4 (1e-5 s)"),
 }
 # Geometry of the bearing as parameters (0: keep the value of the bearing definition); applied by
-# bearing_core.cosim over the loaded bearing. name, type, unit, description, (min, max)
+# bearing_core.session.cosim over the loaded bearing. name, type, unit, description, (min, max)
 _GEOMETRY_PARAMS = (
     ("ball_diameter", float, "m", "ball diameter D (0: from the bearing definition)", (0.0, 0.2)),
     ("pitch_diameter", float, "m", "pitch diameter dm (0: from the bearing definition)", (0.0, 2.0)),
@@ -110,7 +110,7 @@ _PARAMS = (
     ("free_contact_angle", float, 0.0, "rad", "override of the preset's free contact angle (0: preset)", (0.0, 1.0472)),
     ("pocket_clearance", float, 0.0, "m", "override of the diametral ball-pocket clearance (0: preset)", (0.0, 0.01)),
     ("land_clearance", float, 0.0, "m", "override of the diametral cage-land clearance (0: preset)", (0.0, 0.01)),
-    ("oil", str, "", None, "oil of the viscosity data (bearing_core.lubricants; empty: the traction curve's oil)", None),
+    ("oil", str, "", None, "oil of the viscosity data (bearing_core.lubrication.lubricants; empty: the traction curve's oil)", None),
     ("oil_fraction", float, 0.0, "1", "oil volume fraction of the oil-air mixture (ball drag, churning)", (0.0, 1.0)),
     ("churning", bool, False, None, "oil churning torques on cage and inner ring (seed 001 Eqs. 12-17)", None),
     ("oil_temperature", float, 313.15, "K", "oil temperature when thermal is off", (233.15, 473.15)),
@@ -122,7 +122,7 @@ _PARAMS = (
     ("lubrication", str, "auto", None, "lubrication regime of races and cage: oil (lubricated traction, oil-lubricated "
      "pocket and land) | solid (Kalker/Coulomb traction with friction_coefficient, dry cage) | dry (Coulomb "
      "everywhere) | auto (oil for traction_model lubricated, else solid)", None),
-    # fits and ring growth (bearing_core.ring_fits): the running contact geometry
+    # fits and ring growth (bearing_core.bearing.ring_fits): the running contact geometry
     ("ring_growth", bool, False, None, "rings and balls grow with speed (centrifugal growth of the inner ring) and "
      "temperature (thermal network, or oil_temperature with thermal off); the contact geometry follows every step", None),
     ("shaft_interference", float, 0.0, "m", "diametral interference of the inner ring on the steel shaft, > 0 tight "
@@ -185,7 +185,7 @@ class BearingFMU(Fmi2Slave):
                                         description=_INPUT_DESC[name]))
             self._units[name] = unit
         self._ranges["shaft_speed"] = self._ranges["outer_ring_speed"] = (-2.0e4, 2.0e4)
-        # outputs: read from the session's output array (bearing_core.cosim.CoSimSession.values, in the order
+        # outputs: read from the session's output array (bearing_core.session.cosim.CoSimSession.values, in the order
         # of OUTPUT_SPEC then INT_OUTPUT_SPEC), which the session updates in place at every communication point
         self._out = [0.0] * (len(OUTPUT_SPEC) + len(INT_OUTPUT_SPEC))
         for i, (name, unit, desc) in enumerate(OUTPUT_SPEC):
@@ -293,7 +293,7 @@ class BearingFMU(Fmi2Slave):
         return {n: getattr(self, n) for n in INPUT_NAMES}
 
     def exit_initialization_mode(self):
-        from bearing_core.cosim import CoSimParameters, CoSimSession
+        from bearing_core.session.cosim import CoSimParameters, CoSimSession
         self._resolve_choices()
         params = CoSimParameters(**{name: getattr(self, name) for name, *_ in _PARAMS + _GEOMETRY_PARAMS})
         self._session = None
@@ -311,7 +311,7 @@ class BearingFMU(Fmi2Slave):
         self._out = self._session.values
 
     def do_step(self, current_time, step_size):
-        from bearing_core.cosim import StepRejected
+        from bearing_core.session.cosim import StepRejected
         if self._session is None:
             self.log("do_step without a successful initialisation", Fmi2Status.error)
             return False

@@ -27,9 +27,9 @@ from pathlib import Path
 
 import numpy as np
 
-from bearing_core.dynamics import (DynamicModel, DynamicsOptions, SEED000_PROFILE, records_to_dict,
+from bearing_core.models.dynamics import (DynamicModel, DynamicsOptions, SEED000_PROFILE, records_to_dict,
                                    simulate_profile)
-from bearing_core.geometry import load_preset
+from bearing_core.bearing.geometry import load_preset
 
 RPM = math.pi / 30
 MOL = 3000.0                  # our 100 % axial preload [N] (the paper does not state its MOL)

@@ -38,10 +38,10 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from kalker_studies import ratios  # noqa: E402  (ball 0 ratios, zero while open)
 
-from bearing_core.dynamics import (DynamicModel, DynamicsOptions, SEED000_PROFILE, records_to_dict,  # noqa: E402
+from bearing_core.models.dynamics import (DynamicModel, DynamicsOptions, SEED000_PROFILE, records_to_dict,  # noqa: E402
                                    simulate_profile)
 from bearing_core.errors import ConvergenceError  # noqa: E402
-from bearing_core.geometry import load_preset  # noqa: E402
+from bearing_core.bearing.geometry import load_preset  # noqa: E402
 
 RPM = math.pi / 30
 PAPER = {"settle_mu0.001_s": 1.77, "settle_mu0.1_s": 1.4, "cage_mu0.1_rpm": 4587.0,
@@ -238,7 +238,7 @@ def analytic(fz_list, fx=FX, mu=0.001, eta=1.0):
     m_c = I_cage / (Z r_m^2) the cage inertia per ball at the pitch radius; the cage follows
     omega_c = omega_c0 + (dv/dt / r_m) (t - 0.5) until it meets the pure-rolling line. Q_i from the
     quasi-static model at 10,000 rpm (mean over the balls). eta: fraction of mu Q_i acting along rolling."""
-    from bearing_core.quasistatic import QuasiStaticModel
+    from bearing_core.models.quasistatic import QuasiStaticModel
     g = load_preset("7218B")
     m, J, D, rm = g.ball_mass, g.ball_inertia, g.D, 0.5 * g.dm
     mc = g.cage.inertia / (g.Z * rm * rm)

@@ -33,10 +33,10 @@ from pathlib import Path
 import numpy as np
 from scipy import signal
 
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
 from bearing_core.errors import ConvergenceError
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import QuasiStaticModel
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic import QuasiStaticModel
 
 RPM = math.pi / 30
 ROOT = Path(__file__).resolve().parents[1]

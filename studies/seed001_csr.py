@@ -3,7 +3,7 @@
 Seed 001 (Friction, 220 mm bore four-point-contact ball bearing QJ1044, Sec. 3-4) measured the cage speed
 ratio CSR = omega_c / omega_i at 600, 900, 1,200, 1,500 and 1,800 r/min for axial loads 0-42 kN (2 kN steps)
 under a radial load of about 1 kN (the shaft weight), oil-flooded at 33 and 15 L/min. This study runs the
-same matrix with bearing_core.dynamics on the QJ1044 preset (internal geometry ESTIMATED, see the preset's
+same matrix with bearing_core.models.dynamics on the QJ1044 preset (internal geometry ESTIMATED, see the preset's
 notes) and writes one JSON line per operating point:
 
     PYTHONPATH=$PWD python studies/seed001_csr.py --out studies/out/seed001_csr.jsonl          # coarse matrix
@@ -46,7 +46,7 @@ POWER_KEYS = ("P_drive", "P_race_inner", "P_race_outer", "P_pocket", "P_land", "
 def qj1044(axial_play_mm: float | None = None):
     """The QJ1044 preset; with axial_play_mm [mm] its groove offsets changed to give that axial play
     (P_a = 2 (A sin(alpha0) - e_i - e_o), the split e_i : e_o of the preset kept)."""
-    from bearing_core.geometry import load_preset
+    from bearing_core.bearing.geometry import load_preset
 
     g = load_preset("QJ1044")
     if axial_play_mm is None:
@@ -61,7 +61,7 @@ def run_point(rpm: float, fa: float, fr: float = 1000.0, oil_fraction: float = 0
               axial_play_mm: float | None = None) -> dict:
     """One operating point: QJ1044 at rpm [r/min], axial load fa [N], radial load fr [N]; returns a dict of
     CSR, reference CSRs, mean losses [W] and contact counts. axial_play_mm: see qj1044()."""
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
 
     g = qj1044(axial_play_mm)
     opt = DynamicsOptions(traction="lubricated", lubrication="oil", integrator="auto", reduced="full",

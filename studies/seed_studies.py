@@ -1,4 +1,4 @@
-"""Reproduce the seeds' transient studies with bearing_core.dynamics and write the figures and numbers
+"""Reproduce the seeds' transient studies with bearing_core.models.dynamics and write the figures and numbers
 used in docs/model_checks.md. The seed 000 loads and the settle-time measure are those of the validation
 case seed000-preload-trend (bearing_validation), so the study and `bearing validate` agree.
 
@@ -20,9 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
-from bearing_core.dynamics import (DynamicModel, DynamicsOptions, SEED000_PROFILE, records_to_dict,
+from bearing_core.models.dynamics import (DynamicModel, DynamicsOptions, SEED000_PROFILE, records_to_dict,
                                    simulate_profile)
-from bearing_core.geometry import load_preset
+from bearing_core.bearing.geometry import load_preset
 from bearing_validation import load_cases
 from bearing_validation.kinds import _settle_time
 

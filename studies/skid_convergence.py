@@ -21,8 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, SEED000_PROFILE, records_to_dict, simulate_profile
-from bearing_core.geometry import load_preset
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, SEED000_PROFILE, records_to_dict, simulate_profile
+from bearing_core.bearing.geometry import load_preset
 
 RPM = math.pi / 30
 ROOT = Path(__file__).resolve().parents[1]

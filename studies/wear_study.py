@@ -20,8 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
-from bearing_core.geometry import load_preset
-from bearing_core.wear import SEED003, SEED003_AS_PRINTED, operating_point_wear, wear_rates, wear_report
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.wear import SEED003, SEED003_AS_PRINTED, operating_point_wear, wear_rates, wear_report
 
 RPM = math.pi / 30.0
 FZ_PRELOAD = 500.0          # N, seed 003 Fig. 12 "preload 500 N"; assumed for Figs. 5-10

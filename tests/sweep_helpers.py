@@ -5,7 +5,7 @@ failing point can be checked, SlowQuasiStatic takes a fixed extra time per point
 while the sweep runs, FailingDynamic fails at its start or inside the integration of a batch."""
 import time
 
-from bearing_core.sweep import DynamicWindow, QuasiStaticEvaluator
+from bearing_core.maps.sweep import DynamicWindow, QuasiStaticEvaluator
 
 FAIL_FZ_N = 666.0
 

@@ -7,10 +7,10 @@ import sys
 import numpy as np
 import pytest
 
-from bearing_core.catalogue import catalogue_definition, list_catalogue, SERIES
+from bearing_core.bearing.catalogue import catalogue_definition, list_catalogue, SERIES
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import from_dict, load_bearing, load_preset, preset_data
-from bearing_core.quasistatic import solve_quasistatic
+from bearing_core.bearing.geometry import from_dict, load_bearing, load_preset, preset_data
+from bearing_core.models.quasistatic import solve_quasistatic
 
 
 def _write(tmp_path, d, name="my_bearing.json"):

@@ -5,11 +5,11 @@ import math
 import numpy as np
 import pytest
 
-from bearing_core import dynamics_kernels as K
-from bearing_core.contact_kernels import ball_pocket_lubricated
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.models import dynamics_kernels as K
+from bearing_core.contact.contact_kernels import ball_pocket_lubricated
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import load_preset
+from bearing_core.bearing.geometry import load_preset
 
 RPM = math.pi / 30
 D, R = 0.02, 0.01
@@ -85,7 +85,7 @@ def test_film_shear_is_the_goldman_cox_brenner_torque():
 def _mixed_mu(sig, eta, vs, Fc, c_p, mu_bl=0.15, mu_ehl=0.05):
     """Reference of the contact friction coefficient, written out from the formulas named in
     contact_kernels (Hamrock-Dowson films, Zhou-Hoeprich fluid fraction, Barus-Newtonian film shear)."""
-    from bearing_core.ehl_traction import fluid_fraction
+    from bearing_core.lubrication.ehl_traction import fluid_fraction
     Rs, Rt = R, R * (R + c_p) / c_p            # entrainment along the pocket axis (spin about z)
     k = 1.0339 * (Rt / Rs) ** 0.636
     U, W, G = eta * 0.5 * vs / (EP * Rs), Fc / (EP * Rs ** 2), ALPHA * EP
@@ -185,7 +185,7 @@ def test_oil_regime_floods_the_land_with_the_oil_viscosity():
     without land_viscosity being set; a centred cage then loses the Petroff power 2 pi eta R^3 B w_c^2 / c
     (Petroff 1883; seed 001 Eq. 5 at zero eccentricity) to the land -- within 5 % over a pure-axial run
     (the cage stays within 5 % of the clearance of the centre). Solid regime: no land film."""
-    from bearing_core.lubricants import get_oil
+    from bearing_core.lubrication.lubricants import get_oil
     g = load_preset("7218B")
     m = DynamicModel(g, DynamicsOptions(oil_temperature=323.15, integrator="auto"))
     m.initialize(3000 * RPM, (0.0, 0.0, 3000.0, 0.0, 0.0))

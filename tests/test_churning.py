@@ -1,12 +1,12 @@
-"""Checks of bearing_core.churning (seed 001 Eqs. 10, 12-17) against physics nobody here wrote."""
+"""Checks of bearing_core.lubrication.churning (seed 001 Eqs. 10, 12-17) against physics nobody here wrote."""
 import math
 
 import numpy as np
 import pytest
 
-from bearing_core import churning as ch
+from bearing_core.lubrication import churning as ch
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import load_preset, from_dict
+from bearing_core.bearing.geometry import load_preset, from_dict
 
 RHO, ETA = 870.0, 0.03
 
@@ -132,7 +132,7 @@ def test_seed001_churning_dominates_flooded_large_bearing(Db, Z):
     # NOT matched (recorded in docs/thermal.md): we get 93-99 % fully flooded, above the seed's 80 %; the
     # seed's pocket loss (~30 %) needs the dynamics.
     from scipy.special import ellipe
-    from bearing_core.quasistatic import solve_quasistatic
+    from bearing_core.models.quasistatic import solve_quasistatic
 
     g = _seed001_bearing(Db, Z)
     w = 1800 * math.pi / 30

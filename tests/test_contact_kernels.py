@@ -1,14 +1,14 @@
-"""Tests of bearing_core.contact_kernels (per-contact building blocks of the transient dynamics)."""
+"""Tests of bearing_core.contact.contact_kernels (per-contact building blocks of the transient dynamics)."""
 import math
 
 import numpy as np
 import pytest
 from scipy import special
 
-from bearing_core import contact_kernels as ck
-from bearing_core import kinematics as kin
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import QuasiStaticModel, solve_quasistatic
+from bearing_core.contact import contact_kernels as ck
+from bearing_core.contact import kinematics as kin
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic import QuasiStaticModel, solve_quasistatic
 
 RPM = math.pi / 30.0
 CASES = [("wan-105", 15000 * RPM, (0, 0, 889.84, 0, 0)),

@@ -1,6 +1,6 @@
-"""The co-simulation session's output array and input handling (bearing_core.cosim).
+"""The co-simulation session's output array and input handling (bearing_core.session.cosim).
 
-The outputs are assembled in one numba call (bearing_core.session_kernels.assemble_outputs) from index maps;
+The outputs are assembled in one numba call (bearing_core.session.session_kernels.assemble_outputs) from index maps;
 these tests hold them against the library's own definitions computed independently in Python (the model's
 output channels, DynamicModel.film, skid.classify_skid, the time integrals of the channels), and check that
 inputs held from one step to the next are checked again as soon as they change."""
@@ -9,10 +9,10 @@ import math
 import numpy as np
 import pytest
 
-from bearing_core import dynamics_kernels as K
-from bearing_core.cosim import (ALL_OUTPUT_NAMES, CSR_MIN_SPEED, HEAT_CHANNELS, CoSimParameters, CoSimSession,
+from bearing_core.models import dynamics_kernels as K
+from bearing_core.session.cosim import (ALL_OUTPUT_NAMES, CSR_MIN_SPEED, HEAT_CHANNELS, CoSimParameters, CoSimSession,
                                 StepRejected)
-from bearing_core.skid import classify_skid
+from bearing_core.models.skid import classify_skid
 
 INP = {"shaft_speed": 314.16, "Fx": 1000.0, "Fz": 3000.0}
 

@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import solve_quasistatic
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic import solve_quasistatic
 
 RPM = math.pi / 30
 
@@ -262,7 +262,7 @@ def test_race_loss_split():
 
 def _ros_run(f, jac, y0, h, T):
     """Generic Rosenbrock-W step loop with the kernel's ROS34PW2 tableau (dynamics_kernels.ROSW_*)."""
-    from bearing_core import dynamics_kernels as K
+    from bearing_core.models import dynamics_kernels as K
     y = np.array(y0, float)
     for _ in range(int(round(T / h))):
         W = jac(y)
@@ -344,9 +344,9 @@ def test_ball_guided_cage_is_refused_with_a_clear_error():
     """A ball-guided cage drifts onto a ball in the dynamics (measured, docs/seed000_hypotheses.md): refused
     with an error naming the field and the allowed values instead of a silent wrong answer."""
     import dataclasses
-    from bearing_core.dynamics import DynamicModel
+    from bearing_core.models.dynamics import DynamicModel
     from bearing_core.errors import BearingInputError
-    from bearing_core.geometry import load_preset
+    from bearing_core.bearing.geometry import load_preset
     g = load_preset("7218B")
     g = dataclasses.replace(g, cage=dataclasses.replace(g.cage, guidance="ball"))
     with pytest.raises(BearingInputError, match="cage.guidance"):
@@ -368,7 +368,7 @@ def test_fine_records_over_many_auto_chunks_do_not_stall(integrator):
     assert np.allclose(np.diff(r["t"]), rdt, rtol=1e-6, atol=0)
     assert 0.0 < m.stats[3] <= 0.01
     if integrator != "rk4":
-        from bearing_core.dynamics_kernels import NOUT
+        from bearing_core.models.dynamics_kernels import NOUT
         rec = np.zeros((7, NOUT))
         n = m._integrate(m.t, m.t + 2e-3, rdt, rec, 7)   # a buffer for 7 of the 100 records
         assert n == 7 and np.all(np.isfinite(m.y)) and m.stats[4] == 0.0
@@ -409,10 +409,10 @@ def test_pure_rolling_cage_speeds_from_contact_normals():
     """The right-hand side's pure-rolling cage speeds from the cosines and sines of the contact angles
     (dynamics_kernels.pure_rolling_cage_speeds_cs, the spin-axis angle beta eliminated algebraically) against
     the trigonometric form of Jones' raceway control (Harris & Kotzalas, Advanced Concepts of Bearing
-    Technology, 5th ed., Vol. 2 Ch. 3; bearing_core.skid.pure_rolling_cage_speeds, numpy with atan2 / cos),
+    Technology, 5th ed., Vol. 2 Ch. 3; bearing_core.models.skid.pure_rolling_cage_speeds, numpy with atan2 / cos),
     per ball, both rings turning, 7218B D / dm; tolerance 1e-12 relative (rounding only)."""
-    from bearing_core import dynamics_kernels as K
-    from bearing_core.skid import pure_rolling_cage_speeds as ref
+    from bearing_core.models import dynamics_kernels as K
+    from bearing_core.models.skid import pure_rolling_cage_speeds as ref
     g = load_preset("7218B")
     rng = np.random.default_rng(7)
     for _ in range(50):

@@ -1,4 +1,4 @@
-"""Checks of the rheology-based EHL traction (bearing_core.ehl_traction): analytic limits, published traction
+"""Checks of the rheology-based EHL traction (bearing_core.lubrication.ehl_traction): analytic limits, published traction
 levels and trends of named oils, mixed lubrication, rolling resistance. Each test names its source and
 tolerance. Reference numbers marked 'recalled' come from memory of the cited papers (not re-checked against
 them here); docs/tribology.md lists them."""
@@ -8,10 +8,9 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from bearing_core import contact_kernels as ck
-from bearing_core import ehl_traction as E
-from bearing_core import lubricants as L
-
+from bearing_core.contact import contact_kernels as ck
+from bearing_core.lubrication import ehl_traction as E
+from bearing_core.lubrication import lubricants as L
 T40 = 313.15
 R_DISC = 0.0127    # m, effective radius of a ball-on-disc / crowned twin-disc contact (Rx = Ry)
 S = np.array([1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.02, 0.03, 0.05, 0.1])
@@ -217,10 +216,10 @@ def test_rolling_resistance_in_quasistatic_tribological_model():
     resistance moment on raises the drive power by the rolling-resistance power sum(F_R u) over all ball-race
     contacts (F_R of Harris & Kotzalas Vol. 2 Ch. 5 at each contact's load, entrainment speed and radii);
     tolerance 2 % (the balls' slips re-balance slightly); power in = heat out in both cases (1e-6)."""
-    from bearing_core.dynamics import DynamicsOptions
-    from bearing_core.film import ellipticity_nb
-    from bearing_core.geometry import load_preset
-    from bearing_core.quasistatic_tribo import solve_tribo_quasistatic
+    from bearing_core.models.dynamics import DynamicsOptions
+    from bearing_core.lubrication.film import ellipticity_nb
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.models.quasistatic_tribo import solve_tribo_quasistatic
     g = load_preset("7218B")
     w = 3000 * math.pi / 30
     q = {}
@@ -250,9 +249,9 @@ def test_roughness_is_a_geometry_parameter():
     finishes) and set the composite roughness of the EHL traction; DynamicsOptions.roughness > 0 overrides
     both; out-of-range values raise BearingInputError naming the field."""
     import dataclasses
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
     from bearing_core.errors import BearingInputError
-    from bearing_core.geometry import load_preset
+    from bearing_core.bearing.geometry import load_preset
     g = load_preset("7218B")
     assert (g.ball_roughness, g.race_roughness) == (0.03e-6, 0.08e-6)
     tp = DynamicModel(g, DynamicsOptions(traction="lubricated"))._ehl_params(T40)

@@ -1,4 +1,4 @@
-"""Tests of bearing_core.fastsim (Kalker creep coefficients, FASTSIM rolling-contact traction).
+"""Tests of bearing_core.contact.fastsim (Kalker creep coefficients, FASTSIM rolling-contact traction).
 
 Each test names its reference and tolerance. Units SI."""
 import math
@@ -8,9 +8,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from bearing_core import contact_kernels as ck
-from bearing_core import fastsim as fs
-
+from bearing_core.contact import contact_kernels as ck
+from bearing_core.contact import fastsim as fs
 G, NU = fs.combined_elastic(206e9, 0.3, 206e9, 0.3)   # steel-steel, Pa / -
 Q = 1000.0
 MU = 0.1
@@ -314,8 +313,8 @@ def test_microslip_picture_from_the_dynamics(tmp_path):
     stick zone lies at the leading edge (Kalker: material enters adhering, slip starts towards the trailing
     edge), and a higher friction limit on the same state sticks more."""
     import math
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions
-    from bearing_core.geometry import load_preset
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.bearing.geometry import load_preset
     from bearing_core.postprocess import microslip_map, plot_microslip
     m = DynamicModel(load_preset("7218B"), DynamicsOptions(traction="kalker", mu=0.1, rtol=1e-6))
     m.initialize(3000 * math.pi / 30, (0.0, 0.0, 3000.0, 0.0, 0.0))

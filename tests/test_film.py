@@ -1,10 +1,10 @@
-"""Tests of bearing_core.film (Hamrock-Dowson film thickness, film parameter, inlet-heating factor)."""
+"""Tests of bearing_core.lubrication.film (Hamrock-Dowson film thickness, film parameter, inlet-heating factor)."""
 import math
 
 import numpy as np
 import pytest
 
-from bearing_core import film
+from bearing_core.lubrication import film
 from bearing_core.errors import BearingInputError
 
 

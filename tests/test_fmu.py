@@ -87,10 +87,10 @@ def test_steady_reactions_heat_and_finite_outputs(fmu, tmp_path):
 
 
 def test_outputs_equal_bearing_core(fmu, tmp_path):
-    """The FMU only translates: its outputs equal bearing_core.cosim.CoSimSession's for the same inputs
+    """The FMU only translates: its outputs equal bearing_core.session.cosim.CoSimSession's for the same inputs
     and steps (same numbers: relative 1e-9, and 1e-9 of the 2 kN load scale for values near zero such as
     reaction_Fy, where round-off of a different compilation of the same kernels shows)."""
-    from bearing_core.cosim import CoSimParameters, CoSimSession
+    from bearing_core.session.cosim import CoSimParameters, CoSimSession
     # fixed-step RK4 on both sides: with adaptive steps, rounding differences between two compilations of
     # the same kernels (the FMU has its own numba cache) can flip a step decision, after which the runs
     # differ at the integrator's tolerance
@@ -271,8 +271,8 @@ def test_geometry_overrides(fmu, tmp_path):
     """Overriding the preset's free contact angle (40 -> 25 deg on the 7218B) gives the loaded contact angle
     that the quasi-static model predicts for the overridden bearing (0.5 deg); a negative angle fails
     initialisation with a message naming the parameter."""
-    from bearing_core.geometry import load_preset
-    from bearing_core.quasistatic import solve_quasistatic
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.models.quasistatic import solve_quasistatic
     inp = {"shaft_speed": 1000 * RPM, "Fx": 0.0, "Fz": 3000.0}
     outs = OUT + ["alpha_i_mean"]
     res = drive(fmu, {"params": {"free_contact_angle": math.radians(25.0)}, "start_inputs": inp,

@@ -175,7 +175,7 @@ def test_wheel_ships_fmu_sources(tmp_path):
     names = set(zipfile.ZipFile(whl).namelist())
     for f in ("bearing_cosim/fmu_build.py", "bearing_cosim/fmu_src/bearing_fmu.py",
               "bearing_cosim/fmu_src/native/bearing_fmi2.c", "bearing_cosim/fmu_src/native/fmi2_min.h",
-              "bearing_cosim/fmu_src/native/bearing_fmi2_bridge.py", "bearing_core/presets/7218B.json"):
+              "bearing_cosim/fmu_src/native/bearing_fmi2_bridge.py", "bearing_core/bearing/presets/7218B.json"):
         assert f in names, f
     meta = next(n for n in names if n.endswith(".dist-info/METADATA"))
     text = zipfile.ZipFile(whl).read(meta).decode()

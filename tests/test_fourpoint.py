@@ -1,4 +1,4 @@
-"""Four-point-contact (gothic-arch) ball bearings in the quasi-static model (bearing_core.quasistatic,
+"""Four-point-contact (gothic-arch) ball bearings in the quasi-static model (bearing_core.models.quasistatic,
 FourPointQuasiStaticModel) and the QJ1044 preset."""
 import json
 import math
@@ -8,9 +8,9 @@ import pytest
 from scipy.optimize import brentq
 
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import from_dict, load_preset, preset_data
-from bearing_core.hertz_tables import HertzInterp
-from bearing_core.quasistatic import (FourPointQuasiStaticModel, QuasiStaticModel, quasistatic_model,
+from bearing_core.bearing.geometry import from_dict, load_preset, preset_data
+from bearing_core.contact.hertz_tables import HertzInterp
+from bearing_core.models.quasistatic import (FourPointQuasiStaticModel, QuasiStaticModel, quasistatic_model,
                                       solve_quasistatic)
 
 RPM = math.pi / 30.0
@@ -19,7 +19,7 @@ QJ = load_preset("QJ1044")
 
 def _zero_clearance(g):
     """The gothic arch of g with zero internal clearance at its free contact angle:
-    e_k = (f_k - 1/2) D sin(alpha0) (bearing_core.geometry module docstring)."""
+    e_k = (f_k - 1/2) D sin(alpha0) (bearing_core.bearing.geometry module docstring)."""
     s = math.sin(g.alpha0)
     return g.with_overrides(inner_groove_offset=(g.fi - 0.5) * g.D * s, outer_groove_offset=(g.fo - 0.5) * g.D * s)
 
@@ -68,7 +68,7 @@ def test_axial_load_closed_form_and_axial_play():
     """Pure axial load: one diagonal pair carries it, as a two-point bearing: Harris & Kotzalas Vol. 1
     Ch. 7 (axially loaded bearing, rigid rings): Fa = Z K_n(alpha) (A (cos a0/cos a - 1))^1.5 sin(alpha),
     axial approach A cos(a0) tan(alpha) - A sin(a0), K_n the series Hertz constant of the inner and outer
-    contact (exact Hertz, bearing_core.hertz) - solved here as one scalar equation, tolerance 1e-6. Reversing
+    contact (exact Hertz, bearing_core.contact.hertz) - solved here as one scalar equation, tolerance 1e-6. Reversing
     the load moves the ring through the axial play 2 (A sin a0 - e_i - e_o) of the geometry module:
     dz(+F) + dz(-F) = -P_a (mirror symmetry, 1e-10 m)."""
     g = QJ

@@ -4,12 +4,12 @@ import math
 import numpy as np
 import pytest
 
-from bearing_core import dynamics_kernels as K
-from bearing_core.cosim import CoSimParameters, CoSimSession
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.models import dynamics_kernels as K
+from bearing_core.session.cosim import CoSimParameters, CoSimSession
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import FourPointQuasiStaticModel
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic import FourPointQuasiStaticModel
 
 RPM = math.pi / 30
 QJ = load_preset("QJ1044")
@@ -111,7 +111,7 @@ def test_contacts_consistent_with_four_point_quasistatic(loads, tol_q, tol_deg):
 
 
 def test_qj1044_runs_through_the_cosimulation_session():
-    """The FMU's session (bearing_core.cosim, used by fmu_src/bearing_fmu.py and `bearing simulate`) runs the
+    """The FMU's session (bearing_core.session.cosim, used by fmu_src/bearing_fmu.py and `bearing simulate`) runs the
     four-point QJ1044 under 1 kN radial + 3 kN axial at 900 rpm: finite outputs, the applied loads carried,
     the cage turning; a four-point bearing needs no seating axial load, but refuses no load at all."""
     s = CoSimSession(CoSimParameters(bearing="QJ1044", oil_fraction=0.05, churning=True))

@@ -15,7 +15,7 @@ searched (docs/fourpoint_and_fits.md, "Published four-point results"). What was 
   abstract): at low speed the arched bearing behaves as the conventional one; at high speed the centrifugal force
   shares the outer-race load between the two outer contacts (the source of its life gain at DN 3 million).
 
-The QJ-type test bearing is ESTIMATED (the catalogue rule of bearing_core.catalogue for 7309, 45 x 100 mm, series
+The QJ-type test bearing is ESTIMATED (the catalogue rule of bearing_core.bearing.catalogue for 7309, 45 x 100 mm, series
 03, with SKF's 35 deg QJ contact angle and gothic-arch offsets for a stated axial play); the rules above are
 general, so they are checked on it."""
 import math
@@ -24,8 +24,8 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import quasistatic_model
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic import quasistatic_model
 
 I1, I2, O1, O2 = 0, 1, 2, 3          # contact columns: inner arc 1, inner arc 2, outer arc 1, outer arc 2
 
@@ -122,7 +122,7 @@ def test_arched_outer_race_shares_load_at_high_speed():
     Lubr. Technol. 95 (1973) 265 (abstract): under thrust load (4448 N) the arched outer race gives nothing at low
     speed and shares the centrifugally loaded outer contact at high speed (life +306 % at DN 3 million for their
     150 mm bearing with arching g = 0.127 and 0.254 mm). Here on an estimated 7220A (100 x 180 mm, 30 deg;
-    bearing_core.catalogue) with the outer arc centres +-0.127 mm from the groove mid-plane, inner
+    bearing_core.bearing.catalogue) with the outer arc centres +-0.127 mm from the groove mid-plane, inner
     ring conventional: at 1,000 rpm the loads equal the conventional bearing's (second outer arc unloaded, 1e-9
     relative); at DN 3 million (30,000 rpm) both outer arcs carry load and the largest outer contact load is at
     least 40 % below the conventional bearing's. (Their bearing data are not in our sources, so only these

@@ -1,4 +1,4 @@
-"""Whole-bearing friction models (bearing_core.friction_models): SKF 2004 and Palmgren, formula checks.
+"""Whole-bearing friction models (bearing_core.lubrication.friction_models): SKF 2004 and Palmgren, formula checks.
 
 No worked numerical example of either model was found in the sources at hand; the checks below test the
 published structure of the equations (limits, continuity, proportionalities the sources state) so that a
@@ -9,9 +9,9 @@ import math
 import pytest
 
 from bearing_core.errors import BearingInputError
-from bearing_core.friction_models import (MU_BL, MU_EHL, SKF_CONSTANTS, iso76_static_rating, palmgren_friction,
+from bearing_core.lubrication.friction_models import (MU_BL, MU_EHL, SKF_CONSTANTS, iso76_static_rating, palmgren_friction,
                                           skf_friction)
-from bearing_core.geometry import load_preset
+from bearing_core.bearing.geometry import load_preset
 
 
 def test_palmgren_branches_meet_at_nu_n_2000():
@@ -62,8 +62,8 @@ def test_skf_limits_and_factors():
 
 def test_iso76_static_rating_is_the_4200_MPa_load():
     """ISO 76 basis: at C0 (pure radial equivalent load) Stribeck's most loaded ball, Q = 5 C0 / (Z cos a),
-    has 4200 MPa at the inner contact (Hertz, bearing_core.hertz: checked within 0.1 %)."""
-    from bearing_core.hertz import contact_curvature, hertz_exact, reduced_modulus
+    has 4200 MPa at the inner contact (Hertz, bearing_core.contact.hertz: checked within 0.1 %)."""
+    from bearing_core.contact.hertz import contact_curvature, hertz_exact, reduced_modulus
     g = load_preset("7218B")
     C0 = iso76_static_rating(g)
     Q = 5.0 * C0 / (g.Z * math.cos(g.alpha0))
@@ -96,8 +96,8 @@ def test_dynamics_friction_torque_against_skf_and_palmgren():
     with speed, load and viscosity like both references. Window: 0.05-0.1 s from the Jones-Harris start (the mean differs from a tribological start
     by < 5 %)."""
     import math
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
-    from bearing_core.lubricants import get_oil
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+    from bearing_core.lubrication.lubricants import get_oil
     g = load_preset("7218B")
     C0 = iso76_static_rating(g)
     T = 313.15
@@ -136,8 +136,8 @@ def test_dynamics_friction_torque_combined_load_against_skf_and_palmgren():
     watts, the dynamics sit at 0.46-0.58 x SKF (docs/tribology.md); the 1000 rpm points are held to
     0.4 <= M / M_SKF <= 2 so that the test still fails on a missing race loss or on a boundary-lubricated
     pocket (the flat-wall pocket gave 2-4 x SKF under combined load). Also: torque rises with speed."""
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
-    from bearing_core.lubricants import get_oil
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+    from bearing_core.lubrication.lubricants import get_oil
     g = load_preset("7218B")
     C0 = iso76_static_rating(g)
     T = 313.15

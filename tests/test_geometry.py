@@ -4,7 +4,7 @@ import math
 import pytest
 
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import list_presets, load_preset, from_dict, preset_data
+from bearing_core.bearing.geometry import list_presets, load_preset, from_dict, preset_data
 
 
 def test_presets_listed_and_cited():

@@ -1,4 +1,4 @@
-"""Tests of bearing_core.hertz (Hertz point contact of ball-raceway contacts), SI units."""
+"""Tests of bearing_core.contact.hertz (Hertz point contact of ball-raceway contacts), SI units."""
 import math
 
 import numpy as np
@@ -6,7 +6,7 @@ import pytest
 from numba import njit
 from scipy import special
 
-from bearing_core import hertz as hz
+from bearing_core.contact import hertz as hz
 from bearing_core.errors import BearingInputError
 
 E_STEEL, NU_STEEL = 206e9, 0.3
@@ -229,7 +229,7 @@ def test_table_and_fast_form_vs_exact(name):
 
 
 def test_fast_forms_error_map():
-    """Measured accuracy of the fast forms documented in bearing_core.hertz (module docstring and
+    """Measured accuracy of the fast forms documented in bearing_core.contact.hertz (module docstring and
     APPROX_MAX_ERROR): bearing range f = 0.51..0.58, D/dm = 0.1..0.3, alpha = 0..90 deg.
     Brewe & Hamrock 1977 (J. Lubr. Technol. 99:485) and Hamrock & Brewe 1983 fits miss 0.5 %
     (measured max 4.5 % and 4.8 % on K_load); the one-step Newton form meets it (3.3e-5)."""

@@ -11,9 +11,9 @@ import math
 import numpy as np
 import pytest
 
-from bearing_core import dynamics_kernels as K
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
-from bearing_core.geometry import load_preset
+from bearing_core.models import dynamics_kernels as K
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.bearing.geometry import load_preset
 
 LOADS = (1000.0, 0.0, 3000.0, 0.0, 0.0)
 T_SETTLE, T_WIN = 4e-3, 8e-3       # [s] start-up from the quasi-static state, then the compared window
@@ -61,7 +61,7 @@ def test_production_integrator_contract_kalker():
     (mean cage speed, Fx, Fz within 0.5 %, energy residual within 1 % of the dissipated energy), and the run
     stayed on the implicit method (well under a tenth of the reference's right-hand sides; the explicit
     method needs about a quarter at this speed)."""
-    from bearing_core.dynamics import ST_CUR
+    from bearing_core.models.dynamics import ST_CUR
     _, _, ref, res0 = _window(1000.0, traction="kalker", mu=0.1, integrator="rk4", dt=1e-6)
     m, rec, got, res = _window(1000.0, traction="kalker", mu=0.1, integrator="auto")
     assert np.all(np.isfinite(rec["cage_speed"]))
@@ -77,7 +77,7 @@ def test_advance_many_matches_one_at_a_time():
     """Batch runs (dynamics.advance_many: threads over models, GIL released in the kernels) give
     bit-identical states and records to running the same models one after the other (no shared state);
     mismatched argument lengths are refused naming the parameter."""
-    from bearing_core.dynamics import advance_many
+    from bearing_core.models.dynamics import advance_many
     from bearing_core.errors import BearingInputError
 
     def models():

@@ -1,4 +1,4 @@
-"""Compilation flags of the hot kernels (bearing_core.jit) and the numerical shortcuts of the EHL traction.
+"""Compilation flags of the hot kernels (bearing_core.numerics.jit) and the numerical shortcuts of the EHL traction.
 
 * The fast build (fastmath without nnan / ninf, error_model='numpy') against the strict build
   (BEARING_PLAIN_MATH=1, run in a subprocess): traction kernels over a grid of contacts and the dynamics
@@ -28,9 +28,9 @@ def _ehl_grid():
     """ehl_ellipse_traction over p_max x u x slide-roll ratio x spin (ISO VG 68 mineral at 70 degC,
     steel on steel, composite roughness 0.1 um: full film and mixed lubrication both occur), the
     7218B inner-contact geometry."""
-    from bearing_core import ehl_traction as E
-    from bearing_core import lubricants as L
-    from bearing_core.contact_kernels import ellipse_quadrature, traction_params
+    from bearing_core.lubrication import ehl_traction as E
+    from bearing_core.lubrication import lubricants as L
+    from bearing_core.contact.contact_kernels import ellipse_quadrature, traction_params
     prm = L.rheology_traction_params(traction_params(u_min=1e-3), "iso-vg68-mineral", 343.15, 2.26e11,
                                      80e9 * 0.95, 1e-7)
     q = ellipse_quadrature(6, 2)
@@ -49,7 +49,7 @@ def _ehl_grid():
 
 def _simple_grid():
     """contact_kernels.ellipse_traction with the Coulomb and the illustrative curve laws."""
-    from bearing_core import contact_kernels as ck
+    from bearing_core.contact import contact_kernels as ck
     q = ck.ellipse_quadrature(6, 2)
     prm = ck.traction_params(mu0=0.1, v_reg=1e-3, A=-0.05, B=1.2, C=9.0, D=0.05)
     out = []
@@ -65,9 +65,9 @@ def _rhs_outputs():
     """dy/dt and the output channels of the lubricated 7218B (16 balls, Fx 1000 N, Fz 3000 N) at its
     initial (quasi-static) state at 10,000 rpm, perturbed by a small ball motion so that sliding,
     spin and pocket contact are all present."""
-    from bearing_core import dynamics_kernels as K
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions
-    from bearing_core.geometry import load_preset
+    from bearing_core.models import dynamics_kernels as K
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.bearing.geometry import load_preset
     m = DynamicModel(load_preset("7218B"), DynamicsOptions(traction="lubricated", reduced="full"))
     m.initialize(10000.0 * math.pi / 30.0, (1000.0, 0.0, 3000.0, 0.0, 0.0))
     y = m.y.copy()
@@ -85,7 +85,7 @@ def _rhs_outputs():
 
 
 def _emit(what):
-    from bearing_core.jit import build_info
+    from bearing_core.numerics.jit import build_info
     if what == "kernels":
         return {"build": build_info(), "ehl": _ehl_grid(), "simple": _simple_grid()}
     return {"build": build_info(), "rhs": _rhs_outputs()}
@@ -166,7 +166,7 @@ def _thermal_roots():
     global _ROOTS
     if _ROOTS is None:
         from numba import njit
-        from bearing_core.ehl_traction import thermal_eyring_root
+        from bearing_core.lubrication.ehl_traction import thermal_eyring_root
 
         @njit
         def roots(lX, K):
@@ -199,7 +199,7 @@ def test_thermal_eyring_root_error_bounds():
     assert np.allclose(s[iso], np.arcsinh(np.exp(lX[iso])), rtol=1e-12)
     # the seed and first step from a coarse ln X (off by up to 3e-5, as the traction kernel's) reach the
     # same bounds: the last step, on the exact ln X, removes the difference
-    from bearing_core.ehl_traction import _thermal_eyring_root
+    from bearing_core.lubrication.ehl_traction import _thermal_eyring_root
     from numba import njit
 
     @njit
@@ -218,7 +218,7 @@ def test_thermal_eyring_root_error_bounds():
 def test_thermal_eyring_root_extremes():
     """Far outside the contacts' range (ln X in [-745, 700], K up to 1e6) the root stays finite and
     positive, within 1e-9 of the bisection root for K <= 31.6 and ln X >= -700 (where the exp of
-    bearing_core.mathx stops at -708); NaN in ln X or K gives NaN."""
+    bearing_core.numerics.mathx stops at -708); NaN in ln X or K gives NaN."""
     roots = _thermal_roots()
 
     LX, KK = np.meshgrid(np.linspace(-745.0, 700.0, 290), np.concatenate(([0.0], 10 ** np.linspace(-12, 6, 55))))

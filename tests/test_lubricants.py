@@ -1,10 +1,10 @@
-"""Checks of bearing_core.lubricants against published numbers (each test names source and tolerance)."""
+"""Checks of bearing_core.lubrication.lubricants against published numbers (each test names source and tolerance)."""
 import math
 
 import numpy as np
 import pytest
 
-from bearing_core import lubricants as L
+from bearing_core.lubrication import lubricants as L
 from bearing_core.errors import BearingInputError
 
 C = 273.15
@@ -155,8 +155,8 @@ def test_roelands_index_matches_alpha_at_low_pressure(oil):
 def test_rheology_params_and_bad_input():
     """rheology_traction_params fills the EHL slots from the oil at the inlet temperature; the limiting shear
     coefficient follows the assumed traction_scale(T); bad inputs raise BearingInputError naming them."""
-    from bearing_core import contact_kernels as ck
-    from bearing_core import ehl_traction as E
+    from bearing_core.contact import contact_kernels as ck
+    from bearing_core.lubrication import ehl_traction as E
     base = ck.traction_params(u_min=0.5)
     p = L.rheology_traction_params(base, "iso-vg68-mineral", 353.15, 2.26e11, 2.7e11, 0.085e-6)
     o = L.get_oil("iso-vg68-mineral")

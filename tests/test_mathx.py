@@ -1,12 +1,12 @@
-"""Polynomial exp / expm1 / log / log1p / asinh / tanh of bearing_core.mathx against the extended-precision
+"""Polynomial exp / expm1 / log / log1p / asinh / tanh of bearing_core.numerics.mathx against the extended-precision
 (80-bit long double) functions of numpy over the documented ranges, within the bounds stated in the
 module docstring; NaN propagates. Evaluated from a loop compiled with the hot-kernel flags
-(bearing_core.jit), the way the traction kernels use them."""
+(bearing_core.numerics.jit), the way the traction kernels use them."""
 import numpy as np
 import pytest
 
-from bearing_core import mathx as M
-from bearing_core.jit import hot
+from bearing_core.numerics import mathx as M
+from bearing_core.numerics.jit import hot
 
 RNG = np.random.default_rng(20261124)
 

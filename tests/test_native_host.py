@@ -224,7 +224,7 @@ def test_unsolvable_load_refused_fast():
     whose Hertz pressure on any inner contact exceeds the 4.2 GPa static limit (ISO 76): refused at
     initialisation with that reason, before any solve (generous bound 5 s here; measured time in
     docs/fmu.md)."""
-    from bearing_core.cosim import CoSimParameters, CoSimSession
+    from bearing_core.session.cosim import CoSimParameters, CoSimSession
     from bearing_core.errors import BearingInputError
     for inp, why in (({"shaft_speed": 314.0, "Fx": 1000.0, "Fz": 0.0}, "no axial load"),
                      ({"shaft_speed": 314.0, "Fz": -3000.0}, "reversed axial load"),
@@ -250,8 +250,8 @@ def test_two_versions_side_by_side(built, tmp_path):
     fmu2 = _build("BearingFMU", {"bearing_fmu": v2}, "bearing_fmu", tmp_path / "v2")
     code = r"""
 import json, sys
-import bearing_core.cosim
-bearing_core.cosim.P_LIMIT = 1.0
+import bearing_core.session.cosim
+bearing_core.session.cosim.P_LIMIT = 1.0
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 res = {}
@@ -353,12 +353,12 @@ def invalid_in_layer(text):
 
 @pytest.mark.slow
 def test_masters_agree_on_seed000_profile(built, tmp_path):
-    """Seed 000's acceleration profile (bearing_core.dynamics SEED000_PROFILE: 1000 rpm to 0.5 s, 10,000
+    """Seed 000's acceleration profile (bearing_core.models.dynamics SEED000_PROFILE: 1000 rpm to 0.5 s, 10,000
     rpm/s to 10,000 rpm, held to 2 s; 7218B, Fx 1 kN, Fz 3 kN, lubricated traction, 1 ms steps, speed held
     over each step) in three masters: fmpy, libcosim (C++, libcosimpy) and the C host. The mean cage speed
     over the profile agrees within 0.1 % (the masters round communication points differently)."""
     import json
-    from bearing_core.dynamics import read_profile
+    from bearing_core.models.dynamics import read_profile
     t_pts, rpm_pts, _ = read_profile("seed000")
     h = 1e-3
     n = int(round((t_pts[-1] - t_pts[0]) / h))

@@ -6,8 +6,8 @@ import pytest
 from scipy.optimize import brentq
 
 from bearing_core.errors import BearingInputError, ConvergenceError
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import QuasiStaticModel, solve_quasistatic
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic import QuasiStaticModel, solve_quasistatic
 
 RPM = math.pi / 30
 

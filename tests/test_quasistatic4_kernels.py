@@ -1,4 +1,4 @@
-"""numba kernels of the four-point-contact quasi-static model (bearing_core.quasistatic4_kernels) against the
+"""numba kernels of the four-point-contact quasi-static model (bearing_core.models.quasistatic4_kernels) against the
 model's equations evaluated here with numpy (FourPointQuasiStaticModel docstring; Jones 1960; Harris &
 Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 2 Ch. 3), and the solution against Newton's laws
 computed from the returned per-contact arrays."""
@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from bearing_core import kinematics as kin
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import FourPointQuasiStaticModel, quasistatic_model
+from bearing_core.contact import kinematics as kin
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic import FourPointQuasiStaticModel, quasistatic_model
 
 RPM = math.pi / 30
 QJ = load_preset("QJ1044")

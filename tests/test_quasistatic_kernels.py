@@ -1,4 +1,4 @@
-"""numba kernels of the two-point quasi-static model (bearing_core.quasistatic_kernels), held against checks
+"""numba kernels of the two-point quasi-static model (bearing_core.models.quasistatic_kernels), held against checks
 computed here from the returned per-ball arrays with numpy, independently of the kernels."""
 import math
 
@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from bearing_core.errors import ConvergenceError
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import FourPointQuasiStaticModel, QuasiStaticModel
-from bearing_core.quasistatic_kernels import lstsq_svd
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic import FourPointQuasiStaticModel, QuasiStaticModel
+from bearing_core.models.quasistatic_kernels import lstsq_svd
 
 RPM = math.pi / 30
 

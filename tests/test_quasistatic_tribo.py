@@ -1,4 +1,4 @@
-"""Quasi-static tribological model (bearing_core.quasistatic_tribo): the steady state of the dynamics'
+"""Quasi-static tribological model (bearing_core.models.quasistatic_tribo): the steady state of the dynamics'
 own contact interface. Checked against a long run of the dynamics, conservation laws, the Jones-Harris
 low-speed limit and Harris's raceway-control bounds of the spin axis."""
 import json
@@ -7,13 +7,13 @@ import math
 import numpy as np
 import pytest
 
-import bearing_core.dynamics_kernels as K
+import bearing_core.models.dynamics_kernels as K
 
 from bearing_core.cli import main as cli_main
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic_tribo import TriboQuasiStaticModel, solve_tribo_quasistatic
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic_tribo import TriboQuasiStaticModel, solve_tribo_quasistatic
 
 RPM = math.pi / 30
 G = load_preset("7218B")
@@ -187,8 +187,8 @@ def test_memoised_parameters_equal_the_dynamic_models(options):
     (the same bearing, options and speed; with ring growth the running geometry at that speed), except
     the entries the quasi-static model sets itself: the cage's oil films off and the ring's support
     damping (zero velocity at rest) left at 0. Exact equality: the same code computes them."""
-    from bearing_core.quasistatic_tribo import _kernel_setup
-    from bearing_core.ring_fits import RingFits
+    from bearing_core.models.quasistatic_tribo import _kernel_setup
+    from bearing_core.bearing.ring_fits import RingFits
     g = G
     if options.get("fits") == "fit20":
         options = dict(options, fits=RingFits(shaft_interference=20e-6))

@@ -1,4 +1,4 @@
-"""numba kernels of the quasi-static tribological model (bearing_core.quasistatic_tribo_kernels): the
+"""numba kernels of the quasi-static tribological model (bearing_core.models.quasistatic_tribo_kernels): the
 block-arrow linear solve against LAPACK's dense solve, the arrow Jacobian against the residual change it
 predicts, and the kept-Jacobian continuation against the per-step one."""
 import math
@@ -6,11 +6,11 @@ import math
 import numpy as np
 import pytest
 
-import bearing_core.dynamics_kernels as K
-import bearing_core.quasistatic_tribo_kernels as TK
-from bearing_core.dynamics import DynamicModel, DynamicsOptions
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic_tribo import TriboQuasiStaticModel
+import bearing_core.models.dynamics_kernels as K
+import bearing_core.models.quasistatic_tribo_kernels as TK
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic_tribo import TriboQuasiStaticModel
 
 RPM = math.pi / 30
 G = load_preset("7218B")

@@ -10,10 +10,10 @@ import math
 import numpy as np
 import pytest
 
-from bearing_core.cosim import CoSimParameters, CoSimSession, HEAT_CHANNELS
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict, simulate_profile
-from bearing_core.geometry import load_preset
-from bearing_core.skid import SKID_TOL
+from bearing_core.session.cosim import CoSimParameters, CoSimSession, HEAT_CHANNELS
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict, simulate_profile
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.skid import SKID_TOL
 
 RPM = math.pi / 30
 HEAT = tuple(HEAT_CHANNELS.values())
@@ -28,7 +28,7 @@ def test_mirrored_runs_give_mirrored_outputs(traction):
     """+omega and -omega from the quasi-static start, 16 balls, Fx 1 kN, Fz 3 kN, 3000 rpm, 5 ms. The kernels
     are written for signed speeds, the start is the mirrored state, so the two runs differ only by the
     rounding of sums taken in another ball order (ball j <-> ball Z - j), which the adaptive step control
-    can amplify up to its tolerance (the fast build's re-associated sums, bearing_core.jit, add rounding of
+    can amplify up to its tolerance (the fast build's re-associated sums, bearing_core.numerics.jit, add rounding of
     the same order): asserted to the integrator's relative tolerance, 1e-4 of each channel's scale
     (measured: ~1e-9 relative on the torques and forces, up to ~1e-5 on the pocket power once a step
     decision differs)."""

@@ -1,4 +1,4 @@
-"""Ring growth and fits (bearing_core.ring_fits) and their use in the quasi-static model."""
+"""Ring growth and fits (bearing_core.bearing.ring_fits) and their use in the quasi-static model."""
 import math
 
 import numpy as np
@@ -6,10 +6,10 @@ import pytest
 from scipy.integrate import solve_bvp
 
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import load_preset
-from bearing_core.materials import get_material
-from bearing_core.quasistatic import solve_quasistatic
-from bearing_core.ring_fits import (OperatingTemperatures, RingFits, lame_u, operating_geometry, ring_growth,
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.bearing.materials import get_material
+from bearing_core.models.quasistatic import solve_quasistatic
+from bearing_core.bearing.ring_fits import (OperatingTemperatures, RingFits, lame_u, operating_geometry, ring_growth,
                                     rotating_annulus_u)
 
 RPM = math.pi / 30.0

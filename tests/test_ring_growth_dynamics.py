@@ -1,6 +1,6 @@
 """Fits and ring growth in the dynamics, the co-simulation session and the FMU (DynamicsOptions.fits /
 ring_growth; FMU parameters ring_growth, shaft_interference, housing_interference, shaft_bore, bore_diameter,
-outside_diameter). The running geometry is bearing_core.ring_fits.operating_geometry(), whose equations are
+outside_diameter). The running geometry is bearing_core.bearing.ring_fits.operating_geometry(), whose equations are
 checked against Timoshenko & Goodier and Harris & Kotzalas in tests/test_ring_fits.py; here it is checked that
 the dynamics run on it (consistency between our own models, not a published reference)."""
 import math
@@ -10,14 +10,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bearing_core import dynamics_kernels as K
-from bearing_core.cosim import CoSimParameters, CoSimSession
-from bearing_core.dynamics import DynamicModel, DynamicsOptions
+from bearing_core.models import dynamics_kernels as K
+from bearing_core.session.cosim import CoSimParameters, CoSimSession
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import load_preset
-from bearing_core.hertz_tables import HertzInterp
-from bearing_core.quasistatic import solve_quasistatic
-from bearing_core.ring_fits import OperatingTemperatures, RingFits, operating_geometry
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.contact.hertz_tables import HertzInterp
+from bearing_core.models.quasistatic import solve_quasistatic
+from bearing_core.bearing.ring_fits import OperatingTemperatures, RingFits, operating_geometry
 
 W10K = 10000.0 * math.pi / 30.0
 FIT20 = RingFits(shaft_interference=20e-6)

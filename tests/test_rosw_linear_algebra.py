@@ -6,8 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from bearing_core import dynamics_kernels as K
-
+from bearing_core.models import dynamics_kernels as K
 NF, NSB = K.NSTATE_FIXED, K.NSB
 
 
@@ -124,8 +123,8 @@ def test_frozen_fixed_states_have_zero_derivative(opts):
     random perturbations of the quasi-static state (every state moved by up to 1e-6 of its scale), for each
     configuration that freezes states, and the frozen set is what the configuration implies (rigid outer
     ring: its 4 states; elastic: none of them)."""
-    from bearing_core.dynamics import DynamicModel, DynamicsOptions
-    from bearing_core.geometry import load_preset
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.bearing.geometry import load_preset
     o = dict(reduced="full", traction="lubricated")
     o.update(opts)
     m = DynamicModel(load_preset("7218B"), DynamicsOptions(**o))

@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from bearing_core.geometry import preset_data
+from bearing_core.bearing.geometry import preset_data
 
 
 def _cli(*args, timeout=600):

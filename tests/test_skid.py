@@ -1,4 +1,4 @@
-"""Kinematic reference of the cage speed and skid classification (bearing_core.skid): the pure-rolling
+"""Kinematic reference of the cage speed and skid classification (bearing_core.models.skid): the pure-rolling
 cage speed at each loaded ball's contact angles with outer / inner raceway control (Harris & Kotzalas,
 Rolling Bearing Analysis 5th ed. Vol. 2 Ch. 3), in the library, the dynamics outputs and the session."""
 import math
@@ -6,9 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
-from bearing_core.geometry import load_preset
-from bearing_core.skid import SKID_TOL, classify_skid, pure_rolling_cage_speeds
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.skid import SKID_TOL, classify_skid, pure_rolling_cage_speeds
 
 RPM = math.pi / 30
 
@@ -41,7 +41,7 @@ def test_classification_thresholds():
 
 
 def test_dynamics_outputs_match_the_library_function():
-    """The kernel's cage_speed_pure_rolling_outer / _inner equal bearing_core.skid on the per-ball angles
+    """The kernel's cage_speed_pure_rolling_outer / _inner equal bearing_core.models.skid on the per-ball angles
     of the same instant (7218B, 3000 rpm, Fx 1 kN, Fz 3 kN, quasi-static start)."""
     g = load_preset("7218B")
     m = DynamicModel(g, DynamicsOptions())

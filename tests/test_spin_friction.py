@@ -1,4 +1,4 @@
-"""Pure rolling lines and spinning friction (bearing_core.spin_friction; seed 004: Rivera, Tong, Hong 2021;
+"""Pure rolling lines and spinning friction (bearing_core.contact.spin_friction; seed 004: Rivera, Tong, Hong 2021;
 Houpert 1999; Popescu, Houpert, Olaru 2020)."""
 import copy
 import math
@@ -8,10 +8,10 @@ import pytest
 from scipy import integrate
 from scipy.optimize import brentq
 
-from bearing_core import kinematics as kin
-from bearing_core import spin_friction as sf
-from bearing_core.geometry import load_preset
-from bearing_core.quasistatic import solve_quasistatic
+from bearing_core.contact import kinematics as kin
+from bearing_core.contact import spin_friction as sf
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.models.quasistatic import solve_quasistatic
 
 RPM = math.pi / 30
 SPEEDS = (0, 5000, 10000, 15000)

@@ -1,4 +1,4 @@
-"""Sweeps on Dask (bearing_core.sweep, `bearing sweep`): determinism across worker counts and schedulers, failing
+"""Sweeps on Dask (bearing_core.maps.sweep, `bearing sweep`): determinism across worker counts and schedulers, failing
 points, worker loss, resume from the cache, the minimum-preload bisection, and spec validation.
 
 Most tests use the Jones-Harris quasi-static model on 7008-ma2023 and tiny grids (cheap); the preload bisection
@@ -194,7 +194,7 @@ def test_pure_rolling_cage_speed_equal_angles_is_the_textbook_formula():
     (cage speed with the outer ring fixed; chapter recalled from memory, the formula is the standard epicyclic
     result): omega_c = omega_i / 2 (1 - D cos(alpha) / dm) when both contact angles equal alpha. 7008-ma2023
     geometry, alpha = 15 and 40 deg; tolerance 1e-12 relative."""
-    from bearing_core.geometry import load_preset
+    from bearing_core.bearing.geometry import load_preset
     g = load_preset(BEARING)
     for a in (math.radians(15.0), math.radians(40.0)):
         w = 1000.0
@@ -398,7 +398,7 @@ def test_cache_key_follows_content_of_a_bearing_file(tmp_path):
     """A bearing given as a file is keyed by its content: the same content under another name gives the same key,
     an edited file another key; the code version and the model options are part of the key."""
     import json
-    from bearing_core.geometry import preset_data
+    from bearing_core.bearing.geometry import preset_data
     d = preset_data(BEARING)
     f1, f2 = tmp_path / "a.json", tmp_path / "b.json"
     f1.write_text(json.dumps(d))

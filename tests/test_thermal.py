@@ -1,13 +1,13 @@
-"""Checks of bearing_core.thermal (seed 001 Eqs. 21-29) against analytic solutions and conservation."""
+"""Checks of bearing_core.heat.thermal (seed 001 Eqs. 21-29) against analytic solutions and conservation."""
 import math
 
 import numpy as np
 import pytest
 from scipy.linalg import expm
 
-from bearing_core import thermal as th
+from bearing_core.heat import thermal as th
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import load_preset
+from bearing_core.bearing.geometry import load_preset
 
 Q = dict(Q_br_i=50.0, Q_br_o=40.0, Q_bp=10.0, Q_cg=5.0, Q_ch_c=20.0, Q_ch_b=30.0, Q_ch_s=15.0)
 

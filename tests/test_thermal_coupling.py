@@ -5,11 +5,11 @@ import math
 import numpy as np
 import pytest
 
-from bearing_core.churning import churning_losses
-from bearing_core.cosim import CoSimParameters, CoSimSession, StepRejected
-from bearing_core.dynamics import DynamicModel, DynamicsOptions, records_to_dict
-from bearing_core.geometry import load_preset
-from bearing_core.thermal import ThermalData
+from bearing_core.lubrication.churning import churning_losses
+from bearing_core.session.cosim import CoSimParameters, CoSimSession, StepRejected
+from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
+from bearing_core.bearing.geometry import load_preset
+from bearing_core.heat.thermal import ThermalData
 
 RPM = math.pi / 30
 LOSSES = ("P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_damping", "P_churn_cage",
@@ -25,7 +25,7 @@ def _model(rpm=3000.0, loads=(1000.0, 0.0, 3000.0, 0.0, 0.0), **kw):
 def test_churning_power_balance_and_kernel_matches_library():
     """Churning enters the equations of motion as torques, so the energy balance (drive power =
     total heat flux + rate of kinetic and elastic energy, within 1% over windows) still closes; the inner
-    ring's churning power equals seed 001 Eq. 17 evaluated by bearing_core.churning at the same oil state
+    ring's churning power equals seed 001 Eq. 17 evaluated by bearing_core.lubrication.churning at the same oil state
     (1e-9)."""
     m = _model(churning=True, oil_fraction=0.2, reduced="full")
     rec = records_to_dict(m.advance(0.1, record_dt=2e-4))

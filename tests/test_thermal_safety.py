@@ -4,9 +4,9 @@ import math
 
 import pytest
 
-from bearing_core.cosim import CoSimParameters, CoSimSession, StepRejected
-from bearing_core.lubricants import OILS
-from bearing_core.thermal import OIL_T_MAX, ThermalRunaway, oil_temperature_limit
+from bearing_core.session.cosim import CoSimParameters, CoSimSession, StepRejected
+from bearing_core.lubrication.lubricants import OILS
+from bearing_core.heat.thermal import OIL_T_MAX, ThermalRunaway, oil_temperature_limit
 
 
 def test_every_oil_has_a_sourced_temperature_limit():

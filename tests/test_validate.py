@@ -9,7 +9,7 @@ import json
 import pytest
 
 from bearing_core import cli
-from bearing_core import hertz as hz
+from bearing_core.contact import hertz as hz
 from bearing_validation import judge, load_cases, run_case, run_cases, write_report
 
 QUICK = load_cases(quick=True)

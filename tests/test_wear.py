@@ -1,4 +1,4 @@
-"""Tests of bearing_core.wear (seed 003 modified Archard wear over the Hertz ellipse, raceway depth, duty cycle)."""
+"""Tests of bearing_core.models.wear (seed 003 modified Archard wear over the Hertz ellipse, raceway depth, duty cycle)."""
 import json
 import math
 
@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 from scipy.special import ellipe
 
-from bearing_core import wear
+from bearing_core.models import wear
 from bearing_core.errors import BearingInputError
-from bearing_core.geometry import load_preset
+from bearing_core.bearing.geometry import load_preset
 
 RPM = math.pi / 30.0
 

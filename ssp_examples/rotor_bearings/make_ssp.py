@@ -78,8 +78,8 @@ def statics(d: RotorDesign) -> dict:
     FMU's initialisation): journal coordinates q, disk position, bearing poses and reactions, preload
     displacement, and the bearings' stiffness diagonal at the equilibrium (own frames)."""
     from scipy.optimize import brentq, fsolve
-    from bearing_core.geometry import load_preset
-    from bearing_core.quasistatic import QuasiStaticModel
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.models.quasistatic import QuasiStaticModel
 
     qsm = QuasiStaticModel(load_preset(d.bearing), "outer")
     w = d.speed_start
