@@ -6,6 +6,7 @@ import pytest
 from scipy import special
 
 from bearing_core.contact import contact_kernels as ck
+from bearing_core.lubrication import pocket_film as pf
 from bearing_core.contact import kinematics as kin
 from bearing_core.bearing.geometry import load_preset
 from bearing_core.models.quasistatic import QuasiStaticModel, solve_quasistatic
@@ -292,8 +293,8 @@ def test_pocket_kernels_from_wrapped_angle():
         b = ck.ball_pocket_contact_rel(ck.wrap_angle(th_b - th_c), *kw, 0.1, 1e-3, *tail)
         np.testing.assert_allclose(a, b, rtol=1e-10, atol=0.0)
         lub = (0.15, 0.05, 0.01, 0.02, 2e-8, 2.3e9, 4e-7)
-        a = ck.ball_pocket_lubricated(th_b, th_c, *kw, *lub, *tail)
-        b = ck.ball_pocket_lubricated_rel(ck.wrap_angle(th_b - th_c), *kw, *lub, *tail)
+        a = pf.ball_pocket_lubricated(th_b, th_c, *kw, *lub, *tail)
+        b = pf.ball_pocket_lubricated_rel(ck.wrap_angle(th_b - th_c), *kw, *lub, *tail)
         np.testing.assert_allclose(a, b, rtol=1e-10, atol=0.0)
 
 

@@ -18,7 +18,7 @@ import pytest
 pytest.importorskip("distributed")
 import pandas as pd  # noqa: E402
 
-from bearing_core import sweep as S  # noqa: E402
+from bearing_core.maps import sweep as S  # noqa: E402
 from bearing_core.cli import main  # noqa: E402
 from bearing_core.errors import BearingInputError  # noqa: E402
 

@@ -87,11 +87,10 @@ LN2 = mx.LN2
 _ZH_LAM_PEAK = (0.64 / (0.37 * 1.26 - 0.37 * 0.64)) ** (1.0 / 1.26)   # argmax of the Zhou-Hoeprich fit, 2.258
 _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 
-# layout of the rheology part of the traction parameter array (float64); indices continue those of
-# contact_kernels (P_MU0 ... P_UMIN = 0..6); the array is built by contact_kernels.traction_params
-(R_LUBMODEL, R_ETA0, R_LNE, R_Z, R_ALPHA, R_BETA, R_TAU0, R_TAUL0, R_GAML, R_GFILM, R_KOIL, R_EPRIME,
- R_GSC11, R_RCK, R_RQ, R_MUBL, R_VBL, R_RR, R_THERMAL, R_KGAM) = range(7, 27)
-N_PARAMS = 27
+# the traction parameter array's layout: contact.traction_params (R_* rheology slots)
+from ..contact.traction_params import (R_LUBMODEL, R_ETA0, R_LNE, R_Z, R_ALPHA, R_BETA, R_TAU0,  # noqa: F401
+                                       R_TAUL0, R_GAML, R_GFILM, R_KOIL, R_EPRIME, R_GSC11, R_RCK, R_RQ,
+                                       R_MUBL, R_VBL, R_RR, R_THERMAL, R_KGAM, N_PARAMS)
 # rows of ehl_scratch (one column per quadrature point): the nodes and weights (xi, w_xi, zeta, w_zeta of
 # contact_kernels.ellipse_quadrature), then ehl_ellipse_traction_into's work rows: sliding velocity (t, m),
 # position (x, y, rho), pressure, shear-force weight, distance from the inlet edge, shear force per unit
@@ -561,7 +560,7 @@ def disc_traction_curve(oil, T, p_max, u, srr, Rx, Ry, E_prime=2.26e11, G_solid=
     and nu_solid [-] Poisson ratio of the (equal) solids; Rq [m] composite roughness; thermal / elastic:
     shear heating and Maxwell elasticity on/off; n: quadrature points per ellipse axis.
     Returns (mu array, dict of contact data: a, b, Q, h_c, Lambda)."""
-    from ..contact.contact_kernels import ellipse_quadrature, traction_params
+    from ..contact.traction_params import ellipse_quadrature, traction_params
     from ..errors import check_range
     from ..contact.fastsim import kalker_coefficients
     from .film import ellipticity_nb

@@ -455,7 +455,7 @@ def rheology_traction_params(base, oil, T: float, E_prime: float, GsC11: float, 
     composite rms roughness sqrt(Rq1^2 + Rq2^2) (0: smooth, no asperity contact); mu_bl [-]: boundary
     friction coefficient; rolling_resistance: EHL rolling-resistance moment on/off; thermal: shear heating
     on/off; rck: rho c k of the solids (flash temperature)."""
-    from . import ehl_traction as E
+    from ..contact import traction_params as E
     o = get_oil(oil)
     check_range("T", T, T_MIN, T_MAX, unit="K")
     check_range("E_prime", E_prime, 1e9, 1e13, unit="Pa")
