@@ -3,8 +3,8 @@ rolling lines, Gupta-style tribo-dynamics in numba). SI units inside; see README
 
 The public face (imported on first use, so `import bearing_core` stays light):
 
-    from bearing_core import load_bearing, DynamicModel, DynamicsOptions
-    m = DynamicModel(load_bearing("7218B"), DynamicsOptions(traction="lubricated"))
+    >>> import bearing_core as bc
+    >>> m = bc.DynamicModel(bc.load_bearing("7218B"), bc.DynamicsOptions(traction="lubricated"))
 
 Layers, each importing only those below it (pyproject.toml's import-linter contract): cli, postprocess ->
 maps (sweeps) -> session (co-simulation) -> models (quasi-static, tribological, dynamics, skid, wear) ->
