@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -16,7 +17,16 @@ import numpy as np
 RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 
 
+# argparse takes "-1e-3" for an option name (its negative-number pattern has no exponent): numbers in any
+# float notation are values
+_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.IGNORECASE)
+
+
 class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kw):
+        super().__init__(*args, **kw)
+        self._negative_number_matcher = _NEGATIVE_NUMBER
+
     def error(self, message):  # one-line reason, exit 2
         sys.stderr.write(f"{self.prog}: error: {message}\n")
         raise SystemExit(2)
@@ -47,7 +57,11 @@ def build_parser() -> argparse.ArgumentParser:
 
     q = sub.add_parser("quasistatic", help="Jones-Harris 5-DOF quasi-static solution")
     q.add_argument("--bearing", required=True, help="preset name (see 'bearing presets')")
-    q.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"), help="inner-ring speed [rpm]")
+    q.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"),
+                   help="inner-ring speed [rpm], signed about +z (negative: turning the other way; the result is "
+                        "the mirror image in the x-z plane of the positive-speed one under reflected loads)")
+    q.add_argument("--outer-speed-rpm", type=_finite("--outer-speed-rpm"), default=0.0,
+                   help="outer-ring speed [rpm], signed (default 0: fixed outer ring; Jones-Harris model only)")
     _add_loads(q)
     q.add_argument("--control", choices=("outer", "inner", "hybrid"), default="outer",
                    help="raceway control hypothesis (default outer)")
@@ -130,18 +144,6 @@ def build_parser() -> argparse.ArgumentParser:
     pr.add_argument("--json", action="store_true")
     pr.set_defaults(func=cmd_presets)
 
-    va = sub.add_parser("validate", help="run the validation cases (published references: papers, textbooks) "
-                                         "and write report.html / report.json; exit 1 if a match or trend "
-                                         "case fails")
-    va.add_argument("--quick", action="store_true", help="fast subset only (no transient dynamics)")
-    va.add_argument("--case", action="append", default=[], metavar="NAME", help="run this case (repeatable)")
-    va.add_argument("--jobs", type=int, default=1, help="parallel worker processes (default 1)")
-    va.add_argument("--out", default="out/validation", help="report directory")
-    va.add_argument("--markdown", action="store_true", help="also write report.md (summary table for docs)")
-    va.add_argument("--update-doc", metavar="FILE.md", help="write the summary table into this markdown file "
-                                                             "between its 'bearing validate: quick|full' markers")
-    va.add_argument("--list", action="store_true", help="list the cases and exit")
-    va.set_defaults(func=cmd_validate)
     return p
 
 
@@ -152,6 +154,7 @@ def quasistatic_dict(res) -> dict:
     d = {
         "bearing": g.name,
         "speed_rpm": res.omega / RPM,
+        "outer_speed_rpm": res.omega_outer / RPM,
         "control": res.control,
         "loads": dict(zip(("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm"), map(float, res.loads))),
         "psi_deg": deg(res.psi).tolist(),
@@ -183,13 +186,18 @@ def cmd_quasistatic(a) -> int:
     from .bearing.geometry import load_preset
     from .models.quasistatic import solve_quasistatic
 
-    if not 0.0 <= a.speed_rpm <= 190000.0:
-        raise _BadArg(f"--speed-rpm = {a.speed_rpm} is invalid; allowed: 0 <= speed <= 190000 rpm")
+    for flag, v in (("--speed-rpm", a.speed_rpm), ("--outer-speed-rpm", a.outer_speed_rpm)):
+        if not -190000.0 <= v <= 190000.0:
+            raise _BadArg(f"{flag} = {v} is invalid; allowed: -190000 <= speed <= 190000 rpm")
     g = load_preset(a.bearing)
     if a.traction is not None:
+        if a.outer_speed_rpm != 0.0:
+            raise _BadArg(f"--outer-speed-rpm = {a.outer_speed_rpm} is invalid with --traction; allowed: 0 (the "
+                          "tribological model has a fixed outer ring; use the Jones-Harris model or the dynamics)")
         g.require_two_point("tribological quasi-static model (--traction)")
         return _tribo_quasistatic(a, g)
-    res = solve_quasistatic(g, a.speed_rpm * RPM, (a.fx, a.fy, a.fz, a.mx, a.my), control=a.control)
+    res = solve_quasistatic(g, a.speed_rpm * RPM, (a.fx, a.fy, a.fz, a.mx, a.my), control=a.control,
+                            omega_outer=a.outer_speed_rpm * RPM)
     d = quasistatic_dict(res)
     if g.is_four_point:
         from .models.quasistatic import CONTACT_NAMES
@@ -206,7 +214,8 @@ def cmd_quasistatic(a) -> int:
     if a.json:
         print(json.dumps(d))
         return 0
-    print(f"bearing {g.name}  speed {a.speed_rpm:g} rpm  control {a.control}")
+    print(f"bearing {g.name}  speed {a.speed_rpm:g} rpm" + (f"  outer ring {a.outer_speed_rpm:g} rpm"
+                                                            if a.outer_speed_rpm else "") + f"  control {a.control}")
     print(f"loads  Fx {a.fx:g} N  Fy {a.fy:g} N  Fz {a.fz:g} N  Mx {a.mx:g} N m  My {a.my:g} N m")
     u = res.u
     print(f"displacement  dx {u[0]*1e6:.3f} um  dy {u[1]*1e6:.3f} um  dz {u[2]*1e6:.3f} um  "
@@ -290,7 +299,8 @@ def _tribo_quasistatic(a, g) -> int:
     from .models.quasistatic_tribo import solve_tribo_quasistatic
     if a.speed_rpm * RPM < 1.0:
         raise _BadArg(f"--speed-rpm = {a.speed_rpm} is invalid with --traction; allowed: 10 <= speed <= 190000 rpm "
-                      "(the tribological model needs rolling)")
+                      "(the tribological model needs rolling in the positive sense; for a negative speed use the "
+                      "Jones-Harris model, whose mirrored solution this command reports, or the dynamics)")
     opt = DynamicsOptions(traction=a.traction, mu=a.mu)
     res = solve_tribo_quasistatic(g, a.speed_rpm * RPM, (a.fx, a.fy, a.fz, a.mx, a.my), opt)
     d = tribo_quasistatic_dict(res)
@@ -704,45 +714,6 @@ def cmd_presets(a) -> int:
     else:
         for r in rows:
             print(f"{r['name']:18s} {r['source']}")
-    return 0
-
-
-def cmd_validate(a) -> int:
-    import time
-
-    from bearing_validation import counts, load_cases, markdown_table, run_cases, update_doc_section, write_report
-
-    if not (1 <= a.jobs <= 64):
-        raise _BadArg(f"--jobs = {a.jobs} is invalid; allowed: 1 <= jobs <= 64")
-    try:
-        cases = load_cases(names=a.case or None, quick=a.quick)
-    except ValueError as e:
-        raise _BadArg(str(e))
-    if a.list:
-        for c in cases:
-            print(f"{c['id']:42s} {c['verdict']:9s} {'quick' if c.get('quick') else 'full '} {c['kind']}")
-        return 0
-    t0 = time.perf_counter()
-
-    def progress(r):
-        print(f"{r.status:5s} {r.case['id']:42s} {r.case['verdict']:9s} {r.wall_s:7.1f} s", flush=True)
-
-    results = run_cases(cases, jobs=a.jobs, progress=progress)
-    wall = time.perf_counter() - t0
-    argv = (["bearing validate"] + (["--quick"] if a.quick else []) + [f"--case {n}" for n in a.case]
-            + ([f"--jobs {a.jobs}"] if a.jobs > 1 else []))
-    paths = write_report(results, a.out, command=" ".join(argv), wall_s=wall, markdown=a.markdown)
-    if a.update_doc:
-        meta = json.loads(paths["json"].read_text())["meta"]
-        update_doc_section(a.update_doc, "quick" if a.quick else ("cases" if a.case else "full"),
-                           markdown_table(results, meta))
-    c = counts(results)
-    print(f"{len(results)} cases in {wall:.1f} s: {c['PASS']} pass, {c['FAIL']} fail, {c['GAP']} known gap, "
-          f"{c['ERROR']} error; report: {paths['html']}")
-    failed = [r.case["id"] for r in results if r.failed]
-    if failed:
-        print("FAILED: " + ", ".join(failed))
-        return 1
     return 0
 
 

@@ -33,6 +33,8 @@ def build_parser():
     p = core_cli.build_parser()
     p.add_argument("--version", action="version", version=f"bearing-tribodynamics {_package_version()}")
     sub = next(a for a in p._actions if a.dest == "cmd")
+    from bearing_validation.cli import add_parser as add_validate
+    add_validate(sub)
     s = sub.add_parser("simulate", help="drive the bearing FMU with fmpy through a speed profile "
                                         "(CSV time_s, speed_rpm [, Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm]) or 'seed000'")
     s.add_argument("--fmu", default="dist/BearingFMU.fmu", help="FMU file (bearing build-fmu builds it)")

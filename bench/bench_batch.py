@@ -12,7 +12,11 @@ speeds, each simulated for --t-sim seconds after a compiled warm-up of 2 ms. Par
 
 The machine may be shared: a control (a trivial nogil numba loop, alone and in --workers threads at once, before
 and after the measurement) gives the number of cores the threads actually got; compare the batch gains with it.
-All ratios come from this one run.
+All ratios come from this one run. Times are wall time (the headline; throughput and gains come from it) with the
+process's CPU time beside it (``..._cpu_s``: time.process_time, all threads of this process, since the batch runs
+in a thread pool; CPU time above the wall time means more than one core worked). The JSON output carries the
+machine (bench/machine.py) under "machine"; the text output names it first.
+Quickest check: ``--points 2 --t-sim 0.005``.
 """
 from __future__ import annotations
 
@@ -26,12 +30,14 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import numpy as np  # noqa: E402
 from numba import njit  # noqa: E402
 
 from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, advance_many  # noqa: E402
 from bearing_core.bearing.geometry import load_preset  # noqa: E402
+from machine import Timer, machine_info, machine_line  # noqa: E402
 
 
 @njit(nogil=True, cache=True)
@@ -94,56 +100,63 @@ def main(argv=None):
     c0 = free_cores(a.workers)
 
     seq = _models(a.points)
-    t0 = time.perf_counter()
-    for m in seq:
-        m.advance(m.t + a.t_sim)
-    w_seq = time.perf_counter() - t0
+    with Timer("process") as T:
+        for m in seq:
+            m.advance(m.t + a.t_sim)
+    w_seq, c_seq = T.wall_s, T.cpu_s
     par = _models(a.points)
-    t0 = time.perf_counter()
-    advance_many(par, [m.t + a.t_sim for m in par], workers=a.workers)
-    w_par = time.perf_counter() - t0
+    with Timer("process") as T:
+        advance_many(par, [m.t + a.t_sim for m in par], workers=a.workers)
+    w_par, c_par = T.wall_s, T.cpu_s
     same = all(np.array_equal(p.y, s.y) for p, s in zip(par, seq))
 
     ev = S.DynamicWindow()
     pts = _sweep_points(a.points)
     opts = {"window_s": a.t_sim / 2, "max_time_s": a.t_sim, "steady_tol": 1e-8, "torque_tol": 1e-8}
     ev(pts[0], opts)                                    # warm-up (kernels loaded)
-    t0 = time.perf_counter()
-    ev_setup = [ev._start(p, opts) for p in pts]
-    w_setup = time.perf_counter() - t0
+    with Timer("process") as T:
+        ev_setup = [ev._start(p, opts) for p in pts]
+    w_setup, c_setup = T.wall_s, T.cpu_s
     shared = {}
-    t0 = time.perf_counter()
-    ev_setup = [ev._start(p, opts, shared) for p in pts]     # as in a batch: one construction per bearing
-    w_setup_shared = time.perf_counter() - t0
+    with Timer("process") as T:
+        ev_setup = [ev._start(p, opts, shared) for p in pts]     # as in a batch: one construction per bearing
+    w_setup_shared, c_setup_shared = T.wall_s, T.cpu_s
     del ev_setup
-    t0 = time.perf_counter()
-    one = [ev(p, opts) for p in pts]
-    w_one = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    bat = ev.run_batch(pts, opts, threads=a.workers)
-    w_bat = time.perf_counter() - t0
+    with Timer("process") as T:
+        one = [ev(p, opts) for p in pts]
+    w_one, c_one = T.wall_s, T.cpu_s
+    with Timer("process") as T:
+        bat = ev.run_batch(pts, opts, threads=a.workers)
+    w_bat, c_bat = T.wall_s, T.cpu_s
     same_sweep = all(x == y for x, y in zip(one, bat))
     c1 = free_cores(a.workers)
 
-    out = {"points": a.points, "simulated_s_per_point": a.t_sim, "workers": a.workers, "cpus": os.cpu_count(),
+    out = {"machine": machine_info(), "cpu_clock": "process (time.process_time, all threads)",
+           "points": a.points, "simulated_s_per_point": a.t_sim, "workers": a.workers, "cpus": os.cpu_count(),
            "control_free_cores_before": c0, "control_free_cores_after": c1,
            "advance_many": {"sequential_wall_s": w_seq, "batch_wall_s": w_par,
+                            "sequential_cpu_s": c_seq, "batch_cpu_s": c_par,
                             "points_per_s_sequential": a.points / w_seq, "points_per_s_batch": a.points / w_par,
                             "throughput_gain": w_seq / w_par, "identical_results": bool(same)},
            "sweep_batch": {"one_at_a_time_wall_s": w_one, "batch_wall_s": w_bat,
+                           "one_at_a_time_cpu_s": c_one, "batch_cpu_s": c_bat,
                            "points_per_s_one_at_a_time": a.points / w_one, "points_per_s_batch": a.points / w_bat,
                            "throughput_gain": w_one / w_bat, "setup_wall_s_per_point": w_setup / a.points,
                            "setup_wall_s_per_point_shared_model": w_setup_shared / a.points,
+                           "setup_cpu_s_per_point": c_setup / a.points,
+                           "setup_cpu_s_per_point_shared_model": c_setup_shared / a.points,
                            "identical_results": bool(same_sweep)},
            "loadavg_1min": os.getloadavg()[0]}
     if a.json:
         print(json.dumps(out, indent=1))
     else:
+        print(machine_line(out["machine"], clock="wall time, process CPU time (all threads) beside it"))
         print(f"control: {c0:.2f} / {c1:.2f} of {a.workers} cores free (before / after); "
               f"load {out['loadavg_1min']:.1f}")
-        print(f"advance_many: {a.points} points x {a.t_sim:g} s: one after the other {w_seq:.2f} s, "
-              f"{a.workers} threads {w_par:.2f} s: {w_seq / w_par:.2f}x (identical: {same})")
-        print(f"sweep batch (dynamic): one at a time {w_one:.2f} s, batch {w_bat:.2f} s: {w_one / w_bat:.2f}x "
+        print(f"advance_many: {a.points} points x {a.t_sim:g} s: one after the other {w_seq:.2f} s "
+              f"(CPU {c_seq:.2f} s), {a.workers} threads {w_par:.2f} s (CPU {c_par:.2f} s): {w_seq / w_par:.2f}x (identical: {same})")
+        print(f"sweep batch (dynamic): one at a time {w_one:.2f} s (CPU {c_one:.2f} s), "
+              f"batch {w_bat:.2f} s (CPU {c_bat:.2f} s): {w_one / w_bat:.2f}x "
               f"(identical: {same_sweep}); set-up {w_setup / a.points * 1e3:.0f} ms per point, "
               f"{w_setup_shared / a.points * 1e3:.0f} ms with the model constructed once per batch")
     return out

@@ -13,10 +13,14 @@ the mean cage speed over the last 0.3 s between the two; also the explicit and i
 where other jobs stretch the wall time.
 Numba compilation is done (or loaded from cache) before timing.
 
-Right-hand-side cost: ``rhs_us`` is the mean wall time of one call of the compiled right-hand side
+Right-hand-side cost: ``rhs_us`` is the mean wall time (``rhs_cpu_us`` the thread's CPU time beside it) of one call of the compiled right-hand side
 (dynamics_kernels.rhs, all balls, both race contacts, cage) at the final state of the production run
 (10,000 rpm when t_end = 2 s), averaged over --rhs-calls calls in one compiled loop; ``--rhs-only``
 measures just that (after the production run to t_end) and skips the integrator timings.
+All times: wall time (time.perf_counter) is the headline (``wall_s``, ``rtf``, ``speedup_vs_rk4``,
+``<integrator>_wall_s``), thread CPU time beside it (``cpu_s``, ``rtf_cpu``, ``<integrator>_cpu_s``). The JSON output
+carries the machine (bench/machine.py) under "machine"; the text output names it first.
+Quickest check: ``--t-end 0.02 --no-others`` (or ``--rhs-only --t-end 0.02``).
 
     python bench/bench_dynamics.py [--t-end 2.0] [--json] [--fx 1000 --fz 3000] [--traction lubricated]
                                    [--integrator auto|adaptive|implicit|adaptive-rk4] [--no-others] [--rhs-only]
@@ -26,7 +30,9 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -35,6 +41,9 @@ from bearing_core.models.dynamics import (DynamicModel, DynamicsOptions, SEED000
 from bearing_core.bearing.geometry import load_preset
 from bearing_core.models import dynamics_kernels as K
 from numba import njit
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from machine import machine_info, machine_line  # noqa: E402
 
 
 @njit(cache=True)
@@ -47,18 +56,21 @@ def _rhs_loop(n, t, y, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag,
     return acc
 
 
-def rhs_cost_us(m, n=20000):
-    """Mean wall time [us] of one right-hand-side call at the model's current state."""
+def rhs_cost_us(m, n=20000, cpu=False):
+    """Mean wall time [us] of one right-hand-side call at the model's current state (the best of 3 loops of n
+    calls); with cpu=True (wall, thread CPU) [us], each clock's best on its own."""
     diag = np.zeros(K.NOUT)
     bd = np.zeros((int(m.P[K.P_NB]), K.NBD))
     args = (m.t, m.y.copy(), m.P, m.U, m._tab_i, m._tab_o, m._ta0, m._tda, m._tp, *m._quad, diag, bd)
     _rhs_loop(10, *args)
-    best = math.inf
+    best = best_cpu = math.inf
     for _ in range(3):
+        c0 = time.thread_time()
         t0 = time.perf_counter()
         _rhs_loop(n, *args)
         best = min(best, (time.perf_counter() - t0) / n * 1e6)
-    return best
+        best_cpu = min(best_cpu, (time.thread_time() - c0) / n * 1e6)
+    return (best, best_cpu) if cpu else best
 
 
 PHASES = (("1000rpm", 0.0, 0.5), ("ramp", 0.5, 1.4), ("10000rpm", 1.4, 2.0))
@@ -122,25 +134,32 @@ def main(argv=None):
     # warm-up: compile or load the numba cache for both integrators
     if a.rhs_only:
         _, _, _, m, _ = run(a.integrator, a.t_end, loads, a.traction, a.mu, a.rtol)
-        us = rhs_cost_us(m, a.rhs_calls)
-        out = {"rhs_us": us, "t_state_s": m.t, "traction": a.traction, "loads_N": {"Fx": a.fx, "Fz": a.fz}}
-        print(json.dumps(out) if a.json else
-              f"7218B, state at t = {m.t:g} s, {a.traction}: {us:.2f} us per right-hand side")
+        us, us_cpu = rhs_cost_us(m, a.rhs_calls, cpu=True)
+        out = {"machine": machine_info(), "rhs_us": us, "rhs_cpu_us": us_cpu, "t_state_s": m.t,
+               "traction": a.traction, "loads_N": {"Fx": a.fx, "Fz": a.fz}}
+        if a.json:
+            print(json.dumps(out))
+        else:
+            print(machine_line(out["machine"]))
+            print(f"7218B, state at t = {m.t:g} s, {a.traction}: {us:.2f} us per right-hand side, wall "
+                  f"({us_cpu:.2f} us thread CPU)")
         return out
     for integ in ("adaptive", "implicit", "auto", "rk4", "adaptive-rk4"):
         run(integ, 0.002, loads, a.traction, a.mu, a.rtol)
     ph = {}
     wall, rec, st, m, cpu = run(a.integrator, a.t_end, loads, a.traction, a.mu, a.rtol, ph)
-    rhs_us = rhs_cost_us(m, a.rhs_calls)
+    rhs_us, rhs_cpu_us = rhs_cost_us(m, a.rhs_calls, cpu=True)
     ph0 = {}
     wall0, rec0, st0, _, cpu0 = run("rk4", a.t_end, loads, a.traction, a.mu, a.rtol, ph0)
     for k, v in ph.items():
         v["speedup_vs_rk4"] = ph0[k]["wall_s"] / v["wall_s"]
+        v["speedup_vs_rk4_cpu"] = ph0[k]["cpu_s"] / v["cpu_s"]
     tail = rec["t"] > a.t_end - 0.3
     tail0 = rec0["t"] > a.t_end - 0.3
     c1 = rec["cage_speed"][tail].mean()
     c0 = rec0["cage_speed"][tail0].mean()
     out = {
+        "machine": machine_info(),
         "simulated_s": a.t_end,
         "wall_s": wall,
         "rtf": wall / a.t_end,
@@ -156,6 +175,7 @@ def main(argv=None):
         "steps": int(st[0]), "rejected": int(st[1]), "rhs_calls": int(st[2]),
         "baseline_rhs_calls": int(st0[2]),
         "rhs_us": rhs_us,
+        "rhs_cpu_us": rhs_cpu_us,
         "phases": ph,
         "loads_N": {"Fx": a.fx, "Fz": a.fz}, "traction": a.traction, "integrator": a.integrator,
     }
@@ -163,29 +183,31 @@ def main(argv=None):
         for integ in ("adaptive", "implicit", "auto", "adaptive-rk4"):
             if integ == a.integrator:
                 continue
-            w2, rec2, st2, _, _ = run(integ, a.t_end, loads, a.traction, a.mu, a.rtol)
+            w2, rec2, st2, _, cpu2 = run(integ, a.t_end, loads, a.traction, a.mu, a.rtol)
             c2 = rec2["cage_speed"][rec2["t"] > a.t_end - 0.3].mean()
             out[f"{integ}_wall_s"] = w2
+            out[f"{integ}_cpu_s"] = cpu2
             out[f"{integ}_speedup_vs_rk4"] = wall0 / w2
             out[f"{integ}_cage_speed_rel_diff"] = abs(c2 / c0 - 1.0)
     if a.json:
         print(json.dumps(out))
     else:
+        print(machine_line(out["machine"]))
         print(f"7218B seed-000 profile, {a.t_end:g} s simulated, Fx {a.fx:g} N, Fz {a.fz:g} N, {a.traction}")
         print(f"production ({a.integrator}, rtol {a.rtol:g}): wall {wall:.2f} s, real-time factor {wall / a.t_end:.2f} "
               f"(thread CPU {cpu / a.t_end:.2f}), "
               f"{int(st[2])} rhs calls ({int(st[0])} steps, {int(st[1])} rejected)")
-        print(f"right-hand side: {rhs_us:.2f} us per call at the final state")
+        print(f"right-hand side: {rhs_us:.2f} us per call at the final state ({rhs_cpu_us:.2f} us thread CPU)")
         for k, v in ph.items():
-            print(f"  {k}: real-time factor {v['rtf']:.2f}, {v['rhs_calls'] / v['simulated_s']:.0f} rhs calls per "
+            print(f"  {k}: real-time factor {v['rtf']:.2f} (thread CPU {v['rtf_cpu']:.2f}), {v['rhs_calls'] / v['simulated_s']:.0f} rhs calls per "
                   f"simulated s, mean step {v['mean_step_s']:.2e} s ({v['rejected']} rejected), "
                   f"speed-up vs RK4 {v['speedup_vs_rk4']:.2f}x")
-        print(f"baseline (RK4, dt 1e-5 s): wall {wall0:.2f} s, {int(st0[2])} rhs calls")
-        print(f"speed-up vs RK4: {wall0 / wall:.2f}x; mean cage speed over the last 0.3 s: "
+        print(f"baseline (RK4, dt 1e-5 s): wall {wall0:.2f} s (thread CPU {cpu0:.2f} s), {int(st0[2])} rhs calls")
+        print(f"speed-up vs RK4: {wall0 / wall:.2f}x (thread CPU {cpu0 / cpu:.2f}x); mean cage speed over the last 0.3 s: "
               f"{c1 * 30 / math.pi:.1f} vs {c0 * 30 / math.pi:.1f} rpm (rel. diff {abs(c1 / c0 - 1):.2e})")
         for integ in ("adaptive", "implicit", "auto", "adaptive-rk4"):
             if f"{integ}_wall_s" in out:
-                print(f"  {integ}: wall {out[integ + '_wall_s']:.2f} s, speed-up vs RK4 "
+                print(f"  {integ}: wall {out[integ + '_wall_s']:.2f} s (thread CPU {out[integ + '_cpu_s']:.2f} s), speed-up vs RK4 "
                       f"{out[integ + '_speedup_vs_rk4']:.2f}x, cage rel. diff {out[integ + '_cage_speed_rel_diff']:.2e}")
     return out
 

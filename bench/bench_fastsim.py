@@ -12,8 +12,10 @@ b = 0.17 mm, Q = 300 N, steel, mu = 0.1).
      Hertz bound, mu = 0.1, Fx 1000 N, Fz 3000 N) 20 ms after its quasi-static start at 1000 rpm: branch
      taken per contact, cost per contact of fastsim_traction_fast (as the right-hand side calls it: strip-SIMD
      grid march) against the scalar march of fastsim_traction on the same grid, and of kalker_coefficients.
-Costs are CPU time of the calling thread (best of several loops), so that time the thread spends
-descheduled on a shared machine is not counted.
+Costs are wall time (best of several loops; ``cost_us``, ``..._us_per_contact``) with the calling thread's CPU
+time beside it (``cost_cpu_us``, ``..._us_per_contact_cpu``), which leaves out the time the thread spends
+descheduled on a shared machine. Until the "machine" key was added the costs were thread CPU time. The JSON
+output carries the machine (bench/machine.py) under "machine"; the text output names it first.
   --seed000: also the real-time factor (wall / simulated time) of the seed 000 case with Kalker traction
      (7218B, SEED000_PROFILE to 2 s, mu = 0.1, Fx 1000 N, Fz 3000 N; about 100 s).
 
@@ -22,10 +24,15 @@ descheduled on a shared machine is not counted.
 import argparse
 import json
 import math
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 from numba import njit
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from machine import machine_info, machine_line  # noqa: E402
 
 from bearing_core.contact.contact_kernels import TRACTION_COULOMB, ellipse_quadrature, ellipse_traction, traction_params
 from bearing_core.contact.fastsim import (PRESSURE_HERTZ, PRESSURE_PARABOLIC, combined_elastic, creepage_level,
@@ -62,13 +69,16 @@ def _loop_ellipse(n, a, b, p, D, R, tp, qx, qwx, qy, qwy):
 
 
 def _time(f, *args, n=20000, repeats=5):
+    """(wall, thread CPU) [us] per call: the best of `repeats` loops of n calls, each clock's best on its own."""
     f(10, *args)
-    best = 1e9
+    best = best_cpu = 1e9
     for _ in range(repeats):
-        t0 = time.thread_time()
+        c0 = time.thread_time()
+        t0 = time.perf_counter()
         f(n, *args)
-        best = min(best, (time.thread_time() - t0) / n * 1e6)
-    return best
+        best = min(best, (time.perf_counter() - t0) / n * 1e6)
+        best_cpu = min(best_cpu, (time.thread_time() - c0) / n * 1e6)
+    return best, best_cpu
 
 
 @njit(cache=True)
@@ -129,11 +139,13 @@ def dynamics_contacts(settle=0.02):
         else:
             branches["grid"] += 1
     n = 300
-    fast = _time(_loop_contacts, C, MU, Gc, nuc, n_xy, True, n=n, repeats=15) / len(C)
-    scalar = _time(_loop_contacts, C, MU, Gc, nuc, n_xy, False, n=n, repeats=15) / len(C)
-    coef = _time(_loop_coefficients, C[:, 1] / C[:, 0], nuc, n=3000, repeats=15) / len(C)
-    return {"contacts": len(C), "grid": n_xy, "branches": branches, "fast_us_per_contact": fast,
-            "scalar_march_us_per_contact": scalar, "kalker_coefficients_us": coef}
+    fast = [t / len(C) for t in _time(_loop_contacts, C, MU, Gc, nuc, n_xy, True, n=n, repeats=15)]
+    scalar = [t / len(C) for t in _time(_loop_contacts, C, MU, Gc, nuc, n_xy, False, n=n, repeats=15)]
+    coef = [t / len(C) for t in _time(_loop_coefficients, C[:, 1] / C[:, 0], nuc, n=3000, repeats=15)]
+    return {"contacts": len(C), "grid": n_xy, "branches": branches,
+            "fast_us_per_contact": fast[0], "fast_us_per_contact_cpu": fast[1],
+            "scalar_march_us_per_contact": scalar[0], "scalar_march_us_per_contact_cpu": scalar[1],
+            "kalker_coefficients_us": coef[0], "kalker_coefficients_us_cpu": coef[1]}
 
 
 # a ball-race state from the dynamics (7218B outer contact, 3000 rpm): partial slip, spin dominated
@@ -141,6 +153,7 @@ STATE = (3e-3, 1.4e-3, 16.5, -9.9)
 
 
 def costs():
+    """(wall, thread CPU) dicts of the costs [us] per call."""
     out = {}
     for pr, name in ((PRESSURE_PARABOLIC, "parabolic"), (PRESSURE_HERTZ, "hertz")):
         for n in (8, 12, 20, 40):
@@ -152,7 +165,7 @@ def costs():
     tp = traction_params(0.1, 0.02)
     p = 1.5 * Q / (np.pi * A * B)
     out["ellipse_coulomb_6x2_us"] = _time(_loop_ellipse, A, B, p, 0.02223, 0.0116, tp, *q)
-    return out
+    return {k: v[0] for k, v in out.items()}, {k: v[1] for k, v in out.items()}
 
 
 def _cases(n_dir, f_values, seed=1):
@@ -216,7 +229,8 @@ def seed000_rtf():
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "studies"))
     from kalker_studies import run
     d, wall = run(0.1, 3000.0, t_end=2.0, grid=12)
-    return {"seed000_kalker_mu0.1_wall_s": wall, "seed000_kalker_mu0.1_real_time_factor": wall / 2.0}
+    return {"seed000_kalker_mu0.1_wall_s": wall,     # wall time only (kalker_studies.run times the wall)
+            "seed000_kalker_mu0.1_real_time_factor": wall / 2.0}
 
 
 def main():
@@ -226,7 +240,8 @@ def main():
     ap.add_argument("--dynamics", action="store_true",
                     help="also the contacts of the Kalker dynamics model at 1000 rpm (about 20 s)")
     a = ap.parse_args()
-    out = {"cost_us": costs()}
+    wall, cpu = costs()
+    out = {"machine": machine_info(), "cost_us": wall, "cost_cpu_us": cpu}
     if a.dynamics:
         out["dynamics"] = dynamics_contacts()
     for pr, name in ((PRESSURE_HERTZ, "hertz"), (PRESSURE_PARABOLIC, "parabolic")):
@@ -237,9 +252,10 @@ def main():
     if a.json:
         print(json.dumps(out, indent=1))
         return
-    print("cost per contact evaluation, from compiled code [us]:")
+    print(machine_line(out["machine"]))
+    print("cost per contact evaluation, from compiled code [us], wall (thread CPU):")
     for k, v in out["cost_us"].items():
-        print(f"  {k}: {v:.2f}")
+        print(f"  {k}: {v:.2f} ({out['cost_cpu_us'][k]:.2f})")
     for name in ("hertz", "parabolic"):
         print(f"\naccuracy against a 200 x 200 grid, {name} bound, b/a = {B / A:.3f} (max error, % of mu Q and mu Q a):")
         print("  f        grid12   grid20   fullslip12   linear     fast(default, 12x12)")
@@ -251,10 +267,12 @@ def main():
     if a.dynamics:
         d = out["dynamics"]
         print(f"\ndynamics state (7218B, Kalker {d['grid']}x{d['grid']} Hertz, 1000 rpm, 20 ms): branches {d['branches']}; "
-              f"per contact: fastsim_traction_fast {d['fast_us_per_contact']:.3f} us, scalar march "
-              f"{d['scalar_march_us_per_contact']:.3f} us, kalker_coefficients {d['kalker_coefficients_us']:.4f} us")
+              f"per contact, wall (thread CPU): fastsim_traction_fast {d['fast_us_per_contact']:.3f} "
+              f"({d['fast_us_per_contact_cpu']:.3f}) us, scalar march {d['scalar_march_us_per_contact']:.3f} "
+              f"({d['scalar_march_us_per_contact_cpu']:.3f}) us, kalker_coefficients "
+              f"{d['kalker_coefficients_us']:.4f} ({d['kalker_coefficients_us_cpu']:.4f}) us")
     if a.seed000:
-        print("\n" + "\n".join(f"{k}: {v:.2f}" for k, v in out["seed000"].items()))
+        print("\n" + "\n".join(f"{k}: {v:.2f}" for k, v in out["seed000"].items()) + " (wall time)")
 
 
 if __name__ == "__main__":

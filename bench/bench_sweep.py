@@ -25,6 +25,11 @@ so every point costs the same simulated time); 'quasistatic' and 'tribo' as in t
 all configurations are checked equal. Control (the machine may be shared): bench_batch.free_cores, a trivial
 nogil numba loop alone and in two threads at once, before the run and after each model; it gives the cores this
 run actually had.
+
+Times are wall time only: the points are solved in Dask worker processes, whose CPU time this process cannot
+see (eval_wall_s, the cost of a point inside its worker, is wall time too). The JSON files carry the machine
+(bench/machine.py) under "machine" (an object; it was the string "<n> CPUs", now under "cpus" as a number); the
+text output names the machine first. Quickest check: ``--models quasistatic --sizes 4 --workers 1``.
 """
 from __future__ import annotations
 
@@ -37,6 +42,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "bench"))
+from machine import machine_info, machine_line  # noqa: E402
+
+CLOCK_NOTE = "wall time only (the points run in Dask worker processes)"
 
 
 def main():
@@ -54,10 +63,12 @@ def main():
     if a.plot_only:
         plot(json.loads(Path(a.plot_only).read_text())["rows"], a.png)
         return
+    mach = machine_info()
+    print(machine_line(mach, clock=CLOCK_NOTE), flush=True)
     if a.batch:
         return batch_compare(a.models if a.models != "quasistatic,tribo" else "dynamic",
                              [int(s) for s in a.sizes.split(",")] if a.sizes != "8,16,32,64" else [16], a.batch_json,
-                             a.repeats)
+                             a.repeats, mach)
     from distributed import Client, LocalCluster
     import numpy as np
     from bearing_core.maps import sweep as S
@@ -89,7 +100,8 @@ def main():
                           f"point {cost:6.3f} s  overhead {r['overhead_per_point_s']:+.3f} s/pt  "
                           f"(cluster start {t_start:.1f} s, load {la:.1f})", flush=True)
     if a.json:
-        Path(a.json).write_text(json.dumps({"machine": f"{os.cpu_count()} CPUs", "rows": rows}, indent=1))
+        Path(a.json).write_text(json.dumps({"machine": mach, "cpus": os.cpu_count(), "clock": CLOCK_NOTE,
+                                            "rows": rows}, indent=1))
     if a.png:
         plot(rows, a.png)
 
@@ -99,7 +111,7 @@ BATCH_CONFIGS = (("per-point", 2, 1, 1), ("batched", 2, 1, None), ("batched-thre
 THREADED = ("dynamic", "profile")     # the models whose batches advance their points on several threads
 
 
-def batch_compare(models: str, sizes, json_path=None, repeats: int = 3):
+def batch_compare(models: str, sizes, json_path=None, repeats: int = 3, mach=None):
     """Points per wall second of per-point and batched tasks (BATCH_CONFIGS; 'batched-threads' for the
     models in THREADED only), with the free-core control. The clusters of all configurations stay up and
     the configurations take turns (repeats rounds, rotated order), so that a change of the machine's load
@@ -179,7 +191,8 @@ def batch_compare(models: str, sizes, json_path=None, repeats: int = 3):
                          "gain_vs_per_point": v / base} for k, v in med.items()]
             print(f"{model} N {n} (median of {repeats}): " +
                   ", ".join(f"{k} {v:.2f} pt/s ({v / base:.2f}x)" for k, v in med.items()))
-    out = {"machine": f"{os.cpu_count()} CPUs", "control_free_cores": controls,
+    out = {"machine": mach or machine_info(), "cpus": os.cpu_count(), "clock": CLOCK_NOTE,
+           "control_free_cores": controls,
            "results_identical_across_configs": True, "summary": summary, "rows": rows}
     if json_path:
         Path(json_path).write_text(json.dumps(out, indent=1))

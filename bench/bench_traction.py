@@ -7,16 +7,17 @@ are fed to dynamics_kernels._race_traction (the entry point the right-hand side 
   curve    ellipse-integrated illustrative traction curve (traction 'lubricated-curve')
   ehl      rheology-based EHL traction with rolling resistance (traction 'lubricated', the default)
   kalker   Kalker's FASTSIM (traction 'kalker')
-and the cost per contact is the best mean over --repeats timed loops of --calls sweeps over all 32 (CPU
-time of the calling thread, so that time the thread spends descheduled on a shared machine is not
-counted). The
-right-hand side (dynamics_kernels.rhs, lubricated, all balls and the cage) is timed the same way at the
-same state (rhs_us).
+and the cost per contact is the best mean over --repeats timed loops of --calls sweeps over all 32: wall
+time (us_per_contact) and, beside it, the calling thread's CPU time (us_per_contact_cpu; time the thread
+spends descheduled on a shared machine is not counted). The right-hand side (dynamics_kernels.rhs,
+lubricated, all balls and the cage) is timed the same way at the same state (rhs_us wall, rhs_cpu_us CPU).
+Until the "machine" key was added, us_per_contact and rhs_us were thread CPU time; they are wall time now.
+The JSON output carries the machine (bench/machine.py) under "machine"; the text output names it first.
 
 The build follows bearing_core.numerics.jit: run once as is (fast build) and once with BEARING_PLAIN_MATH=1 (strict
 IEEE, error_model='python') to compare; --both runs the two builds back to back in subprocesses.
 
-    python bench/bench_traction.py [--json] [--both] [--settle 0.02] [--quad 6 2]
+    python bench/bench_traction.py [--json] [--both] [--quick] [--settle 0.02] [--quad 6 2]
 """
 from __future__ import annotations
 
@@ -40,6 +41,7 @@ from bearing_core.bearing.geometry import load_preset
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_dynamics import _rhs_loop  # noqa: E402  (the right-hand-side timing loop, shared)
+from machine import machine_info, machine_line  # noqa: E402
 
 try:
     from bearing_core.numerics.jit import build_info
@@ -102,13 +104,17 @@ def _traction_loop(n, C, kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy
 
 
 def _best_us(fn, args, n, repeats, per):
+    """(wall, thread CPU) [us] per unit: the smallest of `repeats` timed loops of n calls, each clock's
+    minimum on its own."""
     fn(1, *args)
-    best = math.inf
+    best = best_cpu = math.inf
     for _ in range(repeats):
-        t0 = time.thread_time()
+        c0 = time.thread_time()
+        t0 = time.perf_counter()
         fn(n, *args)
-        best = min(best, time.thread_time() - t0)
-    return best / (n * per) * 1e6
+        best = min(best, time.perf_counter() - t0)
+        best_cpu = min(best_cpu, time.thread_time() - c0)
+    return best / (n * per) * 1e6, best_cpu / (n * per) * 1e6
 
 
 def _model(traction, quad, kalker_grid=None):
@@ -132,15 +138,17 @@ def measure(settle=0.02, quad=(6, 2), calls=200, repeats=25):
         "ehl": (False, int(m._tp[K.P_LUBMODEL]), m._tp),
         "kalker": (True, TRACTION_COULOMB, m._tp),
     }
-    out = {"build": build_info(), "quadrature": list(quad), "state_t_s": m.t, "contacts": len(C),
-           "us_per_contact": {}}
+    out = {"machine": machine_info(), "build": build_info(), "quadrature": list(quad), "state_t_s": m.t,
+           "contacts": len(C), "us_per_contact": {}, "us_per_contact_cpu": {}}
     for name, (kal, tmodel, tp) in laws.items():
-        out["us_per_contact"][name] = _best_us(_traction_loop, (C, kal, tmodel, tp, Gc, nuc, fnx, fny, *q),
-                                               calls, repeats, len(C))
+        w, c = _best_us(_traction_loop, (C, kal, tmodel, tp, Gc, nuc, fnx, fny, *q), calls, repeats, len(C))
+        out["us_per_contact"][name] = w
+        out["us_per_contact_cpu"][name] = c
     diag = np.zeros(K.NOUT)
     bd = np.zeros((int(m.P[K.P_NB]), K.NBD))
-    out["rhs_us"] = _best_us(_rhs_loop, (m.t, m.y.copy(), m.P, m.U, m._tab_i, m._tab_o, m._ta0, m._tda, m._tp,
-                                         *m._quad, diag, bd), calls, repeats, 1)
+    out["rhs_us"], out["rhs_cpu_us"] = _best_us(
+        _rhs_loop, (m.t, m.y.copy(), m.P, m.U, m._tab_i, m._tab_o, m._ta0, m._tda, m._tp, *m._quad, diag, bd),
+        calls, repeats, 1)
     return out
 
 
@@ -182,15 +190,21 @@ def main(argv=None):
     ap.add_argument("--rpm", default="10000,1000", help="shaft speeds of --quad-check [rpm]")
     ap.add_argument("--settle-qc", type=float, default=0.04, help="--quad-check: time before the window [s]")
     ap.add_argument("--window", type=float, default=0.02, help="--quad-check: averaging window [s]")
+    ap.add_argument("--quick", action="store_true", help="20 sweeps x 5 loops (--calls 20 --repeats 5)")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args(argv)
+    if a.quick:
+        a.calls, a.repeats = 20, 5
     if a.quad_check:
         rules = tuple(tuple(int(v) for v in r.split("x")) for r in a.rules.split(","))
         out = quadrature_check(settle=a.settle_qc, window=a.window, rules=rules,
                                rpms=tuple(float(v) for v in a.rpm.split(",")))
-        print(json.dumps(out) if a.json else "\n".join(
-            f"{sp} {rule}: " + ", ".join(f"{n} {v:+.2e}" for n, v in d.items())
-            for sp, rules in out.items() for rule, d in rules.items()))
+        if a.json:
+            print(json.dumps(dict(out, machine=machine_info())))
+        else:
+            print(machine_line(clock="no timings"))
+            print("\n".join(f"{sp} {rule}: " + ", ".join(f"{n} {v:+.2e}" for n, v in d.items())
+                            for sp, rules in out.items() for rule, d in rules.items()))
         return out
     if a.both:
         res = {}
@@ -200,16 +214,18 @@ def main(argv=None):
                    str(a.quad[0]), str(a.quad[1]), "--calls", str(a.calls), "--repeats", str(a.repeats)]
             r = subprocess.run(cmd, env=env, capture_output=True, text=True, check=True)
             res[name] = json.loads(r.stdout.strip().splitlines()[-1])
-        out = res
+        out = dict(res, machine=machine_info())     # each build's own "machine" stays in it (its plain-math flag)
     else:
         out = measure(a.settle, tuple(a.quad), a.calls, a.repeats)
     if a.json:
         print(json.dumps(out))
         return out
-    for name, r in (out.items() if a.both else [("this build", out)]):
+    print(machine_line(out["machine"]))
+    for name, r in ([(k, v) for k, v in out.items() if k != "machine"] if a.both else [("this build", out)]):
         print(f"{name}: {r['build']}")
-        print("  us per contact: " + ", ".join(f"{k} {v:.3f}" for k, v in r["us_per_contact"].items()))
-        print(f"  right-hand side: {r['rhs_us']:.2f} us")
+        print("  us per contact, wall (thread CPU): " + ", ".join(
+            f"{k} {v:.3f} ({r['us_per_contact_cpu'][k]:.3f})" for k, v in r["us_per_contact"].items()))
+        print(f"  right-hand side: {r['rhs_us']:.2f} us wall ({r['rhs_cpu_us']:.2f} us thread CPU)")
     return out
 
 

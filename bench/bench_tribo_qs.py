@@ -16,8 +16,8 @@ cases, and a seed 000 Table 1 analogue (Jones-Harris vs quasi-static tribologica
     averaged over the last 0.1 s, ball quantities a snapshot at the end of the ball nearest azimuth 0.
 Writes out/bench_tribo_qs.json.
 
---speed: cost per load case instead (thread CPU time of solve_tribo_quasistatic, the whole call: model
-set-up, Jones-Harris start and solve; median of --repeat warm runs) over 7218B and 7008-ma2023;
+--speed: cost per load case instead (wall time of solve_tribo_quasistatic, the whole call: model
+set-up, Jones-Harris start and solve; median of --repeat warm runs; thread CPU time beside it) over 7218B and 7008-ma2023;
 1000 / 3000 / 10,000 / 20,000 rpm; light (Fz = s / 3), combined (Fx = s / 3, Fz = s) and heavy combined
 (Fx = s, Fz = 2 s) loads with s = Z (D / 22.2 mm)^2 200 N (3.2 kN for 7218B); traction 'lubricated' (oil
 regime), 'lubricated-curve' (oil), 'kalker' mu 0.1 (solid) and 'coulomb' mu 0.1 (dry regime). --save
@@ -25,12 +25,20 @@ writes each converged case's solution (u, cage speed, ball loads, contact angles
 torque, drive power) to an .npz; --compare prints the largest difference from such a file (relative to
 the largest value of each quantity in the case). --sweep: load sweeps, each case solved cold and from the
 previous case's solution (docstring of sweep()).
+
+Times: wall time is the headline, the thread's CPU time beside it (matrix: wall_s / cpu_s; --speed: ms, ms_min,
+median_ms, max_ms, le_2ms wall and ms_cpu, ms_min_cpu, median_ms_cpu, max_ms_cpu CPU; --sweep: cold_ms, warm_ms
+wall and cold_ms_cpu, warm_ms_cpu CPU). Until the "machine" key was added the --speed and --sweep figures were
+thread CPU time. Every JSON file carries the machine (bench/machine.py) under "machine" (the --sweep file is now
+an object {"machine", "rows"} instead of a list); the text output names the machine first.
+Quickest check: ``--quick --out /tmp/x`` (about a minute), or ``--speed --repeat 1 --only 7008-ma2023|coulomb``.
 """
 from __future__ import annotations
 
 import argparse
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -40,6 +48,9 @@ from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_
 from bearing_core.errors import ConvergenceError
 from bearing_core.bearing.geometry import load_preset
 from bearing_core.models.quasistatic_tribo import TriboQuasiStaticModel, solve_tribo_quasistatic
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from machine import machine_info, machine_line  # noqa: E402
 
 RPM = math.pi / 30
 
@@ -103,18 +114,23 @@ def speed(repeat, save, compare, only):
         if only and only not in key:
             continue
         c0 = time.thread_time()
+        t0 = time.perf_counter()
         try:
             q = solve_tribo_quasistatic(g, w, loads, opt)
         except ConvergenceError:
-            rows.append(dict(case=key, ok=False, ms=1e3 * (time.thread_time() - c0)))
+            rows.append(dict(case=key, ok=False, ms=1e3 * (time.perf_counter() - t0),
+                             ms_cpu=1e3 * (time.thread_time() - c0)))
             print(f"{key:40s} FAIL {rows[-1]['ms']:8.1f} ms", flush=True)
             continue
-        ts = []
+        ts, cs = [], []
         for _ in range(repeat):
             c0 = time.thread_time()
+            t0 = time.perf_counter()
             solve_tribo_quasistatic(g, w, loads, opt)
-            ts.append(time.thread_time() - c0)
+            ts.append(time.perf_counter() - t0)
+            cs.append(time.thread_time() - c0)
         row = dict(case=key, ok=True, ms=1e3 * float(np.median(ts)), ms_min=1e3 * float(np.min(ts)),
+                   ms_cpu=1e3 * float(np.median(cs)), ms_min_cpu=1e3 * float(np.min(cs)),
                    evaluations=q.iterations)
         msg = ""
         for f in SAVED:
@@ -129,12 +145,15 @@ def speed(repeat, save, compare, only):
             msg = "  max rel diff " + " ".join(f"{f} {row.get('diff_' + f, float('nan')):.1e}" for f in
                                               ("u", "cage_speed", "Q_i", "omega_ball"))
         rows.append(row)
-        print(f"{key:40s} {row['ms']:8.2f} ms (min {row['ms_min']:6.2f})  {q.iterations:5d} evals{msg}", flush=True)
+        print(f"{key:40s} {row['ms']:8.2f} ms (min {row['ms_min']:6.2f}; thread CPU {row['ms_cpu']:8.2f})  "
+              f"{q.iterations:5d} evals{msg}", flush=True)
     ok = [r for r in rows if r["ok"]]
     summ = dict(cases=len(rows), failed=len(rows) - len(ok))
     if ok:
         ms = np.array([r["ms"] for r in ok])
+        mc = np.array([r["ms_cpu"] for r in ok])
         summ.update(median_ms=float(np.median(ms)), max_ms=float(ms.max()), le_2ms=int(np.sum(ms <= 2.0)),
+                    median_ms_cpu=float(np.median(mc)), max_ms_cpu=float(mc.max()),
                     median_evaluations=float(np.median([r["evaluations"] for r in ok])))
     if worst:
         summ["max_rel_diff"] = worst
@@ -148,7 +167,7 @@ def sweep(repeat):
     """Load sweeps (--sweep): each preset, 'lubricated' (oil) and 'coulomb' (dry), 3000 and 10,000 rpm, the
     radial load from 0 to s in 9 steps at Fz = s (s as in --speed); every case solved cold
     (solve_tribo_quasistatic) and from the previous case's solution (TriboQuasiStaticModel.solve(start=)):
-    thread CPU per case (median of --repeat sweeps), evaluations, failures and the largest difference of
+    wall time per case (median of --repeat sweeps; thread CPU time beside it), evaluations, failures and the largest difference of
     the warm-started solutions from the cold ones."""
     out = []
     for p in SPEED_PRESETS:
@@ -161,9 +180,9 @@ def sweep(repeat):
                 w = n * RPM
                 res = {}
                 for mode in ("cold", "warm"):
-                    ts, ev, fail, sols = [], [], 0, []
+                    ts, cs, ev, fail, sols = [], [], [], 0, []
                     for k in range(repeat + 1):
-                        prev, c0, ev, fail, sols = None, time.thread_time(), [], 0, []
+                        prev, c0, t0, ev, fail, sols = None, time.thread_time(), time.perf_counter(), [], 0, []
                         m = TriboQuasiStaticModel(g, opt)
                         for L in loads:
                             try:
@@ -177,14 +196,17 @@ def sweep(repeat):
                                 sols.append(None)
                                 prev = None
                         if k > 0:        # the first sweep warms up
-                            ts.append((time.thread_time() - c0) / len(loads))
-                    res[mode] = dict(ms_per_case=1e3 * float(np.median(ts)), evaluations=ev, failed=fail, sols=sols)
+                            ts.append((time.perf_counter() - t0) / len(loads))
+                            cs.append((time.thread_time() - c0) / len(loads))
+                    res[mode] = dict(ms_per_case=1e3 * float(np.median(ts)), ms_per_case_cpu=1e3 * float(np.median(cs)),
+                                     evaluations=ev, failed=fail, sols=sols)
                 dc = max((abs(a.cage_speed / b.cage_speed - 1) for a, b in zip(res["warm"]["sols"], res["cold"]["sols"])
                           if a is not None and b is not None), default=float("nan"))
                 dq = max((np.max(np.abs(a.Q_i - b.Q_i)) / np.max(b.Q_i) for a, b in
                           zip(res["warm"]["sols"], res["cold"]["sols"]) if a is not None and b is not None),
                          default=float("nan"))
                 row = dict(case=f"{p}|{tr}|{n:g}", cold_ms=res["cold"]["ms_per_case"], warm_ms=res["warm"]["ms_per_case"],
+                           cold_ms_cpu=res["cold"]["ms_per_case_cpu"], warm_ms_cpu=res["warm"]["ms_per_case_cpu"],
                            cold_evaluations=res["cold"]["evaluations"], warm_evaluations=res["warm"]["evaluations"],
                            cold_failed=res["cold"]["failed"], warm_failed=res["warm"]["failed"],
                            cage_speed_rel_diff=dc, Q_i_rel_diff=dq)
@@ -200,14 +222,18 @@ def table1(g, quick):
     n, loads = 10000.0, (1000.0, 0.0, 3000.0, 0.0, 0.0)
     opt = DynamicsOptions(traction="kalker", mu=0.1, mu_pocket=0.1, mu_land=0.1, reduced="full", integrator="auto")
     m = DynamicModel(g, opt)
+    c0 = time.thread_time()
     t0 = time.perf_counter()
     m.initialize(n * RPM, loads, start="tribological")
     t_qs = time.perf_counter() - t0
+    c_qs = time.thread_time() - c0
     q, jh = m.tribo_qs, m.qs
     t_end = 0.1 if quick else 0.3
+    c0 = time.thread_time()
     t0 = time.perf_counter()
     d = records_to_dict(m.advance(t_end, record_dt=1e-4))
     t_dyn = time.perf_counter() - t0
+    c_dyn = time.thread_time() - c0
     tail = d["t"] >= t_end - (0.03 if quick else 0.1)
 
     def deg(x):
@@ -236,7 +262,7 @@ def table1(g, quick):
         "cage speed (mean orbit / cage) [rpm]": (jh.cage_speed / RPM, q.cage_speed / RPM, d["cage_speed"][tail].mean() / RPM),
     }
     print(f"\nTable 1 analogue: 7218B, Kalker mu 0.1, Fx 1000 N, Fz 3000 N, 10,000 rpm "
-          f"(QS {t_qs:.1f} s, dynamics {t_end} s in {t_dyn:.1f} s wall)")
+          f"(QS {t_qs:.1f} s, dynamics {t_end} s in {t_dyn:.1f} s wall, {c_dyn:.1f} s thread CPU)")
     print(f"{'item':45s} {'J-H (outer control)':>20s} {'QS tribological':>16s} {'tribo-dynamic':>14s}")
     for k, (a, b, c) in rows.items():
         fmt = "{:>20.4e} {:>16.4e} {:>14s}" if "[m]" in k else "{:>20.3f} {:>16.3f} {:>14s}"
@@ -244,6 +270,7 @@ def table1(g, quick):
         print(f"{k:45s} " + fmt.format(a, b, cs))
     print(f"(dynamic column: ball {j} at psi = {math.degrees(th[j]):.1f} deg at t = {t_end} s)")
     return {"case": "7218B kalker mu 0.1 Fx 1000 N Fz 3000 N 10000 rpm", "qs_wall_s": t_qs, "dyn_wall_s": t_dyn,
+            "qs_cpu_s": c_qs, "dyn_cpu_s": c_dyn,
             "dyn_simulated_s": t_end,
             "rows": {k: [None if v is None else float(v) for v in r] for k, r in rows.items()}}
 
@@ -259,20 +286,23 @@ def main():
     ap.add_argument("--compare", help="--speed: compare the solutions with this .npz")
     ap.add_argument("--only", help="--speed: cases whose key contains this string")
     a = ap.parse_args()
+    mach = machine_info()
+    print(machine_line(mach), flush=True)
     if a.sweep:
         rows = sweep(a.repeat)
         out = Path(a.out)
         out.mkdir(parents=True, exist_ok=True)
-        (out / "bench_tribo_qs_sweep.json").write_text(json.dumps(rows, indent=1))
+        (out / "bench_tribo_qs_sweep.json").write_text(json.dumps(dict(machine=mach, rows=rows), indent=1))
         return
     if a.speed:
         rows, summ = speed(a.repeat, a.save, a.compare, a.only)
         out = Path(a.out)
         out.mkdir(parents=True, exist_ok=True)
-        (out / "bench_tribo_qs_speed.json").write_text(json.dumps(dict(summary=summ, cases=rows), indent=1))
+        (out / "bench_tribo_qs_speed.json").write_text(json.dumps(dict(machine=mach, summary=summ, cases=rows),
+                                                                  indent=1))
         return
     g = load_preset("7218B")
-    res = {"matrix": matrix(g, a.quick), "table1": table1(g, a.quick)}
+    res = {"machine": mach, "matrix": matrix(g, a.quick), "table1": table1(g, a.quick)}
     ok = sum(r["ok"] for r in res["matrix"])
     print(f"\nconverged {ok} of {len(res['matrix'])}")
     out = Path(a.out)

@@ -8,7 +8,10 @@ and exits normally (the C exit handlers and library destructors run). Hosts:
   fmpy-numba  the same, with numba imported by the host before the FMU is loaded
   two         two instances of the FMU in one fmpy process
   c           tests/c_host/host.c (compiled here with gcc): a C master, no Python in the host
-Prints one JSON line per host: exit-status histogram and wall time, e.g. {"host": "c", "runs": 200, "exit": {"0": 200}}.
+Prints one JSON line per host: exit-status histogram, wall time (wall_s) and beside it the CPU time of the child
+processes (children_cpu_s: user + system of the finished runs, os.times; the work runs in child processes), and
+the machine (bench/machine.py) under "machine", e.g. {"host": "c", "runs": 200, "exit": {"0": 200}, ...}.
+Quickest check: ``--runs 1 --hosts fmpy``.
 """
 import argparse
 import collections
@@ -24,6 +27,8 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
+sys.path.insert(0, str(HERE))
+from machine import machine_info  # noqa: E402
 
 
 def main():
@@ -33,6 +38,7 @@ def main():
     ap.add_argument("--hosts", default="fmpy,fmpy-numba,two,c")
     ap.add_argument("--progress", action="store_true", help="one line per run on stderr (partial counts)")
     a = ap.parse_args()
+    mach = machine_info()
     w = 1000 * math.pi / 30
     inp = {"shaft_speed": w, "Fx": 1000.0, "Fz": 3000.0}
     spec = {"fmu": a.fmu, "params": {}, "start_inputs": inp, "steps": [[1e-3, inp]] * 10, "outputs": ["cage_speed"]}
@@ -71,6 +77,7 @@ def main():
         for name in a.hosts.split(","):
             counts = collections.Counter()
             bad_out = 0
+            ch0 = os.times()
             t0 = time.perf_counter()
             e = env if name != "c" else {k: v for k, v in env.items() if k not in ("PYTHONPATH", "LD_PRELOAD")}
             for _ in range(a.runs):
@@ -81,8 +88,12 @@ def main():
                 if a.progress:
                     sys.stderr.write(json.dumps({"host": name, "exit": r.returncode, "results": ok_out}) + "\n")
                     sys.stderr.flush()
+            wall = time.perf_counter() - t0
+            ch1 = os.times()
+            cpu = (ch1.children_user - ch0.children_user) + (ch1.children_system - ch0.children_system)
             print(json.dumps({"host": name, "runs": a.runs, "exit": dict(counts), "runs_without_results": bad_out,
-                              "wall_s": round(time.perf_counter() - t0, 1)}), flush=True)
+                              "wall_s": round(wall, 1), "children_cpu_s": round(cpu, 1), "machine": mach}),
+                  flush=True)
 
 
 if __name__ == "__main__":

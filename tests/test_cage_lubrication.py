@@ -1,4 +1,4 @@
-"""Oil-lubricated cage (contact_kernels.ball_pocket_lubricated, the flooded guiding land) and the
+"""Oil-lubricated cage (lubrication.pocket_film.ball_pocket_lubricated, the flooded guiding land) and the
 lubrication regime (DynamicsOptions.lubrication)."""
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from bearing_core.models import dynamics_kernels as K
-from bearing_core.contact.contact_kernels import ball_pocket_lubricated
+from bearing_core.lubrication.pocket_film import ball_pocket_lubricated
 from bearing_core.models.dynamics import DynamicModel, DynamicsOptions, records_to_dict
 from bearing_core.errors import BearingInputError
 from bearing_core.bearing.geometry import load_preset

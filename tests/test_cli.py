@@ -31,7 +31,7 @@ def test_human_table(capsys):
 @pytest.mark.parametrize("args", [
     ["quasistatic", "--bearing", "7218B", "--speed-rpm", "abc"],
     ["quasistatic", "--bearing", "nope", "--speed-rpm", "100"],
-    ["quasistatic", "--bearing", "7218B", "--speed-rpm", "-5"],
+    ["quasistatic", "--bearing", "7218B", "--speed-rpm", "-2e5"],
     ["quasistatic", "--bearing", "7218B", "--speed-rpm", "1e9", "--fz", "100"],
     ["quasistatic", "--bearing", "7218B", "--speed-rpm", "100", "--fz", "nan"],
     ["quasistatic", "--bearing", "7218B", "--speed-rpm", "100", "--control", "diagonal"],

@@ -304,7 +304,7 @@ def test_read_only_unpack_and_home(built, tmp_path):
         status, _, logs, _ = parse(r.stdout)
         assert status[:4] == [("instantiate", 0), ("setup", 0), ("enter", 0), ("set_real", 0)]
         assert status[4] == ("exit", 3) and any("reversed axial load" in m for _, _, m in logs)
-        copies = list(tmpd.glob("bearing_fmu-*/bearing_core_*/bearing_core_*/cosim.py"))
+        copies = list(tmpd.glob("bearing_fmu-*/bearing_core_*/bearing_core_*/session/cosim.py"))
         assert copies and copies[0].stat().st_mode & 0o200
     finally:
         for p in [ro, *ro.rglob("*")]:

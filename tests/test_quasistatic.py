@@ -174,3 +174,58 @@ def test_start_from_a_neighbouring_solution_falls_back_to_the_rigid_ring_start()
     assert np.linalg.norm(r.ring_reaction() + loads) <= 1e-6 * np.linalg.norm(loads)
     cold = m.solve(w, loads, stiffness=False)
     assert np.max(np.abs(r.u - cold.u)) < 1e-9
+
+
+# ---- signed speeds and a turning outer ring ----------------------------------------------------------------
+def test_negative_speed_is_the_reversed_bearing():
+    """Jones-Harris quasi-statics are even in the speed (centrifugal force ~ omega_m^2, gyroscopic moment ~
+    omega_m omega_R), so the bearing turning the other way under the same loads has the same load distribution
+    and displacement, with every ball and cage speed reversed. The negative speed is solved as the mirror image
+    (x-z plane) of the positive one under the reflected loads (Fy, Mx reversed), so this checks the reflection
+    of the loads, the displacement and the ball order as well."""
+    g = load_preset("7218B")
+    w = 8000 * RPM
+    loads = (1000.0, 400.0, 3000.0, 25.0, -15.0)
+    pos = solve_quasistatic(g, w, loads)
+    neg = solve_quasistatic(g, -w, loads)
+    assert neg.omega == -w
+    np.testing.assert_allclose(neg.Q_i, pos.Q_i, rtol=1e-8, atol=1e-6)
+    np.testing.assert_allclose(neg.alpha_o, pos.alpha_o, rtol=0, atol=1e-10)
+    np.testing.assert_allclose(neg.u, pos.u, rtol=1e-8, atol=1e-12)
+    np.testing.assert_allclose(neg.omega_m, -pos.omega_m, rtol=1e-8)
+    np.testing.assert_allclose(neg.spin_roll_o, pos.spin_roll_o, rtol=1e-7, atol=1e-9)
+    np.testing.assert_allclose(neg.stiffness, pos.stiffness, rtol=1e-6, atol=1e-6 * np.abs(pos.stiffness).max())
+    assert neg.cage_speed == pytest.approx(-pos.cage_speed, rel=1e-9)
+    # equilibrium: the balls' reaction on the inner ring balances the applied loads
+    np.testing.assert_allclose(neg.ring_reaction(), -np.asarray(loads), rtol=1e-6, atol=1e-6)
+
+
+def test_outer_ring_speed():
+    """Both rings at the same speed: no relative motion, the cage turns with the rings (rigid rotation);
+    an outer ring turning alone drives the cage the same way, faster than half its speed (the cage's
+    pure-rolling share of the outer ring, (1 + D cos a / dm) / 2 > 1/2)."""
+    g = load_preset("7218B")
+    w = 3000 * RPM
+    loads = (0.0, 0.0, 3000.0, 0.0, 0.0)
+    both = solve_quasistatic(g, w, loads, omega_outer=w)
+    assert both.cage_speed == pytest.approx(w, rel=1e-9)
+    outer = solve_quasistatic(g, 0.0, loads, omega_outer=-w)
+    assert outer.omega_outer == -w and outer.omega == 0.0
+    assert -w < outer.cage_speed < -0.5 * w
+
+
+def test_quasistatic_cli_signed_speeds(capsys):
+    from bearing_core.cli import main
+    assert main(["quasistatic", "--bearing", "7218B", "--speed-rpm", "-3000", "--fz", "3000", "--json"]) == 0
+    import json
+    d = json.loads(capsys.readouterr().out)
+    assert d["speed_rpm"] == pytest.approx(-3000) and d["cage_speed_rpm"] < 0
+    assert main(["quasistatic", "--bearing", "7218B", "--speed-rpm", "0", "--outer-speed-rpm", "2000",
+                 "--fz", "3000", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["outer_speed_rpm"] == pytest.approx(2000) and 1000 < d["cage_speed_rpm"] < 2000
+    assert main(["quasistatic", "--bearing", "7218B", "--speed-rpm", "-2e5", "--fz", "3000"]) == 2
+    assert "--speed-rpm = -200000.0 is invalid; allowed: -190000 <= speed <= 190000 rpm" in capsys.readouterr().err
+    assert main(["quasistatic", "--bearing", "7218B", "--speed-rpm", "-3000", "--fz", "3000",
+                 "--traction", "kalker"]) == 2
+    assert "--traction" in capsys.readouterr().err

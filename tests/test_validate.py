@@ -8,7 +8,7 @@ import json
 
 import pytest
 
-from bearing_core import cli
+from bearing_cosim import cli
 from bearing_core.contact import hertz as hz
 from bearing_validation import judge, load_cases, run_case, run_cases, write_report
 

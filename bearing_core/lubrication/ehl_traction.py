@@ -3,10 +3,10 @@ Hertz ellipse, with mixed-lubrication load sharing and the EHL rolling resistanc
 (m, s, N, Pa, Pa s, K, W).
 
 Formulation followed (one local, closed-form shear law per quadrature point; per-contact quantities once
-per contact; names of the parameter slots in contact_kernels.P_*):
+per contact; names of the parameter slots in traction_params.P_*):
 
 1. Local Hertz pressure p(x, y) = p_max sqrt(1 - x^2/a^2 - y^2/b^2) (the quadrature of
-   contact_kernels.ellipse_quadrature carries the same ellipse).
+   traction_params.ellipse_quadrature carries the same ellipse).
 2. Film: Hamrock-Dowson central film h_c (bearing_core.lubrication.film.hd_central_film_nb, [HD77]) at the contact's
    entrainment speed, inlet viscosity eta_0(T) and alpha(T); uniform over the contact (the EHL plateau).
    Shear rate gamma_dot = |v| / h_c, v the local sliding speed (contact_kernels.ellipse_traction's field).
@@ -87,13 +87,12 @@ LN2 = mx.LN2
 _ZH_LAM_PEAK = (0.64 / (0.37 * 1.26 - 0.37 * 0.64)) ** (1.0 / 1.26)   # argmax of the Zhou-Hoeprich fit, 2.258
 _ZH_PEAK = 1.21 * _ZH_LAM_PEAK ** 0.64 / (1.0 + 0.37 * _ZH_LAM_PEAK ** 1.26)
 
-# layout of the rheology part of the traction parameter array (float64); indices continue those of
-# contact_kernels (P_MU0 ... P_UMIN = 0..6); the array is built by contact_kernels.traction_params
-(R_LUBMODEL, R_ETA0, R_LNE, R_Z, R_ALPHA, R_BETA, R_TAU0, R_TAUL0, R_GAML, R_GFILM, R_KOIL, R_EPRIME,
- R_GSC11, R_RCK, R_RQ, R_MUBL, R_VBL, R_RR, R_THERMAL, R_KGAM) = range(7, 27)
-N_PARAMS = 27
+# the traction parameter array's layout: contact.traction_params (R_* rheology slots)
+from ..contact.traction_params import (R_LUBMODEL, R_ETA0, R_LNE, R_Z, R_ALPHA, R_BETA, R_TAU0,  # noqa: F401
+                                       R_TAUL0, R_GAML, R_GFILM, R_KOIL, R_EPRIME, R_GSC11, R_RCK, R_RQ,
+                                       R_MUBL, R_VBL, R_RR, R_THERMAL, R_KGAM, N_PARAMS)
 # rows of ehl_scratch (one column per quadrature point): the nodes and weights (xi, w_xi, zeta, w_zeta of
-# contact_kernels.ellipse_quadrature), then ehl_ellipse_traction_into's work rows: sliding velocity (t, m),
+# traction_params.ellipse_quadrature), then ehl_ellipse_traction_into's work rows: sliding velocity (t, m),
 # position (x, y, rho), pressure, shear-force weight, distance from the inlet edge, shear force per unit
 # sliding speed; then the per-contact values of the shear law, one column per point, for the pair kernel
 # (ehl_pair_traction_into): ln(eta_0 / (tau_0 h)), G_e / (h u), the film and flash heating factors, the
@@ -283,7 +282,7 @@ def fluid_shear_stress(p, v, h, s_in, u, eta0, lne, z, beta, tau0, tauL0, gamL, 
 @hot(inline="always")
 def ehl_scratch(xi, wxi, zeta, wzeta):
     """Point quadrature and work space of ehl_ellipse_traction_into and ehl_pair_traction_into [-], from the
-    nodes and weights of contact_kernels.ellipse_quadrature: one column per point (xi[i], zeta[j] for i
+    nodes and weights of traction_params.ellipse_quadrature: one column per point (xi[i], zeta[j] for i
     major, j minor), padded to a multiple of 16 columns with zero weight and zero pressure (zeta = 1)
     (LLVM runs its vectorised loop bodies only for trip counts of 16 and more), and the whole repeated
     once (columns npad ... 2 npad - 1), so that the pair kernel holds two contacts side by side; rows
@@ -314,7 +313,7 @@ def ehl_scratch(xi, wxi, zeta, wzeta):
 def ehl_ellipse_traction(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t, u_roll,
                          params, xi, wxi, zeta, wzeta):
     """ehl_ellipse_traction_into with the quadrature (xi, wxi, zeta, wzeta) of
-    contact_kernels.ellipse_quadrature, as contact_kernels.ellipse_traction takes it (same outputs)."""
+    traction_params.ellipse_quadrature, as contact_kernels.ellipse_traction takes it (same outputs)."""
     return ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin, w_roll_m, w_roll_t,
                                      u_roll, params, ehl_scratch(xi, wxi, zeta, wzeta))
 
@@ -447,7 +446,7 @@ def ehl_ellipse_traction_into(a, b, p_max, D, R_def, Rx, Ry, vs_t, vs_m, w_spin,
     Same contact geometry, kinematics, quadrature and outputs as contact_kernels.ellipse_traction
     (a along m, b along t; forces on the ball along t and m, moments about the ball centre along n, m, t,
     dissipated power), plus Rx, Ry [m] the effective radii of the contact in and across the rolling
-    direction (for the film thickness and the rolling force). params: contact_kernels.traction_params
+    direction (for the film thickness and the rolling force). params: traction_params.traction_params
     with the oil's rheology (lubricants.rheology_traction_params). The EHL rolling-resistance moment is
     included in M_m and in the power. sc: the quadrature as ehl_scratch (its work rows are overwritten:
     one per thread).
@@ -561,7 +560,7 @@ def disc_traction_curve(oil, T, p_max, u, srr, Rx, Ry, E_prime=2.26e11, G_solid=
     and nu_solid [-] Poisson ratio of the (equal) solids; Rq [m] composite roughness; thermal / elastic:
     shear heating and Maxwell elasticity on/off; n: quadrature points per ellipse axis.
     Returns (mu array, dict of contact data: a, b, Q, h_c, Lambda)."""
-    from ..contact.contact_kernels import ellipse_quadrature, traction_params
+    from ..contact.traction_params import ellipse_quadrature, traction_params
     from ..errors import check_range
     from ..contact.fastsim import kalker_coefficients
     from .film import ellipticity_nb

@@ -447,15 +447,15 @@ def rheology_traction_params(base, oil, T: float, E_prime: float, GsC11: float, 
                              mu_bl: float = MU_BOUNDARY, rolling_resistance: bool = True, thermal: bool = True,
                              rck: float = STEEL_RHO_C_K, v_bl: float = V_BOUNDARY):
     """Traction parameter array (contact_kernels layout) of the rheology-based EHL model for ``oil`` at the
-    inlet temperature T [K]: ``base`` from contact_kernels.traction_params (mu0, v_reg, u_min), a copy is
-    returned with the model set to contact_kernels.TRACTION_EHL and the rheology slots filled.
+    inlet temperature T [K]: ``base`` from traction_params.traction_params (mu0, v_reg, u_min), a copy is
+    returned with the model set to traction_params.TRACTION_EHL and the rheology slots filled.
 
     E_prime [Pa] = 2 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2); GsC11 [Pa]: combined shear modulus of the solids
     times Kalker's C11 at the contact's b/a (the tangential compliance in series with the film); Rq [m]:
     composite rms roughness sqrt(Rq1^2 + Rq2^2) (0: smooth, no asperity contact); mu_bl [-]: boundary
     friction coefficient; rolling_resistance: EHL rolling-resistance moment on/off; thermal: shear heating
     on/off; rck: rho c k of the solids (flash temperature)."""
-    from . import ehl_traction as E
+    from ..contact import traction_params as E
     o = get_oil(oil)
     check_range("T", T, T_MIN, T_MAX, unit="K")
     check_range("E_prime", E_prime, 1e9, 1e13, unit="Pa")

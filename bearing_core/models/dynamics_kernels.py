@@ -45,9 +45,10 @@ import math
 import numpy as np
 from ..numerics.jit import hot
 
-from ..contact.contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics_orb, ellipse_traction,
-                              ball_pocket_contact_rel, ball_pocket_lubricated_rel, normal_contact_force,
-                              atan2, wrap_angle, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
+from ..contact.contact_kernels import (ball_race_contact, gothic_arch_contact, contact_kinematics_orb,
+                                       ellipse_traction, ball_pocket_contact_rel, normal_contact_force, atan2,
+                                       wrap_angle, DAMP_LINEAR, TRACTION_COULOMB, TRACTION_EHL, P_LUBMODEL)
+from ..lubrication.pocket_film import ball_pocket_lubricated_rel
 from ..lubrication.ehl_traction import ehl_ellipse_traction_into, ehl_pair_traction_into, ehl_scratch
 from ..contact.fastsim import fastsim_traction_fast, PRESSURE_HERTZ
 from ..lubrication.churning import cylinder_churning_torque
@@ -67,7 +68,7 @@ NSB = 9  # states per ball
  # inner-ring churned width / shoulder diameter / gap
  P_CH_ON, P_CH_RHO, P_CH_ETA, P_CH_BC, P_CH_DC, P_CH_CC, P_CH_WALL, P_CH_BIR, P_CH_DLI, P_CH_CS,
  # lubrication regime of the cage (0: dry Coulomb pocket and land, solid / dry bearings; 1: oil-lubricated
- # pocket, contact_kernels.ball_pocket_lubricated, and land), boundary and full-film friction coefficients,
+ # pocket, lubrication.pocket_film.ball_pocket_lubricated, and land), boundary and full-film friction coefficients,
  # oil viscosity and pressure-viscosity coefficient at the cage, reduced modulus ball-cage, composite
  # roughness ball-pocket
  # and the largest eccentricity ratio of the flooded land's film force (legacy 0.95)

@@ -87,13 +87,15 @@ class QuasiStaticResult:
     stiffness: np.ndarray | None = None  # 5x5 [N/m, N/rad, N m/m, N m/rad]
     X: np.ndarray | None = field(default=None, repr=False)
 
+    omega_outer: float = 0.0     # outer-ring speed [rad/s] (omega_m is then absolute, omega_R relative to the cage)
+
     @property
     def spin_roll_i(self):
-        return self.spin_i / np.where(self.roll_i > 0, self.roll_i, np.inf)
+        return self.spin_i / np.where(self.roll_i != 0, self.roll_i, np.inf)
 
     @property
     def spin_roll_o(self):
-        return self.spin_o / np.where(self.roll_o > 0, self.roll_o, np.inf)
+        return self.spin_o / np.where(self.roll_o != 0, self.roll_o, np.inf)
 
     @property
     def cage_speed(self) -> float:
@@ -500,16 +502,73 @@ def quasistatic_model(geometry: BearingGeometry, control: str = "outer", **kw) -
     return cls(geometry, control, **kw)
 
 
+MIRROR_LOADS = np.array([1.0, -1.0, 1.0, -1.0, 1.0])
+"""(Fx, Fy, Fz, Mx, My) and (dx, dy, dz, tx, ty) reflected in the x-z plane (a plane through the bearing axis)."""
+_SPEED_FIELDS = ("omega_m", "omega_R", "spin_i", "spin_o", "roll_i", "roll_o")
+
+
+def mirror_result(res: QuasiStaticResult) -> QuasiStaticResult:
+    """The solution reflected in the x-z plane: the same bearing turning the other way under the reflected loads.
+
+    A reflection maps the ball at azimuth psi to -psi (index j -> (Z - j) mod Z on the default pitch
+    psi_j = 2 pi j / Z), reverses every angular speed about the bearing axis and every ball speed (orbit, spin,
+    roll: angular velocities are axial vectors, their components in the plane change sign), changes the sign of
+    Fy, Mx and of dy, tx (S K S for the stiffness, S = diag(1, -1, 1, -1, 1)), and leaves contact angles, loads,
+    deflections, pressures, attitude angles, centrifugal forces and gyroscopic moments (about the tangential
+    axis, normal to the plane) as they are."""
+    from dataclasses import fields, replace as dc_replace
+    Z = res.psi.size
+    idx = (-np.arange(Z)) % Z
+    if not np.allclose(res.psi, 2.0 * np.pi * np.arange(Z) / Z, rtol=0.0, atol=1e-12):
+        raise BearingInputError("psi", "custom ball azimuths", "the default pitch 2 pi j / Z for a mirrored solution")
+    upd = {}
+    for f in fields(res):
+        v = getattr(res, f.name)
+        if f.name in ("psi", "loads", "u", "stiffness", "geometry") or not isinstance(v, np.ndarray):
+            continue
+        if v.ndim >= 1 and v.shape[0] == Z:
+            v = v[idx].copy()
+            if f.name in _SPEED_FIELDS:
+                v = -v
+            upd[f.name] = v
+    S = MIRROR_LOADS
+    upd["omega"] = -res.omega
+    upd["omega_outer"] = -res.omega_outer
+    upd["loads"] = res.loads * S
+    upd["u"] = res.u * S
+    if res.stiffness is not None:
+        upd["stiffness"] = res.stiffness * np.outer(S, S)
+    return dc_replace(res, **upd)
+
+
 def solve_quasistatic(geometry: BearingGeometry, omega: float, loads, control: str = "outer",
                       stiffness: bool = True, mu_gyro: float = 0.1, fits=None,
-                      temperatures=None) -> QuasiStaticResult:
+                      temperatures=None, omega_outer: float = 0.0) -> QuasiStaticResult:
     """Convenience wrapper: quasistatic_model(geometry, control).solve(omega, loads).
 
-    omega: inner-ring speed [rad/s] (>= 0); loads: (Fx, Fy, Fz, Mx, My) [N, N m] applied to the inner
-    ring; control: 'outer' | 'inner' | 'hybrid'. fits (bearing_core.bearing.ring_fits.RingFits) and/or
-    temperatures (ring_fits.OperatingTemperatures): solve the operating geometry
-    ring_fits.operating_geometry(geometry, omega, fits, temperatures) (centrifugal, thermal and fit growth
+    omega: inner-ring speed [rad/s], signed about +z, in [-2e4, 2e4]; omega_outer [rad/s]: outer-ring speed,
+    signed, same range; loads: (Fx, Fy, Fz, Mx, My) [N, N m] applied to the inner ring; control: 'outer' |
+    'inner' | 'hybrid'. As the dynamics' start (docs/reversal_and_outputs.md), the problem is solved in the frame
+    turning with the outer ring at the relative speed |omega - omega_outer|; a negative difference is solved
+    with the loads reflected in the x-z plane and the result reflected back (mirror_result). With a turning
+    outer ring the centrifugal force and gyroscopic moment take the absolute orbital speed, and omega_m is
+    reported absolute (the solved relative one plus omega_outer). fits (bearing_core.bearing.ring_fits.RingFits)
+    and/or temperatures (ring_fits.OperatingTemperatures): solve the operating geometry
+    ring_fits.operating_geometry(geometry, |omega|, fits, temperatures) (centrifugal, thermal and fit growth
     of the rings; result.geometry is that geometry)."""
+    omega = check_range("omega", omega, -2.0e4, 2.0e4, unit="rad/s")
+    omega_outer = check_range("omega_outer", omega_outer, -2.0e4, 2.0e4, unit="rad/s")
     if fits is not None or temperatures is not None:
-        geometry = operating_geometry(geometry, omega, fits, temperatures)
-    return quasistatic_model(geometry, control, mu_gyro=mu_gyro).solve(omega, loads, stiffness=stiffness)
+        geometry = operating_geometry(geometry, abs(omega), fits, temperatures)
+    w_rel = omega - omega_outer
+    mirror = w_rel < 0.0
+    loads = np.asarray(loads, dtype=float).reshape(-1)
+    model = quasistatic_model(geometry, control, mu_gyro=mu_gyro)
+    model.omega_outer = -omega_outer if mirror else omega_outer
+    res = model.solve(abs(w_rel), loads * MIRROR_LOADS if (mirror and loads.size == 5) else loads,
+                      stiffness=stiffness)
+    if omega_outer != 0.0:
+        from dataclasses import replace as dc_replace
+        res = dc_replace(res, omega=abs(w_rel) + model.omega_outer, omega_outer=model.omega_outer,
+                         omega_m=res.omega_m + model.omega_outer)
+    return mirror_result(res) if mirror else res

@@ -72,6 +72,7 @@ from . import quasistatic_tribo_kernels as TK
 from ..errors import BearingInputError, ConvergenceError, check_range
 from ..bearing.geometry import BearingGeometry
 from .quasistatic import quasistatic_model
+from .dynamics_setup import DynamicSetup, DynamicsOptions
 
 NLOC = TK.NLOC      # per-ball unknowns: r, z, Omega_r, Omega_t, Omega_z, theta_dot
 NGLOB = TK.NGLOB    # dx, dy, dz, tx, ty, (omega_c: not an unknown with free orbits; kept for the layout)
@@ -141,10 +142,9 @@ class TriboQuasiStaticResult:
 @lru_cache(maxsize=32)
 def _checked_options(geometry: BearingGeometry, options):
     """options for the quasi-static solve (full model, no thermal network) after the dynamics' checks of
-    the bearing and the options (DynamicModel raises on bad ones); memoised (the result is immutable)."""
-    from .dynamics import DynamicModel
+    the bearing and the options (DynamicSetup raises on bad ones); memoised (the result is immutable)."""
     opt = replace(options, reduced="full", thermal=False)
-    DynamicModel(geometry, opt)
+    DynamicSetup(geometry, opt)
     return opt
 
 
@@ -156,8 +156,7 @@ def _kernel_setup(geometry: BearingGeometry, options, omega: float):
     left at 0 (the ring does not move in a steady state): (running geometry, P, tab_i, tab_o, ta0, tda,
     tp, quadrature). They depend on the bearing, the options and (with ring growth only) the speed, so they
     are memoised (~0.2 ms a build); callers take copies (_setup)."""
-    from .dynamics import DynamicModel
-    dm = DynamicModel(geometry, options)
+    dm = DynamicSetup(geometry, options)
     dm.update_operating_geometry(omega)
     dm.P = dm._params(False)
     dm.U[K.U_W0] = dm.U[K.U_W1] = omega
@@ -192,7 +191,6 @@ class TriboQuasiStaticModel:
     warm_tilt_cap = 10.0
 
     def __init__(self, geometry: BearingGeometry, options=None):
-        from .dynamics import DynamicsOptions
         opt = DynamicsOptions() if options is None else options
         if opt.coupling != "load":
             raise BearingInputError("coupling", opt.coupling, "load (the quasi-static model takes loads)")

@@ -11,6 +11,8 @@ import math
 
 from numba import njit
 
+from ..numerics.compare import same_point  # noqa: F401  (the session's cheap unchanged-point test)
+
 # Strict IEEE arithmetic here (no fastmath): with the reciprocal flag LLVM computes a division as a
 # multiplication by the reciprocal in a vectorised loop body but divides in its scalar remainder, so which
 # elements round which way would depend on the arrays' alignment in memory, and two identical runs could
@@ -91,20 +93,3 @@ def assemble_outputs(diag, q1, q0, dt, films, lam, ext, ch, csr_min, skid_tol, s
         if not math.isfinite(acc):
             ok = False
     return ok
-
-
-@_exact
-def same_point(t, y, U, P, kt, ky, kU, kP):
-    """True if (t, y, U, P) equal (kt, ky, kU, kP) element by element (NaN never equal), same shapes."""
-    if t != kt or y.shape[0] != ky.shape[0] or U.shape[0] != kU.shape[0] or P.shape[0] != kP.shape[0]:
-        return False
-    for i in range(y.shape[0]):
-        if y[i] != ky[i]:
-            return False
-    for i in range(U.shape[0]):
-        if U[i] != kU[i]:
-            return False
-    for i in range(P.shape[0]):
-        if P[i] != kP[i]:
-            return False
-    return True
