@@ -18,8 +18,11 @@ Methods and their cavity oil fraction X [-] (``cavity_oil_fraction``):
   It could not be re-read here (no copy of the report or the book was at hand): the form, exponents and
   coefficient are quoted from memory, and so is the unit of X_cav (PERCENT of the cavity volume, i.e.
   X = X_cav / 100 as a fraction). With X read as a fraction instead the oil content would be 100 times
-  larger. Validity as recalled: the NASA jet-lubricated angular-contact ball bearing tests it was drawn
-  from (35-120 mm bore, n d_m about 0.5e6-3.5e6 mm rpm, a few hundred to a few thousand cm^3/min).
+  larger. Validity: the NASA jet-lubricated angular-contact ball bearing tests of that period, e.g. the
+  35-mm bore bearing at 48,000-72,000 rpm (2.5 million DN) with 303-1894 cm^3/min (Schuller, Pinel &
+  Signer, NASA TP-1732, 1980, summary) and the 120-mm bore bearing to 25,000 rpm (3 million DN; Bamberger,
+  Zaretsky & Signer, NASA TN D-7870, 1975, abstract); taken here as n d_m 0.5e6-4.0e6 mm rpm (d_m about
+  1.2-1.4 times the bore for these bearings) and 300-20,000 cm^3/min (the upper end recalled, not read).
   Outside this range the value is flagged ``extrapolated`` (always for oil-air: flows of cm^3 per hour).
   The trend is physical: more flow -> more oil in the cavity (sublinear, W^0.37), higher speed and a
   larger bearing -> the oil is flung out faster (1/n, d_m^-1.7).
@@ -52,8 +55,8 @@ PARKER_COEF = 1.0e5
 PARKER_W_EXP = 0.37
 PARKER_DM_EXP = 1.7
 # stated validity of the correlation (as recalled, module docstring)
-PARKER_NDM_RANGE = (0.5e6, 3.5e6)        # n d_m [mm rpm]
-PARKER_W_RANGE = (100.0, 20000.0)        # [cm^3/min]
+PARKER_NDM_RANGE = (0.5e6, 4.0e6)        # n d_m [mm rpm]
+PARKER_W_RANGE = (300.0, 20000.0)        # [cm^3/min]
 
 
 @dataclass(frozen=True)

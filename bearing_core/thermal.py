@@ -588,7 +588,7 @@ class ThermalNetwork:
         parts = {key: self.node_heat({key: v})[k] for key, v in src.items()}
         self._last_sources = src
         tot = sum(parts.values())
-        top = sorted(((v, key) for key, v in parts.items() if v > 0.0), reverse=True)[:3]
+        top = sorted(((v, key) for key, v in parts.items() if v > 0.005 * tot), reverse=True)[:3]
         shares = ", ".join(f"{key} {100.0 * v / tot:.0f} %" for v, key in top) if tot > 0 else "none"
         paths = [f"{NODES[j]} {-self.L[k, j]:.3g}" for j in range(4) if j != k and self.L[k, j] < 0.0]
         if self.g_amb[k] > 0:

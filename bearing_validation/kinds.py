@@ -649,7 +649,7 @@ def jet_bearing_thermal(inputs):
                                                         flow_rate=flow),
                                oil_supply=OilSupply("jet", flow, T_in))
         m = DynamicModel(g, opts)
-        m.initialize(rpm * RPM, (0.0, 0.0, inputs["Fa_N"], 0.0, 0.0))
+        m.initialize(rpm * RPM, (inputs.get("Fr_N", 0.0), 0.0, inputs["Fa_N"], 0.0, 0.0))
         out["speed_rpm"].append(rpm)
         out["oil_fraction"].append(m.oil_fraction_used())
         try:

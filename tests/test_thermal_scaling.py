@@ -69,3 +69,15 @@ def test_ledger_closes_across_speed_changes():
     T = n.steady_state(Q)
     assert n.heat_to_ambient(T) + n.heat_to_oil_flow(T) == pytest.approx(sum(Q.values()), rel=1e-9)
     assert np.all(T > 300.0)
+
+
+def test_runaway_names_node_and_cause():
+    # 5 kW of ball drag with no oil flow and still air: the steady state passes the mineral oil's limit; the
+    # error names the ball node, drag as its main source and its paths out
+    n = th.ThermalNetwork(load_preset("7218B"), "iso-vg32-mineral", th.ThermalData(shaft_speed=100.0))
+    n.steady_state({"drag": 5000.0, "Q_br_i": 50.0}, set_state=True)
+    with pytest.raises(th.ThermalRunaway) as e:
+        n.check_runaway("at test")
+    assert e.value.node == "ball"
+    assert "node 'ball'" in e.value.cause and "(drag 100 %)" in e.value.cause and "oil" in e.value.cause
+    assert "cause:" in str(e.value)
