@@ -68,3 +68,27 @@ def test_errors_name_parameter_value_and_range(kw, param):
         OilSupply(**kw).validate()
     assert e.value.parameter == param
     assert "allowed" in str(e.value)
+
+
+def test_cosim_takes_the_supply_and_follows_the_speed():
+    """Through the co-simulation session (what the FMU wraps): with oil_fraction 0 and a jet flow the cavity
+    oil content is the supply's at the running speed -- it falls as 1/n when the shaft speed doubles -- and
+    an explicit oil_fraction overrides it. Bad method / level name the parameter."""
+    from bearing_core.cosim import CoSimParameters, CoSimSession
+    rpm = math.pi / 30.0
+    flow = 1e-5
+    s = CoSimSession(CoSimParameters(bearing="7218B", churning=True, oil_flow_rate=flow, lubrication_method="jet"))
+    inp = {"shaft_speed": 3000 * rpm, "Fz": 3000.0}
+    s.initialize(0.0, inp)
+    g = s.model.g
+    X1 = s.model.oil_fraction_used()
+    assert X1 == pytest.approx(parker_fraction(flow, 3000.0, g.dm)[0], rel=1e-9)
+    s.step(0.0, 1e-3, dict(inp, shaft_speed=6000 * rpm))
+    assert s.model.oil_fraction_used() == pytest.approx(0.5 * X1, rel=1e-6)
+    s2 = CoSimSession(CoSimParameters(bearing="7218B", oil_flow_rate=flow, oil_fraction=0.02))
+    s2.initialize(0.0, inp)
+    assert s2.model.oil_fraction_used() == 0.02
+    for kw, param in ((dict(lubrication_method="splash"), "lubrication_method"), (dict(oil_level=-1.0), "oil_level")):
+        with pytest.raises(BearingInputError) as e:
+            CoSimSession(CoSimParameters(bearing="7218B", oil_flow_rate=flow, **kw)).initialize(0.0, inp)
+        assert e.value.parameter == param
