@@ -118,8 +118,13 @@ def build_parser() -> argparse.ArgumentParser:
     th.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"))
     _add_loads(th)
     th.add_argument("--oil", default="iso-vg32-mineral", help="oil name (bearing_core.lubrication.lubricants)")
-    th.add_argument("--oil-fraction", type=_finite("--oil-fraction"), default=0.05,
-                    help="oil volume fraction of the oil-air mixture [-]")
+    th.add_argument("--oil-fraction", type=_finite("--oil-fraction"), default=None,
+                    help="oil volume fraction of the cavity's oil-air mixture [-], overriding the supply's "
+                         "(default: from the supply; 0.05 without flow and method)")
+    th.add_argument("--lubrication-method", choices=("jet", "oil-air", "bath", "grease"), default=None,
+                    help="oil supply (bearing_core.lubrication.oil_supply); default jet when --oil-flow-lpm > 0")
+    th.add_argument("--oil-level-mm", type=_finite("--oil-level-mm"), default=None,
+                    help="bath: static oil level above the lowest point of the outer raceway [mm]")
     th.add_argument("--ambient-c", type=_finite("--ambient-c"), default=35.0, help="ambient temperature [degC]")
     th.add_argument("--oil-inlet-c", type=_finite("--oil-inlet-c"), default=None,
                     help="oil supply temperature [degC] (default: ambient)")
@@ -650,26 +655,45 @@ def cmd_thermal(a) -> int:
 
     T_amb = a.ambient_c + 273.15
     T_in = (a.oil_inlet_c if a.oil_inlet_c is not None else a.ambient_c) + 273.15
-    td = ThermalData(T_amb=T_amb, T_in=T_in, flow_rate=a.oil_flow_lpm / 60000.0)
+    from .errors import BearingInputError
+    from .lubrication.oil_supply import OilSupply
     from .heat.thermal import ThermalRunaway
-    opts = DynamicsOptions(oil=a.oil, oil_fraction=a.oil_fraction, churning=not a.no_churning, thermal=True,
-                           thermal_data=td, oil_temperature=T_in, lubrication=a.lubrication)
+    flow = a.oil_flow_lpm / 60000.0
+    method = a.lubrication_method or ("jet" if flow > 0 else None)
+    supply = None
+    if method is not None:
+        supply = OilSupply(method, flow, T_in, None if a.oil_level_mm is None else a.oil_level_mm * 1e-3).validate()
+    elif a.oil_level_mm is not None:
+        raise BearingInputError("--oil-level-mm", a.oil_level_mm, "only with --lubrication-method bath")
+    X = a.oil_fraction if a.oil_fraction is not None else (0.0 if supply is not None else 0.05)
+    td = ThermalData(T_amb=T_amb, T_in=T_in, flow_rate=flow)
+    opts = DynamicsOptions(oil=a.oil, oil_fraction=X, churning=not a.no_churning, thermal=True,
+                           thermal_data=td, oil_temperature=T_in, lubrication=a.lubrication, oil_supply=supply)
     m = DynamicModel(load_preset(a.bearing), opts)
     m.initialize(a.speed_rpm * math.pi / 30, (a.fx, a.fy, a.fz, a.mx, a.my))
+    cav = m.cavity_oil()
+    oil_used = {"oil_fraction": m.oil_fraction_used(), "method": method or "none",
+                "formula": cav.formula if cav is not None else "given (--oil-fraction)" if a.oil_fraction is not None
+                else "default 0.05 (no oil supply given)",
+                "extrapolated": bool(cav.extrapolated) if cav is not None else False,
+                "note": cav.note if cav is not None else ""}
     try:
         r = m.thermal_equilibrium()
     except ThermalRunaway as e:
         if a.json:
             print(json.dumps({"bearing": a.bearing, "speed_rpm": a.speed_rpm, "thermal_runaway": True,
                               "temperatures_K": e.temperatures, "T_max_K": e.T_max, "oil": e.oil,
-                              "message": str(e)}))
+                              "node": e.node, "cause": e.cause, "cavity_oil": oil_used, "message": str(e)}))
         sys.stderr.write(f"bearing thermal: THERMAL RUNAWAY: {e}\n")
         return EXIT_THERMAL_RUNAWAY
     out = {"bearing": a.bearing, "speed_rpm": a.speed_rpm, "thermal_runaway": False, "loads_N": [a.fx, a.fy, a.fz],
-           "moments_Nm": [a.mx, a.my], "oil": a.oil, "oil_fraction": a.oil_fraction,
+           "moments_Nm": [a.mx, a.my], "oil": a.oil, "lubrication_method": method or "none",
+           "oil_fraction": oil_used["oil_fraction"], "cavity_oil": oil_used,
            "ambient_temperature_K": T_amb, "oil_inlet_temperature_K": T_in,
            "oil_flow_m3_per_s": td.flow_rate,
-           "temperatures_K": r["temperatures_K"], "losses_W": {k: float(v) for k, v in r["losses_W"].items()},
+           "temperatures_K": r["temperatures_K"],
+           "cage_temperature_K": r["temperatures_K"]["oil"],       # cage and cavity oil are one node
+           "heat_to_ambient_W": m.thermal.heat_to_ambient(), "heat_to_oil_flow_W": m.thermal.heat_to_oil_flow(), "losses_W": {k: float(v) for k, v in r["losses_W"].items()},
            "heat_generated_W": float(r["heat_generated_W"]), "heat_rejected_W": float(r["heat_rejected_W"]),
            "heat_balance": float(r["balance"]), "drive_power_W": r["drive_power_W"],
            "friction_torque_Nm": r["friction_torque_Nm"], "cage_speed_rpm": r["cage_speed_rad_s"] * 30 / math.pi,
@@ -681,12 +705,14 @@ def cmd_thermal(a) -> int:
     if a.json:
         print(json.dumps(out))
     else:
-        print(f"{a.bearing} at {a.speed_rpm:g} rpm, loads {out['loads_N']} N, oil {a.oil} (fraction {a.oil_fraction:g})")
+        print(f"{a.bearing} at {a.speed_rpm:g} rpm, loads {out['loads_N']} N, oil {a.oil}, supply "
+              f"{out['lubrication_method']} (cavity oil fraction {out['oil_fraction']:.3g}: {oil_used['formula']})")
         for k, v in r["temperatures_K"].items():
-            print(f"  T_{k:6s} {v - 273.15:7.1f} degC")
+            print(f"  T_{k:6s} {v - 273.15:7.1f} degC" + ("  (oil and cage)" if k == "oil" else ""))
         for k, v in out["losses_W"].items():
             print(f"  {k:7s} {v:9.2f} W")
         print(f"  generated {out['heat_generated_W']:.2f} W, rejected {out['heat_rejected_W']:.2f} W "
+              f"(ambient {out['heat_to_ambient_W']:.2f} W, oil flow {out['heat_to_oil_flow_W']:.2f} W) "
               f"(balance {out['heat_balance']:+.2e}); friction torque {out['friction_torque_Nm']:.4f} N m; "
               f"Lambda_min {out['film_parameter_min']:.2f}")
     return 0

@@ -610,3 +610,63 @@ def power_loss_load_sensitivity(inputs):
     out["inside_stated_range"] = bool(out["max_load_over_C0"] <= inputs["max_load_over_C0"]
                                       and out["max_ndm_mm_rpm"] <= inputs["max_ndm_mm_rpm"])
     return out
+
+
+# ------------------------------------------------------------------------------------------------
+# thermal network and oil supply
+@kind
+def thermal_contact_resistance(inputs):
+    """Resistance [K/W] from a circular contact of radius a to the bulk of a steel half-space at rest
+    (thermal.moving_source_resistance at U = 0), times k a (dimensionless), and the ratio of the resistances
+    at two rolling speeds (the moving-source asymptote R ~ U^-1/2 at high Peclet number)."""
+    from bearing_core.heat.thermal import moving_source_resistance
+    k, kappa, a = inputs["k_W_mK"], inputs["kappa_m2_s"], inputs["a_m"]
+    R0 = moving_source_resistance(k, kappa, a, 0.0)
+    U1, U2 = inputs["speeds_m_s"]
+    return {"R0_k_a": R0 * k * a,
+            "R_ratio_speeds": moving_source_resistance(k, kappa, a, U1) / moving_source_resistance(k, kappa, a, U2),
+            "Pe_low": U1 * a / (2 * kappa)}
+
+
+@kind
+def jet_bearing_thermal(inputs):
+    """Coupled dynamic-thermal steady state (DynamicModel.thermal_equilibrium) of a jet-lubricated bearing
+    at each speed: cavity oil content from the supply (oil_supply, Parker), heat generated [W], ring / ball /
+    oil temperature rise above the oil inlet [K], runaway flag; speed exponent of the heat between the
+    first and last speed."""
+    from bearing_core.models.dynamics import DynamicModel, DynamicsOptions
+    from bearing_core.bearing.geometry import from_dict
+    from bearing_core.lubrication.oil_supply import OilSupply
+    from bearing_core.heat.thermal import ThermalData, ThermalRunaway
+    g = from_dict(inputs["bearing_definition"])
+    T_in = inputs["oil_inlet_K"]
+    flow = inputs["oil_flow_lpm"] / 60000.0
+    out = {"speed_rpm": [], "heat_W": [], "oil_fraction": [], "outer_rise_K": [], "inner_rise_K": [],
+           "ball_rise_K": [], "oil_rise_K": [], "runaway": []}
+    for rpm in inputs["speeds_rpm"]:
+        opts = DynamicsOptions(oil=inputs["oil"], churning=True, thermal=True, oil_temperature=T_in,
+                               thermal_data=ThermalData(T_amb=inputs.get("ambient_K", 308.15), T_in=T_in,
+                                                        flow_rate=flow),
+                               oil_supply=OilSupply("jet", flow, T_in))
+        m = DynamicModel(g, opts)
+        m.initialize(rpm * RPM, (inputs.get("Fr_N", 0.0), 0.0, inputs["Fa_N"], 0.0, 0.0))
+        out["speed_rpm"].append(rpm)
+        out["oil_fraction"].append(m.oil_fraction_used())
+        try:
+            r = m.thermal_equilibrium()
+        except ThermalRunaway:
+            out["runaway"].append(True)
+            for key in ("heat_W", "outer_rise_K", "inner_rise_K", "ball_rise_K", "oil_rise_K"):
+                out[key].append(float("nan"))
+            continue
+        T = r["temperatures_K"]
+        out["runaway"].append(False)
+        out["heat_W"].append(float(r["heat_generated_W"]))
+        for key, node in (("outer_rise_K", "outer"), ("inner_rise_K", "inner"), ("ball_rise_K", "ball"),
+                          ("oil_rise_K", "oil")):
+            out[key].append(T[node] - T_in)
+    out["no_runaway"] = not any(out["runaway"])
+    h, n = out["heat_W"], out["speed_rpm"]
+    out["heat_speed_exponent"] = (math.log(h[-1] / h[0]) / math.log(n[-1] / n[0])
+                                  if out["no_runaway"] else float("nan"))
+    return out

@@ -58,6 +58,7 @@ ENUMERATIONS = {
     "outer_mounting": ("fixed", "elastic"),
     "integrator": ("auto", "adaptive", "implicit", "rk4"),
     "lubrication": ("auto", "oil", "solid", "dry"),
+    "lubrication_method": ("jet", "oil-air", "bath", "grease"),
 }
 ENUM_NAME = {"bearing": "bearing_preset"}
 
@@ -118,6 +119,10 @@ _PARAMS = (
     ("ambient_temperature", float, 308.15, "K", "ambient air temperature and initial temperature", (233.15, 473.15)),
     ("oil_inlet_temperature", float, 0.0, "K", "oil supply temperature (0: ambient)", (0.0, 473.15)),
     ("oil_flow_rate", float, 0.0, "m^3/s", "circulating oil flow through the bearing", (0.0, 0.1)),
+    ("lubrication_method", str, "jet", None, "oil supply: jet | oil-air | bath | grease; with oil_fraction 0 the "
+     "cavity oil content follows from it (jet / oil-air: Parker's correlation of flow, speed and pitch diameter; "
+     "bath: oil_level; grease: none) when oil_flow_rate > 0 or the method is bath / grease", None),
+    ("oil_level", float, 0.0, "m", "bath: static oil level above the lowest point of the outer raceway", (0.0, 10.0)),
     ("thermal_time_scale", float, 1.0, "1", "thermal seconds per simulated second (> 1 fast-forwards heating)", (1e-3, 1e6)),
     ("lubrication", str, "auto", None, "lubrication regime of races and cage: oil (lubricated traction, oil-lubricated "
      "pocket and land) | solid (Kalker/Coulomb traction with friction_coefficient, dry cage) | dry (Coulomb "

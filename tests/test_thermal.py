@@ -97,7 +97,9 @@ def test_source_mapping():
     n = net()
     q = n.node_heat(Q)
     assert q.sum() == pytest.approx(sum(Q.values()), rel=1e-15)
-    s = n.data.contact_split
+    # Blok's partition between a steel ball and a steel ring at the same rolling speed: one half each
+    assert n.split_i == pytest.approx(0.5, rel=1e-12) and n.split_o == pytest.approx(0.5, rel=1e-12)
+    s = 0.5
     assert q[th.I_BALL] == pytest.approx(s * 90.0 + 0.5 * 10.0 + 30.0)
     assert q[th.I_OUTER] == pytest.approx((1 - s) * 40.0 + 5.0)      # 7218B cage is outer-ring guided
     assert q[th.I_INNER] == pytest.approx((1 - s) * 50.0 + 15.0)
@@ -115,8 +117,9 @@ def test_areas_and_capacities_follow_seed():
     assert n.areas["A_hatm"] == pytest.approx(math.pi * (d["D_h"] ** 2 - d["D_Lo"] ** 2) / 2 + math.pi * d["D_h"] * Lh)
     assert n.areas["A_oilatm"] == pytest.approx(n.areas["A_boil"] + math.pi * d["D_Lo"] * Lh + math.pi * d["D_Li"] * Lh)
     assert n.C[th.I_BALL] == pytest.approx(g.Z * 7800.0 * math.pi * g.D ** 3 / 6 * 475.0)
-    # Eq. 26 with N_b parallel contacts: G = N K pi a b / (2 a)
-    assert n.conductances["G_bh"] == pytest.approx(g.Z * 46.6 * math.pi * d["b_o"] / 2)
+    # contact_model 'seed001': Eq. 26 with N_b parallel contacts, G = N K pi a b / (2 a)
+    s = net(contact_model="seed001")
+    assert s.conductances["G_bh"] == pytest.approx(g.Z * 46.6 * math.pi * s.dims["b_o"] / 2)
 
 
 def test_input_errors_name_parameter():

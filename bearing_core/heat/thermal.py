@@ -11,20 +11,44 @@ on the slow thermal time scale with dt of seconds to minutes. Steady state: the 
 the storage term.
 
 Resistances (seed 001 Eqs. 26-29), with the corrections we had to make:
-* Ball-ring conduction through the Hertz contacts (Eq. 26): R = 2 L_a / (N K pi L_a L_b), L_a, L_b the
-  contact semi-axes, K the steel conductivity. The seed prints N_b in the NUMERATOR, which would make
-  the resistance grow with the number of (parallel) contacts; we divide by N_b (N_b parallel paths).
-  Order of magnitude check: the classical constriction resistance of a circular contact of radius a on
-  two half-spaces is 2 x 1/(4 K a) (Carslaw & Jaeger; Yovanovich), vs 2/(pi K a) here (1.27x larger).
+* Ball-ring conduction through the Hertz contacts, contact_model 'moving-source' (default): each of the
+  Z contacts per race is a heat source of the area of the contact ellipse moving over the surface of
+  both bodies at the rolling speed U. Mean temperature rise of a body under a uniform circular source of
+  radius a (Tian & Kennedy, ASME J. Tribol. 116 (1994) 167, Eq. for the average rise, uniform circular
+  source, all Peclet numbers): theta = 1.64 q a / (k sqrt(pi (1.234 + Pe))), Pe = U a / (2 kappa),
+  kappa = k / (rho c_p). Resistance contact -> bulk of body k: R_k = theta / (q pi a^2)
+      R_k = 1.64 / (pi k a sqrt(pi (1.234 + Pe_k)))
+  with a = sqrt(a_H b_H) (circle of the ellipse's area; our approximation). Pe -> 0 gives 0.265 / (k a):
+  within 2 % of the stationary uniform-flux disc, 8 / (3 pi^2 k a) (Carslaw & Jaeger, Conduction of Heat
+  in Solids, 2nd ed., 1959, Sec. 8.2), within 7 % of Holm's isothermal-disc constriction 1 / (4 k a)
+  (Holm, Electric Contacts, 1967, Sec. 4); Pe >> 1 gives Jaeger's
+  moving-source asymptote ~ 1 / sqrt(Pe) (Jaeger, Proc. R. Soc. N.S.W. 76 (1942) 203). Ball bulk <->
+  ring bulk: Z contacts in parallel, each R_ball + R_ring in series. Frictional heat generated in a
+  contact is split so that both surfaces reach the same mean temperature (Blok's partition, Blok, Proc.
+  Gen. Disc. Lubrication, IMechE 1937; Harris & Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 2,
+  thermal chapter): fraction to the ball = R_ring / (R_ball + R_ring). Rolling kinematics of the outer-
+  ring-stationary bearing without spin (Harris & Kotzalas Vol. 1, Ch. 8): gamma = D cos(alpha0) / d_m,
+  U = w_shaft d_m (1 - gamma^2) / 4 at both contacts (the surface speed of balls and raceways relative
+  to the contact). contact_model 'seed001' keeps seed 001's Eq. 26 (below) and the fixed contact_split.
+  Seed 001 Eq. 26 (stationary conduction, contact_model 'seed001'): R = 2 L_a / (N K pi L_a L_b), L_a,
+  L_b the contact semi-axes, K the steel conductivity. The seed prints N_b in the NUMERATOR, which would
+  make the resistance grow with the number of (parallel) contacts; we divide by N_b (N_b parallel paths).
 * Convection (Eq. 27): the seed prints R = L / (h A), which is not a thermal resistance (m K/W); we use
   R = 1 / (h A) (Newton's law of cooling; Incropera & DeWitt, Fundamentals of Heat and Mass Transfer).
-* Areas (Eqs. 28-29): A_boil = N_b pi D_b^2, A_hoil = pi D_Lo L_h, A_soil = pi D_Li L_h,
-  A_hatm = pi (D_h^2 - D_Lo^2)/2 + pi D_h L_h, A_satm = pi |D_s^2 - D_Li^2| / 2 (the two faces of the inner
-  ring between the shaft diameter D_s and the shoulder D_Li; the seed's D_s^2 - D_Li^2 is negative for a
-  shaft inside the ring), A_oilatm = A_boil + A_hoil + A_soil. As printed. Optional: a shaft length
-  L_shaft exposed to ambient (pi D_s L_shaft) added to A_satm (default 0 = seed).
-* Heat transfer coefficients: oil-solid h in the seed's 50-1500 W/(m^2 K) range (default 300);
-  solid-air and oil-air default 20 W/(m^2 K) (forced/natural convection of air, Incropera Table 1.1:
+* Oil-solid coefficients h_b_oil, h_h_oil, h_s_oil = None (default): forced convection of a surface
+  moving through the cavity fluid, the flat-plate average (Incropera & DeWitt 6th ed. Eq. 7.30, laminar,
+  Re_L < 5e5; Eq. 7.38 mixed laminar-turbulent above):
+      h = 0.664 (k/L) Re_L^0.5 Pr^(1/3),   h = (k/L)(0.037 Re_L^0.8 - 871) Pr^(1/3),  Re_L = u L / nu
+  (the form Harris & Kotzalas Vol. 2 use for the convection from bearing surfaces to the lubricant).
+  Surfaces: balls u = U (ball surface speed), L = D; inner ring u = (w_shaft - w_cage) D_Li / 2, outer
+  ring u = w_cage D_Lo / 2 (the cavity fluid carried round at the cage speed w_cage = w_shaft (1 -
+  gamma) / 2), L = pi d_m / Z (the boundary layer restarts at every ball). Fluid: the oil at its inlet
+  temperature when oil reaches the cavity (oil flow or a cavity oil fraction > 0: the surfaces are
+  wetted), else air (Incropera Table A.4 at 350 K: k 0.030 W/(m K), nu 20.9e-6 m^2/s, Pr 0.70). Floor:
+  50 W/(m^2 K), the lower end of seed 001's oil-solid range (still oil, no speed). An explicit number
+  keeps seed 001's fixed coefficient. The coefficients and the moving-source resistances follow the
+  shaft speed (set_speed, called by the dynamics at every thermal step).
+* Heat transfer coefficients to air: solid-air and oil-air default 20 W/(m^2 K) (forced/natural convection of air, Incropera Table 1.1:
   gases 2-25 natural, 25-250 forced). All are ThermalData fields.
 * Oil flow (not in seed 001 Eqs. 22-25, standard for circulating / jet lubrication): the oil passing
   through removes m_dot c_p (T_oil - T_in) (the lubricant heat-removal balance of Harris & Kotzalas,
@@ -34,11 +58,12 @@ Resistances (seed 001 Eqs. 26-29), with the corrections we had to make:
 Heat sources (keys of ``Q_sources``, W, seed 001 Eq. 20 plus the dynamics' ball drag) and their nodes. The
 seed's Eqs. 22-25 put the race heat Q_br into the ball node AND Q_br.i / Q_br.o into the rings, and Q_bp
 into the ball AND the oil node, i.e. those losses are counted twice (energy would not balance). We split
-each between the two bodies of the contact (fraction ``contact_split`` / ``pocket_split`` to the ball,
-default 1/2 -- the equal partition of frictional heat between two bodies of the same material; Harris &
+each between the two bodies of the contact (fraction ``contact_split`` / ``pocket_split`` to the ball;
+contact_split None (default): Blok's partition of the moving-source resistances above, per race;
+pocket_split default 1/2 -- the equal partition of frictional heat between two bodies; Harris &
 Kotzalas Vol. 2 thermal chapter; Takabi & Khonsari, Tribol. Int. 60 (2013) 93 (seed 001 ref. [32])):
-    Q_br_i  race inner contacts       ball (contact_split), inner (1 - contact_split)     Eqs. 22, 24
-    Q_br_o  race outer contacts       ball (contact_split), outer (1 - contact_split)     Eqs. 22, 23
+    Q_br_i  race inner contacts       ball (split_i), inner (1 - split_i)                 Eqs. 22, 24
+    Q_br_o  race outer contacts       ball (split_o), outer (1 - split_o)                 Eqs. 22, 23
     Q_bp    ball-pocket friction      ball (pocket_split), oil+cage (1 - pocket_split)    Eqs. 22, 25
     Q_cg    cage-guide ring friction  the guiding ring's node (outer / inner), 'oil' for a ball-guided cage   Eq. 23
     Q_ch_c  cage churning             oil                                                 Eq. 25
@@ -99,21 +124,50 @@ OIL_T_MAX = {
 }
 OIL_T_MAX_DEFAULT = (393.15, "unknown oil: the mineral-oil limit")
 
+CONTACT_MODELS = ("moving-source", "seed001")
+# air at 350 K (Incropera & DeWitt Table A.4): conductivity [W/(m K)], kinematic viscosity [m^2/s], Prandtl
+AIR_K, AIR_NU, AIR_PR = 0.030, 20.9e-6, 0.70
+H_OIL_MIN = 50.0        # W/(m^2 K), lower end of seed 001's oil-solid range (still fluid)
+RE_TRANSITION = 5.0e5   # flat-plate transition Reynolds number (Incropera & DeWitt Sec. 7.2)
+
+
+def flat_plate_h(u: float, L: float, k: float, nu: float, Pr: float) -> float:
+    """Average heat transfer coefficient [W/(m^2 K)] of a plate of length L [m] in a stream of speed u
+    [m/s]: laminar 0.664 Re^0.5 Pr^(1/3) k/L (Incropera & DeWitt Eq. 7.30), mixed boundary layer
+    (0.037 Re^0.8 - 871) Pr^(1/3) k/L above Re = 5e5 (Eq. 7.38)."""
+    Re = abs(u) * L / nu
+    if Re <= RE_TRANSITION:
+        Nu = 0.664 * math.sqrt(Re) * Pr ** (1.0 / 3.0)
+    else:
+        Nu = (0.037 * Re ** 0.8 - 871.0) * Pr ** (1.0 / 3.0)
+    return Nu * k / L
+
+
+def moving_source_resistance(k: float, kappa: float, a: float, U: float) -> float:
+    """Resistance [K/W] from a circular contact of radius a [m] moving at U [m/s] over a half-space of
+    conductivity k [W/(m K)] and diffusivity kappa [m^2/s] to its bulk: mean rise / heat, Tian & Kennedy
+    (1994) uniform circular source, R = 1.64 / (pi k a sqrt(pi (1.234 + Pe))), Pe = U a / (2 kappa)."""
+    Pe = abs(U) * a / (2.0 * kappa)
+    return 1.64 / (math.pi * k * a * math.sqrt(math.pi * (1.234 + Pe)))
+
 
 class ThermalRunaway(RuntimeError):
     """A node of the thermal network passed the lubricant's temperature limit (the losses exceed what the
     bearing can reject): ``temperatures`` [K] by node, ``T_max`` [K] and ``oil``."""
 
-    def __init__(self, temperatures: dict, T_max: float, oil: str, where: str = ""):
+    def __init__(self, temperatures: dict, T_max: float, oil: str, where: str = "", cause: str = ""):
         self.temperatures = dict(temperatures)
         self.T_max = T_max
         self.oil = oil
+        self.cause = cause
         hot = max(self.temperatures, key=self.temperatures.get)
+        self.node = hot
         super().__init__(
             f"thermal runaway{(' ' + where) if where else ''}: {hot} temperature "
             f"{self.temperatures[hot]:.0f} K ({self.temperatures[hot] - 273.15:.0f} degC) exceeds the "
             f"{T_max:.0f} K ({T_max - 273.15:.0f} degC) limit of oil '{oil}'; the losses are more than the "
-            "bearing and its cooling can reject (more oil flow, a lower speed or load, or a lighter oil)")
+            "bearing and its cooling can reject (more oil flow, a lower speed or load, or a lighter oil)"
+            + (f"; cause: {cause}" if cause else ""))
 
 
 def oil_temperature_limit(oil_name: str) -> float:
@@ -205,14 +259,17 @@ class ThermalData:
     ring shoulder diameters [m]; oil_fill: fraction of the bearing's free volume filled with oil [0, 1];
     contact semi-axes a_i, b_i, a_o, b_o [m] of the Hertz contacts (from the dynamics / quasi-static model;
     None = Hertz at ball_load [N] at the free contact angle); contact_split, pocket_split: fraction of the
-    contact / pocket heat to the ball."""
+    contact / pocket heat to the ball (contact_split None: Blok's partition); shaft_speed [rad/s] for the
+    speed-dependent convection and moving-source contact resistances (set_speed updates it);
+    oil_fraction: cavity oil fraction (None: oil_fill) -- > 0 or a flow means wetted surfaces;
+    contact_model: 'moving-source' | 'seed001' (module docstring)."""
 
     T_amb: float = 308.15           # seed 001: T_atm = 35 degC
     T_in: float = 308.15
     flow_rate: float = 0.0
-    h_b_oil: float = 300.0
-    h_h_oil: float = 300.0
-    h_s_oil: float = 300.0
+    h_b_oil: float | None = None    # None: flat-plate correlation (module docstring)
+    h_h_oil: float | None = None
+    h_s_oil: float | None = None
     h_h_atm: float = 20.0
     h_s_atm: float = 20.0
     h_oil_atm: float = 20.0
@@ -229,15 +286,19 @@ class ThermalData:
     a_o: float | None = None
     b_o: float | None = None
     ball_load: float = 1000.0
-    contact_split: float = 0.5
+    contact_split: float | None = None
     pocket_split: float = 0.5
+    shaft_speed: float = 0.0
+    oil_fraction: float | None = None
+    contact_model: str = "moving-source"
 
     def validate(self):
         check_range("T_amb", self.T_amb, 200.0, 500.0, unit="K")
         check_range("T_in", self.T_in, 233.15, 473.15, unit="K")
         check_range("flow_rate", self.flow_rate, 0.0, 0.1, unit="m^3/s")
         for nm in ("h_b_oil", "h_h_oil", "h_s_oil"):
-            check_range(nm, getattr(self, nm), 0.0, 1e4, unit="W/(m^2 K)")
+            if getattr(self, nm) is not None:
+                check_range(nm, getattr(self, nm), 0.0, 1e5, unit="W/(m^2 K)")
         for nm in ("h_h_atm", "h_s_atm", "h_oil_atm"):
             check_range(nm, getattr(self, nm), 0.0, 1e4, unit="W/(m^2 K)")
         for nm in ("D_h", "L_h", "D_o", "D_s", "D_Li", "D_Lo", "a_i", "b_i", "a_o", "b_o"):
@@ -247,7 +308,13 @@ class ThermalData:
         check_range("L_shaft", self.L_shaft, 0.0, 10.0, unit="m")
         check_range("oil_fill", self.oil_fill, 0.0, 1.0)
         check_range("ball_load", self.ball_load, 0.0, 1e7, lo_incl=False, unit="N")
-        check_range("contact_split", self.contact_split, 0.0, 1.0)
+        if self.contact_split is not None:
+            check_range("contact_split", self.contact_split, 0.0, 1.0)
+        check_range("shaft_speed", self.shaft_speed, -1e5, 1e5, unit="rad/s")
+        if self.oil_fraction is not None:
+            check_range("oil_fraction", self.oil_fraction, 0.0, 1.0)
+        if self.contact_model not in CONTACT_MODELS:
+            raise BearingInputError("contact_model", self.contact_model, "one of " + ", ".join(CONTACT_MODELS))
         check_range("pocket_split", self.pocket_split, 0.0, 1.0)
 
     def resolved(self, g) -> dict:
@@ -335,30 +402,30 @@ class ThermalNetwork:
         self.C = np.array([C_ball, C_outer, C_inner, C_oil])
         self.V_oil = d.oil_fill * V_free
         # ---- conductances (seed 001 Eqs. 26-29, corrections in the module docstring) ----------------
-        G_bh = Z * K * math.pi * r["a_o"] * r["b_o"] / (2.0 * r["a_o"])      # 1 / R_bh, Eq. 26
-        G_bs = Z * K * math.pi * r["a_i"] * r["b_i"] / (2.0 * r["a_i"])      # 1 / R_bs, Eq. 26
+        self._k_ball, self._k_ring, self._K = k_ball, k_ring, K
+        self._kappa_ball = k_ball / (g.ball_material.density * cp_ball)
+        self._kappa_ring = k_ring / (rho_steel * cp_ring)
+        if self.data.oil_fraction is not None:
+            wetted = d.flow_rate > 0.0 or self.data.oil_fraction > 0.0
+        else:
+            wetted = d.flow_rate > 0.0 or d.oil_fill > 0.0
+        if wetted:      # oil properties at the inlet temperature (module docstring)
+            self._fluid = (self.oil.conductivity(d.T_in), self.oil.nu(d.T_in),
+                           self.oil.eta(d.T_in) * cp_oil / self.oil.conductivity(d.T_in))
+        else:
+            self._fluid = (AIR_K, AIR_NU, AIR_PR)
         A_boil = Z * math.pi * g.D ** 2                                          # Eq. 28
         A_hoil = math.pi * r["D_Lo"] * r["L_h"]
         A_soil = math.pi * r["D_Li"] * r["L_h"]
         A_hatm = 0.5 * math.pi * (r["D_h"] ** 2 - r["D_Lo"] ** 2) + math.pi * r["D_h"] * r["L_h"]   # Eq. 29
         A_satm = 0.5 * math.pi * abs(r["D_s"] ** 2 - r["D_Li"] ** 2) + math.pi * r["D_s"] * d.L_shaft
         A_oilatm = A_boil + A_hoil + A_soil
-        G_boil = d.h_b_oil * A_boil                                              # 1/R = h A (Eq. 27 corrected)
-        G_hoil = d.h_h_oil * A_hoil
-        G_soil = d.h_s_oil * A_soil
-        self.conductances = dict(G_bh=G_bh, G_bs=G_bs, G_boil=G_boil, G_hoil=G_hoil, G_soil=G_soil,
-                                 G_hatm=d.h_h_atm * A_hatm, G_satm=d.h_s_atm * A_satm,
-                                 G_oilatm=d.h_oil_atm * A_oilatm)
         self.areas = dict(A_boil=A_boil, A_hoil=A_hoil, A_soil=A_soil, A_hatm=A_hatm, A_satm=A_satm,
                           A_oilatm=A_oilatm)
-        L = np.zeros((4, 4))
-        for (i, j), G in (((I_BALL, I_OUTER), G_bh), ((I_BALL, I_INNER), G_bs), ((I_BALL, I_OIL), G_boil),
-                          ((I_OUTER, I_OIL), G_hoil), ((I_INNER, I_OIL), G_soil)):
-            L[i, i] += G
-            L[j, j] += G
-            L[i, j] -= G
-            L[j, i] -= G
-        self.L = L
+        self.conductances = dict(G_hatm=d.h_h_atm * A_hatm, G_satm=d.h_s_atm * A_satm,
+                                 G_oilatm=d.h_oil_atm * A_oilatm)
+        self.shaft_speed = None
+        self.set_speed(d.shaft_speed)
         self.g_amb = np.array([0.0, d.h_h_atm * A_hatm, d.h_s_atm * A_satm, d.h_oil_atm * A_oilatm])
         self.m_dot = rho_oil * d.flow_rate
         self.g_flow = np.array([0.0, 0.0, 0.0, self.m_dot * cp_oil])
@@ -380,11 +447,60 @@ class ThermalNetwork:
         self.E_flow = 0.0
         self.time = 0.0
 
+    # ---- speed-dependent internal conductances ------------------------------------------------------
+    def set_speed(self, shaft_speed: float):
+        """Internal conductances [W/K] and the contact heat partition at the shaft speed [rad/s] (module
+        docstring: moving-source contact resistances, flat-plate convection); no-op at an unchanged speed."""
+        w = abs(check_range("shaft_speed", shaft_speed, -1e5, 1e5, unit="rad/s"))
+        if self.shaft_speed is not None and w == self.shaft_speed:
+            return
+        self.shaft_speed = w
+        g, d, r, Z = self.g, self.data, self.dims, self.g.Z
+        gam = g.D * math.cos(g.alpha0) / g.dm
+        U = w * g.dm * (1.0 - gam * gam) / 4.0          # rolling speed of the contact surfaces
+        w_cage = w * (1.0 - gam) / 2.0
+        if d.contact_model == "seed001":
+            G_bh = Z * self._K * math.pi * r["a_o"] * r["b_o"] / (2.0 * r["a_o"])      # 1 / R_bh, Eq. 26
+            G_bs = Z * self._K * math.pi * r["a_i"] * r["b_i"] / (2.0 * r["a_i"])      # 1 / R_bs, Eq. 26
+            split_i = split_o = 0.5
+        else:
+            G, split = [], []
+            for a_h, b_h in ((r["a_o"], r["b_o"]), (r["a_i"], r["b_i"])):
+                a = math.sqrt(a_h * b_h)
+                R_b = moving_source_resistance(self._k_ball, self._kappa_ball, a, U)
+                R_r = moving_source_resistance(self._k_ring, self._kappa_ring, a, U)
+                G.append(Z / (R_b + R_r))
+                split.append(R_r / (R_b + R_r))                 # Blok: equal mean surface temperatures
+            (G_bh, G_bs), (split_o, split_i) = G, split
+        if d.contact_split is not None:
+            split_i = split_o = d.contact_split
+        self.split_i, self.split_o = split_i, split_o
+        k_f, nu_f, Pr_f = self._fluid
+        L_pitch = math.pi * g.dm / Z
+        h_auto = dict(h_b_oil=flat_plate_h(U, g.D, k_f, nu_f, Pr_f),
+                      h_s_oil=flat_plate_h((w - w_cage) * r["D_Li"] / 2.0, L_pitch, k_f, nu_f, Pr_f),
+                      h_h_oil=flat_plate_h(w_cage * r["D_Lo"] / 2.0, L_pitch, k_f, nu_f, Pr_f))
+        h = {k: (getattr(d, k) if getattr(d, k) is not None else max(v, H_OIL_MIN)) for k, v in h_auto.items()}
+        self.h = h
+        G_boil = h["h_b_oil"] * self.areas["A_boil"]                      # 1/R = h A (Eq. 27 corrected)
+        G_hoil = h["h_h_oil"] * self.areas["A_hoil"]
+        G_soil = h["h_s_oil"] * self.areas["A_soil"]
+        self.conductances.update(G_bh=G_bh, G_bs=G_bs, G_boil=G_boil, G_hoil=G_hoil, G_soil=G_soil)
+        L = np.zeros((4, 4))
+        for (i, j), Gij in (((I_BALL, I_OUTER), G_bh), ((I_BALL, I_INNER), G_bs), ((I_BALL, I_OIL), G_boil),
+                            ((I_OUTER, I_OIL), G_hoil), ((I_INNER, I_OIL), G_soil)):
+            L[i, i] += Gij
+            L[j, j] += Gij
+            L[i, j] -= Gij
+            L[j, i] -= Gij
+        self.L = L
+
     # ---- sources -------------------------------------------------------------------------------
     def node_heat(self, Q_sources: dict) -> np.ndarray:
         """Heat input per node [W] from the seed's source keys (mapping in the module docstring)."""
         d = self.data
         q = np.zeros(4)
+        self._last_sources = dict(Q_sources)
         guide = self.g.cage.guidance
         cg_node = I_OUTER if guide == "outer" else (I_INNER if guide == "inner" else I_OIL)
         for key, v in Q_sources.items():
@@ -392,11 +508,11 @@ class ThermalNetwork:
                 raise BearingInputError("Q_sources key", key, "one of " + ", ".join(SOURCES))
             v = check_range(key, v, 0.0, 1e8, unit="W")
             if key == "Q_br_i":
-                q[I_BALL] += d.contact_split * v
-                q[I_INNER] += (1.0 - d.contact_split) * v
+                q[I_BALL] += self.split_i * v
+                q[I_INNER] += (1.0 - self.split_i) * v
             elif key == "Q_br_o":
-                q[I_BALL] += d.contact_split * v
-                q[I_OUTER] += (1.0 - d.contact_split) * v
+                q[I_BALL] += self.split_o * v
+                q[I_OUTER] += (1.0 - self.split_o) * v
             elif key == "Q_bp":
                 q[I_BALL] += d.pocket_split * v
                 q[I_OIL] += (1.0 - d.pocket_split) * v
@@ -463,10 +579,30 @@ class ThermalNetwork:
         T = self.T if T is None else np.asarray(T)
         return bool(not np.all(np.isfinite(T)) or np.max(T) > self.T_max)
 
+    def runaway_cause(self) -> str:
+        """The hottest node's heat input by source (of the last sources given) and its paths out [W/K]."""
+        T = self.temperatures()
+        hot = max(T, key=T.get)
+        k = NODES.index(hot)
+        src = getattr(self, "_last_sources", {})
+        parts = {key: self.node_heat({key: v})[k] for key, v in src.items()}
+        self._last_sources = src
+        tot = sum(parts.values())
+        top = sorted(((v, key) for key, v in parts.items() if v > 0.005 * tot), reverse=True)[:3]
+        shares = ", ".join(f"{key} {100.0 * v / tot:.0f} %" for v, key in top) if tot > 0 else "none"
+        paths = [f"{NODES[j]} {-self.L[k, j]:.3g}" for j in range(4) if j != k and self.L[k, j] < 0.0]
+        if self.g_amb[k] > 0:
+            paths.append(f"ambient {self.g_amb[k]:.3g}")
+        if self.g_flow[k] > 0:
+            paths.append(f"oil flow {self.g_flow[k]:.3g}")
+        return (f"node '{hot}' takes {tot:.0f} W ({shares}); its conductances out [W/K]: "
+                + ", ".join(paths) + f"; all nodes reject {self.heat_to_ambient() + self.heat_to_oil_flow():.0f} W"
+                + f" (to ambient {self.heat_to_ambient():.0f} W, to the oil flow {self.heat_to_oil_flow():.0f} W)")
+
     def check_runaway(self, where: str = ""):
-        """Raise ThermalRunaway if runaway()."""
+        """Raise ThermalRunaway (naming the node and the cause) if runaway()."""
         if self.runaway():
-            raise ThermalRunaway(self.temperatures(), self.T_max, self.oil.name, where)
+            raise ThermalRunaway(self.temperatures(), self.T_max, self.oil.name, where, self.runaway_cause())
 
     def time_constants(self) -> np.ndarray:
         """Thermal time constants [s] of the network: 1 / eigenvalues of C^-1 (L + diag(g_out))."""

@@ -176,6 +176,8 @@ class DynamicModel(DynamicSetup):
         if self.opt.thermal:
             from ..heat.thermal import ThermalData, ThermalNetwork
             td = self.opt.thermal_data or ThermalData(T_amb=self.opt.oil_temperature, T_in=self.opt.oil_temperature)
+            td = replace(td, shaft_speed=omega,      # speed-dependent convection and contact resistances
+                         oil_fraction=self.oil_fraction_used() if td.oil_fraction is None else td.oil_fraction)
             if td.a_i is None:   # contact ellipses of the most loaded ball (seed 001 Eq. 26)
                 bd = self.ball_details()
                 j = int(np.argmax(bd["Q_i"]))
@@ -234,6 +236,10 @@ class DynamicModel(DynamicSetup):
         self.U[K.U_W0] = self.U[K.U_W1] = omega
         self.U[K.U_T0] = self.U[K.U_T1] = self.t
         self.update_operating_geometry()          # centrifugal ring growth at the new speed
+        if self.opt.oil_supply is not None:       # the supply's cavity oil content at the new speed
+            from ..lubrication.lubricants import get_oil
+            oil = get_oil(self.oil_name)
+            self._set_mixture(oil.density(self._T_oil), oil.eta(self._T_oil))
 
     def advance(self, t_end: float, omega_end: float | None = None, record_dt: float | None = None):
         """Integrate from the current time to t_end [s]; the shaft speed ramps linearly from its current
@@ -294,6 +300,7 @@ class DynamicModel(DynamicSetup):
                 "Q_ch_b": 0.0, "drag": max(m[I["P_drag"]], 0.0)}
 
     def _thermal_step(self, rec, dt):
+        self.thermal.set_speed(self.U[K.U_W1] - self.U[K.U_WO])
         self.thermal.step(self.heat_sources(rec), dt)
         self._apply_thermal()
         if self.thermal.runaway():
@@ -339,6 +346,7 @@ class DynamicModel(DynamicSetup):
             rec = self.advance(self.t + window, record_dt=min(window / 20, 1e-3))
             Q = self.heat_sources(rec)
             T_old = self.thermal.T.copy()
+            self.thermal.set_speed(self.U[K.U_W1] - self.U[K.U_WO])
             self.thermal.steady_state(Q, set_state=True)
             self._apply_thermal()
             if np.max(np.abs(self.thermal.T - T_old)) < tol:

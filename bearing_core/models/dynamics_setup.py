@@ -62,7 +62,10 @@ class DynamicsOptions:
     outer-ring mass). land_viscosity [Pa s]: > 0 makes the guiding land oil-flooded (short journal bearing
     force and Petroff drag of seed 001 Eqs. 4-5 besides the contact penalty).
     churning: oil churning torques of seed 001 Eqs. 12-17 (bearing_core.lubrication.churning) on the cage and the inner
-    ring, in the oil-air mixture of oil_fraction (ball drag is the existing Eq. 10 term). oil: name in
+    ring, in the oil-air mixture of oil_fraction (ball drag is the existing Eq. 10 term). oil_supply: a
+    bearing_core.lubrication.oil_supply.OilSupply; with oil_fraction 0 the mixture's oil fraction is its cavity
+    oil content at the current shaft speed (oil_supply.cavity_oil_fraction; an oil_fraction > 0 overrides
+    it). oil: name in
     bearing_core.lubrication.lubricants (default: the traction curve's oil) for viscosity, density and pressure-
     viscosity; oil_temperature [K]: its temperature when thermal is off. thermal: a thermal network
     (bearing_core.heat.thermal, seed 001 Eqs. 21-29; thermal_data: ThermalData) stepped on the slow time scale
@@ -145,6 +148,7 @@ class DynamicsOptions:
     cage_roughness: float = 0.4e-6
     fits: object = None
     ring_growth: bool = False
+    oil_supply: object = None
 
     @property
     def regime(self) -> str:
@@ -235,6 +239,12 @@ class DynamicsOptions:
                 raise BearingInputError("fits", self.fits, "a bearing_core.bearing.ring_fits.RingFits or None")
         if not isinstance(self.ring_growth, (bool, np.bool_)):
             raise BearingInputError("ring_growth", self.ring_growth, "True | False")
+        if self.oil_supply is not None:
+            from ..lubrication.oil_supply import OilSupply
+            if not isinstance(self.oil_supply, OilSupply):
+                raise BearingInputError("oil_supply", self.oil_supply,
+                                        "a bearing_core.lubrication.oil_supply.OilSupply or None")
+            self.oil_supply.validate()
         if self.thermal_data is not None:
             from ..heat.thermal import ThermalData
             if not isinstance(self.thermal_data, ThermalData):
@@ -423,6 +433,31 @@ class DynamicSetup:
         from ..lubrication.lubricants import TRACTION_OIL
         return self.opt.oil or TRACTION_OIL[self.opt.lubricant]
 
+    def cavity_oil(self):
+        """oil_supply.CavityOil of options.oil_supply at the current relative shaft speed (None without a
+        supply or with an explicit oil_fraction > 0)."""
+        o = self.opt
+        if o.oil_supply is None or o.oil_fraction > 0.0:
+            return None
+        from ..lubrication.oil_supply import cavity_oil_fraction
+        U = self.U
+        w = abs(float(U[K.U_W1] - U[K.U_WO]))
+        # at rest Parker's fraction diverges: 1 rpm caps it at 1 (flooded; no drag at rest anyway)
+        return cavity_oil_fraction(o.oil_supply, self.g, max(w * 30.0 / math.pi, 1.0))
+
+    def oil_fraction_used(self) -> float:
+        """Oil fraction of the cavity mixture the churning and drag use: options.oil_fraction if > 0 or
+        no supply, else the supply's cavity oil content at the current speed."""
+        c = self.cavity_oil()
+        return self.opt.oil_fraction if c is None else c.fraction
+
+    def _set_mixture(self, rho, eta):
+        """Oil-air mixture density and viscosity of drag and churning at oil_fraction_used()."""
+        X = self.oil_fraction_used()
+        self.P[K.P_RHO_EFF] = 1.2 + X * (rho - 1.2)
+        self.P[K.P_CH_RHO] = 1.2 + X * (rho - 1.2)
+        self.P[K.P_CH_ETA] = 1.8e-5 + X * (eta - 1.8e-5)     # air 1.8e-5 Pa s (churning.churning_losses)
+
     def apply_temperatures(self, T_oil: float, T_ball: float | None = None, T_inner: float | None = None,
                            T_outer: float | None = None):
         """Set the temperature-dependent parameters [K]: oil-air mixture density and viscosity for churning
@@ -441,10 +476,7 @@ class DynamicSetup:
         oil = get_oil(self.oil_name)
         T_oil = min(max(float(T_oil), 233.15), 473.15)
         rho, eta = oil.density(T_oil), oil.eta(T_oil)
-        X = o.oil_fraction
-        self.P[K.P_RHO_EFF] = 1.2 + X * (rho - 1.2)
-        self.P[K.P_CH_RHO] = 1.2 + X * (rho - 1.2)
-        self.P[K.P_CH_ETA] = 1.8e-5 + X * (eta - 1.8e-5)     # air 1.8e-5 Pa s (churning.churning_losses)
+        self._set_mixture(rho, eta)
         if o.thermal and o.land_viscosity > 0:
             self.P[K.P_ETA_LAND] = eta
         if o.regime == "oil":

@@ -149,6 +149,10 @@ class CoSimParameters:
     ambient_temperature: float = 308.15    # K, ambient air and initial temperature of the network
     oil_inlet_temperature: float = 0.0     # K, oil supply temperature (0 = ambient)
     oil_flow_rate: float = 0.0             # m^3/s of circulating oil through the bearing
+    # oil supply (bearing_core.lubrication.oil_supply): jet | oil-air | bath | grease; with oil_fraction 0 the cavity oil
+    # content follows from it when oil_flow_rate > 0 or the method is bath / grease
+    lubrication_method: str = "jet"
+    oil_level: float = 0.0                 # m, bath: static level above the lowest point of the outer raceway
     thermal_time_scale: float = 1.0        # thermal seconds per simulated second (> 1 fast-forwards heating)
     # lubrication regime of races and cage: auto (from traction_model) | oil | solid | dry (DynamicsOptions)
     lubrication: str = "auto"
@@ -254,6 +258,14 @@ class CoSimSession:
         T_in = p.oil_inlet_temperature or p.ambient_temperature
         check_range("oil_inlet_temperature", T_in, 233.15, 473.15, unit="K")
         check_range("oil_flow_rate", p.oil_flow_rate, 0.0, 0.1, unit="m3/s")
+        from ..lubrication.oil_supply import METHODS, OilSupply
+        if p.lubrication_method not in METHODS:
+            raise BearingInputError("lubrication_method", p.lubrication_method, " | ".join(METHODS))
+        check_range("oil_level", p.oil_level, 0.0, 10.0, unit="m")
+        supply = None
+        if p.oil_fraction == 0.0 and (p.oil_flow_rate > 0.0 or p.lubrication_method in ("bath", "grease")):
+            supply = OilSupply(p.lubrication_method, p.oil_flow_rate, T_in,
+                               p.oil_level if p.lubrication_method == "bath" else None).validate()
         td = None
         if p.thermal:
             from ..heat.thermal import ThermalData
@@ -267,7 +279,8 @@ class CoSimSession:
             rtol=p.integrator_tolerance, integrator=p.integrator, reduced="full",
             oil=p.oil, oil_fraction=p.oil_fraction, churning=bool(p.churning),
             oil_temperature=p.oil_temperature if not p.thermal else T_in, thermal=bool(p.thermal),
-            thermal_data=td, thermal_time_scale=p.thermal_time_scale, lubrication=p.lubrication)
+            thermal_data=td, thermal_time_scale=p.thermal_time_scale, lubrication=p.lubrication,
+            oil_supply=supply)
 
     def _fits(self):
         """ring_fits.RingFits of the fit parameters (solid or hollow steel shaft, thick steel housing), or
