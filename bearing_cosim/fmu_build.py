@@ -28,11 +28,9 @@ import argparse
 import hashlib
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
-import sysconfig
 import tempfile
 import uuid
 import zipfile
@@ -48,31 +46,6 @@ ROOT = Path(__file__).resolve().parent.parent     # source tree (pyproject.toml)
 def _core_dir() -> Path:
     import bearing_core
     return Path(bearing_core.__file__).resolve().parent
-_IGNORE = shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc", "*.pyc")
-_RENAMED = ("bearing_core", "pythonfmu", "bearing_fmu")
-
-
-def _python_env() -> dict:
-    """The running Python, as the native layer needs it to embed it (resources/python_env.json)."""
-    import site
-    v = f"{sys.version_info.major}.{sys.version_info.minor}"
-    if sys.platform.startswith("win"):
-        lib = str(Path(sys.base_prefix) / f"python{sys.version_info.major}{sys.version_info.minor}.dll")
-    else:
-        lib = ""
-        for name in (sysconfig.get_config_var("INSTSONAME"), sysconfig.get_config_var("LDLIBRARY")):
-            if name and (name.endswith((".so", ".dylib")) or ".so." in name):
-                for d in (sysconfig.get_config_var("LIBDIR"), sysconfig.get_config_var("LIBPL"),
-                          str(Path(sys.base_prefix) / "lib")):
-                    if d and (Path(d) / name).exists():
-                        lib = str(Path(d) / name)
-                        break
-            if lib:
-                break
-    sp = [p for p in site.getsitepackages() if Path(p).is_dir()]
-    return {"libpython": lib, "python_home": sys.base_prefix, "python_version": v, "prefix": sys.prefix,
-            "base_prefix": sys.base_prefix, "executable": sys.executable, "site_packages": sp,
-            "env_overrides": "BEARING_FMU_PYTHON_LIB (libpython path), BEARING_FMU_PYTHONHOME (home of that Python)"}
 
 
 def _content_hash(files) -> str:
@@ -101,111 +74,93 @@ def _metadata() -> dict:
             "copyright": f"Copyright (c) the {name} contributors; released under the {lic} license"}
 
 
-def _compile(out: Path, target: str):
+def _compile(out: Path):
     src = NATIVE / "bearing_fmi2.c"
-    if target == "linux64":
-        cc = os.environ.get("CC", "gcc")
-        cmd = [cc, "-std=c99", "-O2", "-Wall", "-fPIC", "-shared", "-fvisibility=hidden", "-o", str(out), str(src),
-               "-ldl", "-lpthread"]
-    else:
-        cmd = ["x86_64-w64-mingw32-gcc", "-std=c99", "-O2", "-shared", "-o", str(out), str(src)]
+    cc = os.environ.get("CC", "gcc")
+    cmd = [cc, "-std=gnu99", "-O2", "-Wall", "-fPIC", "-shared", "-fvisibility=hidden", "-o", str(out), str(src),
+           "-ldl"]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         raise RuntimeError(f"compiling the native FMI layer failed ({' '.join(cmd)}):\n{r.stderr}")
 
 
+def _code_files(slave_sources: dict) -> list:
+    """(relative path, bytes) of the model code the FMU carries: bearing_core, pythonfmu, the slave modules."""
+    import pythonfmu
+    core = _core_dir()
+    files = [("bearing_core/" + f.relative_to(core).as_posix(), f.read_bytes()) for f in sorted(core.rglob("*"))
+             if f.is_file() and "__pycache__" not in f.parts and f.suffix not in (".nbi", ".nbc", ".pyc")]
+    files += [(f"pythonfmu/{f.name}", f.read_bytes()) for f in sorted(Path(pythonfmu.__file__).parent.glob("*.py"))]
+    files += [(f"{m}.py", t.encode()) for m, t in slave_sources.items()]
+    return files
+
+
+def _model_description(code: Path, slave_modules, main_module: str, class_name: str):
+    """The slave class's model description, the class imported from the staged code (slave modules only: the
+    staged bearing_core and pythonfmu are copies of the imported ones)."""
+    import importlib
+    for m in slave_modules:
+        sys.modules.pop(m, None)
+    sys.path.insert(0, str(code))
+    try:
+        mod = importlib.import_module(main_module)
+        inst = getattr(mod, class_name)(instance_name="modelDescription", resources=None)
+        return inst.to_xml({"canGetAndSetFMUstate": True, "canSerializeFMUstate": True,
+                            "needsExecutionTool": False, "canHandleVariableCommunicationStepSize": True,
+                            "canBeInstantiatedOnlyOncePerProcess": False})
+    finally:
+        sys.path.remove(str(code))
+        for m in slave_modules:
+            sys.modules.pop(m, None)
+
+
 def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, reference: bool = False) -> Path:
     """slave_sources: {module name: source text}; main_module holds class_name."""
-    import pythonfmu
     dest = Path(dest)
     dest.mkdir(parents=True, exist_ok=True)
-    pfmu_dir = Path(pythonfmu.__file__).parent
-    core = _core_dir()
-    core_files = [("bearing_core/" + f.relative_to(core).as_posix(), f.read_bytes()) for f in sorted(core.rglob("*"))
-                  if f.is_file() and "__pycache__" not in f.parts and f.suffix not in (".nbi", ".nbc", ".pyc")]
-    for name, data in core_files:
-        if name.endswith(".py") and re.search(rb"(?m)^\s*(from|import)\s+bearing_core\b", data):
-            raise RuntimeError(f"{name} imports bearing_core absolutely; the FMU renames the package, use relative "
-                               "imports inside bearing_core")
-    pf_files = [(f"pythonfmu/{f.name}", f.read_bytes()) for f in sorted(pfmu_dir.glob("*.py"))]
-    native = [(f"native/{f.name}", f.read_bytes()) for f in sorted(NATIVE.glob("*")) if f.suffix in (".c", ".h", ".py")]
-    # one content hash per package: an FMU version that changes only the slave shares bearing_core (and
-    # its numba cache) with the others, any change of bearing_core gives it a new name
-    hc, hp = _content_hash(core_files), _content_hash(pf_files)
-    names = {"bearing_core": f"bearing_core_{hc}", "pythonfmu": f"pythonfmu_{hp}"}
-    pat = r"(?m)^(\s*(?:from|import)\s+)(" + "|".join(_RENAMED) + r")(?=[\s.,]|$)"
-    renamed = {m: re.sub(pat, lambda x: x.group(1) + names.get(x.group(2), x.group(2) + "_@"), t)
-               for m, t in slave_sources.items()}
-    hs = _content_hash(native + [(k, v.encode()) for k, v in renamed.items()])
-    renamed = {m: t.replace("_@", f"_{hs}") for m, t in renamed.items()}
-    names.update({m: f"{m}_{hs}" for m in slave_sources})
-    packages = sorted(set(names.values()))
-    h = _content_hash([(k, k.encode()) for k in packages])
+    files = _code_files(slave_sources)
+    code_hash = _content_hash(files + [(f"native/{f.name}", f.read_bytes()) for f in sorted(NATIVE.glob("*"))
+                                       if f.suffix in (".py", ".sh")])
     with tempfile.TemporaryDirectory(prefix="bearing_fmu_build_") as td:
         stage = Path(td)
-        code = stage / "resources" / "code"
-        shutil.copytree(core, code / names["bearing_core"] / names["bearing_core"], ignore=_IGNORE)
-        (code / names["pythonfmu"] / names["pythonfmu"]).mkdir(parents=True)
-        for f in pfmu_dir.glob("*.py"):
-            shutil.copyfile(f, code / names["pythonfmu"] / names["pythonfmu"] / f.name)
-        for mod, text in renamed.items():
-            left = [ln for ln in text.splitlines()
-                    if re.match(r"\s*(from|import)\s+(" + "|".join(_RENAMED) + r")(?![_\w])", ln)]
-            if left:
-                raise RuntimeError(f"{mod}: imports not renamed: {left}")
-            (code / names[mod]).mkdir()
-            (code / names[mod] / f"{names[mod]}.py").write_text(text)
-        shutil.copyfile(NATIVE / "bearing_fmi2_bridge.py", stage / "resources" / "bearing_fmi2_bridge.py")
-        (stage / "resources" / "native").mkdir()
+        res = stage / "resources"
+        code = res / "code"
+        for name, data in files:
+            (code / name).parent.mkdir(parents=True, exist_ok=True)
+            (code / name).write_bytes(data)
+        for f in ("model_process.py", "launch.sh"):
+            shutil.copyfile(NATIVE / f, res / f)
+        (res / "native").mkdir()
         for f in ("bearing_fmi2.c", "fmi2_min.h"):
-            shutil.copyfile(NATIVE / f, stage / "resources" / "native" / f)
+            shutil.copyfile(NATIVE / f, res / "native" / f)
 
-        # modelDescription.xml from the pythonfmu slave class (imported under its hashed name)
-        paths = [str(code / p) for p in packages]
-        sys.path[:0] = paths
-        try:
-            import importlib
-            mod = importlib.import_module(names[main_module])
-            inst = getattr(mod, class_name)(instance_name="modelDescription", resources=str(stage / "resources"))
-            xml = inst.to_xml({"canGetAndSetFMUstate": True, "canSerializeFMUstate": False,
-                               "needsExecutionTool": False, "canHandleVariableCommunicationStepSize": True,
-                               "canBeInstantiatedOnlyOncePerProcess": False})
-        finally:
-            for p in paths:
-                sys.path.remove(p)
-            for k in [k for k in sys.modules if k.split(".")[0] in packages]:
-                del sys.modules[k]
+        xml = _model_description(code, list(slave_sources), main_module, class_name)
         model_id = xml.find("CoSimulation").get("modelIdentifier")
         for k, v in _metadata().items():
             xml.set(k, v)
         xml.set("generationTool", f"bearing-tribodynamics {xml.get('version')} build_fmu.py (native FMI 2.0 layer, "
-                                  f"{xml.get('generationTool')} slave)")
-        # GUID: a hash of the content (model description without guid and date, and every code package by its
-        # content-hashed name), so two builds of the same sources carry the same GUID
+                                  f"model process, {xml.get('generationTool')} slave)")
+        # GUID: a hash of the content (model description without guid and date, and the code), so two builds of
+        # the same sources carry the same GUID
         xml.set("guid", "")
         date = xml.attrib.pop("generationDateAndTime", None)
-        digest = hashlib.sha256(tostring(xml, "UTF-8") + "\0".join(packages).encode()).hexdigest()
+        digest = hashlib.sha256(tostring(xml, "UTF-8") + code_hash.encode()).hexdigest()
         guid = "{" + str(uuid.UUID(digest[:32])) + "}"
         xml.set("guid", guid)
         if date:
             xml.set("generationDateAndTime", date)
         md = parseString(tostring(xml, "UTF-8")).toprettyxml(encoding="UTF-8")
 
-        env = dict(_python_env(), bridge_module=f"bearing_fmi2_bridge_{h}", code_hash=h, packages=packages,
-                   slave_module=names[main_module], class_name=class_name, guid=guid)
-        (stage / "resources" / "python_env.json").write_text(json.dumps(env, indent=1, ensure_ascii=False) + "\n",
-                                                              encoding="utf-8")
+        cfg = {"guid": guid, "code_hash": code_hash, "slave_module": main_module, "class_name": class_name,
+               "python_version": f"{sys.version_info.major}.{sys.version_info.minor}"}
+        (res / "model.json").write_text(json.dumps(cfg, indent=1) + "\n", encoding="utf-8")
+        (res / "build_python.txt").write_text(sys.executable + "\n", encoding="utf-8")
         binaries = {}
         if sys.platform.startswith("linux"):
             so = stage / "binaries" / "linux64" / f"{model_id}.so"
             so.parent.mkdir(parents=True)
-            _compile(so, "linux64")
+            _compile(so)
             binaries[so] = 0o755
-        if shutil.which("x86_64-w64-mingw32-gcc"):
-            dll = stage / "binaries" / "win64" / f"{model_id}.dll"
-            dll.parent.mkdir(parents=True)
-            _compile(dll, "win64")
-            binaries[dll] = 0o755
 
         fmu = dest / f"{model_id}.fmu"
         doc = stage / "documentation"
