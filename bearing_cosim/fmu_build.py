@@ -114,8 +114,54 @@ def _model_description(code: Path, slave_modules, main_module: str, class_name: 
             sys.modules.pop(m, None)
 
 
-def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, reference: bool = False) -> Path:
-    """slave_sources: {module name: source text}; main_module holds class_name."""
+# The sessions the precompilation runs: every kernel an FMU instance can call (integrators, traction models,
+# thermal network and churning, displacement coupling, elastic outer ring, a four-point-contact bearing, ring growth).
+_PRECOMPILE = r"""
+import sys
+sys.path.insert(0, sys.argv[1])
+from bearing_core.cosim import CoSimParameters, CoSimSession
+from bearing_core.cosim_spec import INPUT_NAMES
+from bearing_fmu import INPUT_START
+cases = [{}, {"integrator": "adaptive"}, {"integrator": "implicit"}, {"integrator": "rk4"},
+         {"traction_model": "coulomb"}, {"traction_model": "kalker"}, {"traction_model": "lubricated-curve"},
+         {"thermal": True, "churning": True, "oil_fraction": 0.05},
+         {"outer_mounting": "elastic"}, {"bearing": "QJ1044"}, {"fixed_tilt": True}]
+done = 0
+for kw in cases:
+    inputs = {k: INPUT_START.get(k, 0.0) for k in INPUT_NAMES}
+    try:
+        s = CoSimSession(CoSimParameters(**kw))
+        s.initialize(0.0, inputs)
+        for k in range(3):
+            s.step(k * 1e-3, 1e-3, inputs)
+        done += 1
+    except Exception as e:
+        print("precompile: case", kw, "failed:", type(e).__name__, e, file=sys.stderr)
+print("PRECOMPILED", done, len(cases))
+"""
+
+
+def _precompile(code: Path):
+    """Compiles the kernels into numba's cache next to the staged sources (code/**/__pycache__/*.nbi, *.nbc) for
+    numba's generic x86-64 target, which runs on any x86-64 processor. Returns what the model process needs to
+    know to use it."""
+    import numba
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("NUMBA_", "PYTHON"))}
+    env.update(NUMBA_CPU_NAME="generic")
+    r = subprocess.run([sys.executable, "-B", "-c", _PRECOMPILE, str(code)], capture_output=True, text=True, env=env,
+                       cwd=str(code))
+    if r.returncode != 0 or "PRECOMPILED" not in r.stdout:
+        raise RuntimeError(f"precompiling the kernels failed:\n{r.stdout[-2000:]}\n{r.stderr[-3000:]}")
+    n = len(list(code.rglob("*.nbc")))
+    return {"target": "generic", "numba": numba.__version__,
+            "python": f"{sys.version_info.major}.{sys.version_info.minor}", "kernels": n}
+
+
+def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, reference: bool = False,
+           precompile: bool = False, standalone: bool = False) -> Path:
+    """slave_sources: {module name: source text}; main_module holds class_name. standalone: bundle the runtime
+    (resources/python/) and the precompiled kernels."""
+    precompile = precompile or standalone
     dest = Path(dest)
     dest.mkdir(parents=True, exist_ok=True)
     files = _code_files(slave_sources)
@@ -153,8 +199,13 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, r
 
         cfg = {"guid": guid, "code_hash": code_hash, "slave_module": main_module, "class_name": class_name,
                "python_version": f"{sys.version_info.major}.{sys.version_info.minor}"}
+        if precompile:
+            cfg["precompiled"] = _precompile(code)
+        if standalone:
+            _standalone(res)
+        else:   # a thin FMU runs with an installed Python; this one is known to fit
+            (res / "build_python.txt").write_text(sys.executable + "\n", encoding="utf-8")
         (res / "model.json").write_text(json.dumps(cfg, indent=1) + "\n", encoding="utf-8")
-        (res / "build_python.txt").write_text(sys.executable + "\n", encoding="utf-8")
         binaries = {}
         if sys.platform.startswith("linux"):
             so = stage / "binaries" / "linux64" / f"{model_id}.so"
@@ -187,21 +238,124 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, r
 
 
 def _zip(stage: Path, md: bytes, binaries: dict, fmu: Path):
+    """Every member world-readable (0644; 0755 for the binaries and the bundled runtime's executables); .pyc files
+    only from the bundled runtime (resources/python/, compiled at build time)."""
     tmp = fmu.with_suffix(".fmu.tmp")
+    runtime = stage / "resources" / "python"
     with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
-        def add(arcname, data, mode=0o644):
+        def add(f_or_data, arcname, mode=0o644):
             zi = zipfile.ZipInfo(arcname, date_time=(2020, 1, 1, 0, 0, 0))
             zi.external_attr = (0o100000 | mode) << 16
             zi.compress_type = zipfile.ZIP_DEFLATED
-            z.writestr(zi, data)
-        add("modelDescription.xml", md)
+            if isinstance(f_or_data, bytes):
+                z.writestr(zi, f_or_data)
+            else:
+                with open(f_or_data, "rb") as src, z.open(zi, "w") as dst:
+                    shutil.copyfileobj(src, dst, 1 << 20)
+        add(md, "modelDescription.xml")
         for f in sorted(binaries):
-            add(str(f.relative_to(stage)).replace(os.sep, "/"), f.read_bytes(), binaries[f])
+            add(f, str(f.relative_to(stage)).replace(os.sep, "/"), binaries[f])
         for top in ("documentation", "resources"):
             for f in sorted((stage / top).rglob("*")):
-                if f.is_file() and "__pycache__" not in f.parts:
-                    add(str(f.relative_to(stage)).replace(os.sep, "/"), f.read_bytes())
+                in_runtime = runtime in f.parents
+                if f.is_file() and (f.suffix != ".pyc" or in_runtime):
+                    mode = 0o755 if in_runtime and f.parent.name == "bin" else 0o644
+                    add(f, str(f.relative_to(stage)).replace(os.sep, "/"), mode)
     os.replace(tmp, fmu)
+
+
+# ---- standalone runtime (resources/python/) ------------------------------------------------------------------
+# what the model process imports at run time (scipy: bearing_core.hertz uses scipy.optimize and scipy.special)
+RUNTIME_PACKAGES = ("numpy", "scipy", "numba", "llvmlite")
+_STDLIB_SKIP = {"test", "idlelib", "tkinter", "turtledemo", "ensurepip", "lib2to3", "site-packages", "__pycache__",
+                "pydoc_data", "venv", "distutils", "unittest", "sqlite3", "dbm", "curses", "xmlrpc", "wsgiref"}
+_PKG_SKIP_DIRS = {"tests", "test", "__pycache__", "testing", "include"}
+_PKG_SKIP_SUFFIX = (".pyc", ".pyi", ".pxd", ".h", ".c", ".cpp", ".f", ".f90", ".a")
+_LAUNCHER_C = r"""#include <Python.h>
+int main(int argc, char **argv) { return Py_BytesMain(argc, argv); }
+"""
+
+
+def _copy_tree(src: Path, dst: Path, skip_dirs=(), skip_suffix=()):
+    for d, dirs, files in os.walk(src):
+        dirs[:] = [x for x in dirs if x not in skip_dirs]
+        out = dst / Path(d).relative_to(src)
+        out.mkdir(parents=True, exist_ok=True)
+        for f in files:
+            if not f.endswith(skip_suffix) and not os.path.islink(os.path.join(d, f)):
+                shutil.copyfile(os.path.join(d, f), out / f)
+
+
+def _standalone(res: Path):
+    """resources/python/: this Python's libpython and a pruned standard library, an executable built here that
+    runs it (RUNPATH $ORIGIN/../lib), and the runtime packages (stripped shared libraries, .pyc compiled with
+    unchecked hashes and relative file names); build paths inside copied files are overwritten."""
+    import sysconfig
+    import importlib
+    ver = f"{sys.version_info.major}.{sys.version_info.minor}"
+    home = res / "python"
+    lib = home / "lib"
+    stdlib_dst = lib / f"python{ver}"
+    lib.mkdir(parents=True)
+    so = Path(sysconfig.get_config_var("LIBDIR")) / sysconfig.get_config_var("INSTSONAME")
+    if not so.is_file():
+        raise RuntimeError(f"--standalone needs a Python built with a shared libpython; {so} does not exist "
+                           f"(Python at {sys.base_prefix})")
+    shutil.copyfile(so, lib / so.name)
+    stdlib = Path(sysconfig.get_paths()["stdlib"])
+    _copy_tree(stdlib, stdlib_dst, _STDLIB_SKIP | {f"config-{ver}-{sys.implementation._multiarch}"},
+               (".pyc", ".exe"))
+    site = stdlib_dst / "site-packages"
+    for name in RUNTIME_PACKAGES:
+        pkg = Path(importlib.import_module(name).__file__).parent
+        _copy_tree(pkg, site / name, _PKG_SKIP_DIRS, _PKG_SKIP_SUFFIX)
+        libs = pkg.parent / f"{name}.libs"
+        if libs.is_dir():
+            _copy_tree(libs, site / libs.name)
+        for di in pkg.parent.glob(f"{name}-*.dist-info"):
+            _copy_tree(di, site / di.name)
+    (home / "bin").mkdir()
+    src = res.parent / "python_main.c"
+    src.write_text(_LAUNCHER_C)
+    cmd = [os.environ.get("CC", "gcc"), "-O2", "-o", str(home / "bin" / "python3"), str(src),
+           f"-I{sysconfig.get_config_var('INCLUDEPY')}", f"-L{sysconfig.get_config_var('LIBDIR')}",
+           f"-lpython{ver}{sys.abiflags}", "-Wl,-rpath,$ORIGIN/../lib"]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    src.unlink()
+    if r.returncode != 0:
+        raise RuntimeError(f"compiling the bundled Python's executable failed ({' '.join(cmd)}):\n{r.stderr}")
+    if shutil.which("strip"):
+        sos = [str(f) for f in home.rglob("*.so*") if f.is_file()] + [str(home / "bin" / "python3")]
+        for k in range(0, len(sos), 200):
+            subprocess.run(["strip", "--strip-unneeded", *sos[k:k + 200]], capture_output=True)
+    # bytecode: checked by nothing (the unpack's mtimes are arbitrary), file names relative to the runtime
+    code = ("import compileall, py_compile, sys; ok = compileall.compile_dir(sys.argv[1], stripdir=sys.argv[1], "
+            "prependdir='python', quiet=1, workers=2, invalidation_mode=py_compile.PycInvalidationMode.UNCHECKED_HASH);"
+            " sys.exit(0 if ok else 1)")
+    subprocess.run([sys.executable, "-c", code, str(stdlib_dst)], capture_output=True, text=True)
+    _scrub(home)
+
+
+def _build_paths() -> list:
+    """Absolute paths of this build machine that must not appear inside a standalone FMU."""
+    paths = {sys.base_prefix, sys.prefix, str(ROOT), str(Path(sys.executable).resolve().parent.parent)}
+    return sorted({p for p in paths if len(p) > 4}, key=len, reverse=True)
+
+
+def _scrub(tree: Path):
+    """Overwrites every occurrence of a build path inside the files of tree with a same-length nonexistent path
+    (compiled-in prefixes of libpython, _sysconfigdata), so that no file refers to the build machine."""
+    pats = [p.encode() for p in _build_paths()]
+    for f in tree.rglob("*"):
+        if not f.is_file():
+            continue
+        data = f.read_bytes()
+        new = data
+        for p in pats:
+            if p in new:
+                new = new.replace(p, b"/" + b"_" * (len(p) - 1))
+        if new is not data and new != data:
+            f.write_bytes(new)
 
 
 # ---- OSP model description (OSP Interface Specification 1.0: variable groups of the FMU's variables) ----------
@@ -326,12 +480,13 @@ definition. SI units; display units rpm, degC, deg, mm.</p>
 """
 
 
-def build(dest: Path | str = "dist", reference: bool = False) -> Path:
+def build(dest: Path | str = "dist", reference: bool = False, precompile: bool = False,
+          standalone: bool = False) -> Path:
     """Build dest/BearingFMU.fmu; ``reference`` also runs the cross-check experiment on it (fmpy, a few seconds
     to a minute with an empty numba cache) and ships <id>_in.csv, _ref.opt, _ref.csv and a plot in
     documentation/ (copies of the CSV/opt files next to the FMU)."""
     return _build("BearingFMU", {"bearing_fmu": (FMU_SRC / "bearing_fmu.py").read_text()}, "bearing_fmu",
-                  Path(dest), reference)
+                  Path(dest), reference, precompile, standalone)
 
 
 def build_variant(class_name: str, start_values: dict, dest: Path | str = "dist") -> Path:
@@ -360,8 +515,14 @@ def main(argv=None):
     ap.add_argument("--dest", default="dist", help="output folder (default dist/)")
     ap.add_argument("--with-reference", action="store_true",
                     help="also run the default experiment and ship the cross-check reference files and a plot")
+    ap.add_argument("--precompile", action="store_true",
+                    help="ship the compiled kernels (numba cache, generic x86-64): no compilation at first use "
+                         "where the model runs with the build's Python and numba version")
+    ap.add_argument("--standalone", action="store_true",
+                    help="bundle the runtime (this Python's libpython, a pruned standard library, numpy, scipy, "
+                         "numba, llvmlite) and the precompiled kernels: the FMU needs no installed Python")
     a = ap.parse_args(argv)
-    fmu = build(a.dest, reference=a.with_reference)
+    fmu = build(a.dest, reference=a.with_reference, precompile=a.precompile, standalone=a.standalone)
     print(f"built {fmu} ({fmu.stat().st_size / 1024:.0f} KiB)")
     return 0
 

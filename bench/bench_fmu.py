@@ -5,7 +5,8 @@ Builds the FMU (bearing_cosim.fmu_build.build, as ``bearing build-fmu``) into a 
 --fmu, and runs it in fresh processes:
   * cold: an empty FMU cache folder (BEARING_FMU_CACHE), so numba compiles every kernel;
   * warm: the same folder again (compiled kernels loaded from numba's cache).
-Reports per run the wall time of instantiate + initialisation, of the first doStep, and the marginal wall
+The model runs in its own process, which times its integration kernels and its own share of each doStep
+(BEARING_FMU_PROFILE). Reports per run the wall time of instantiate + initialisation, of the first doStep, and the marginal wall
 time per simulated second over the steps after the first (``wall_per_sim_s``; < 1 is faster than real
 time). The per-step overhead is the wall time per doStep that is not time integration: the same steps are
 run in process through bearing_core.cosim.CoSimSession (same arithmetic, same integrator choices) with the
@@ -76,39 +77,34 @@ def worker(fmu: str, t_end: float) -> dict:
     f.enterInitializationMode()
     f.exitInitializationMode()
     t_init = time.perf_counter() - t0
-    # the FMU's model code runs in this interpreter under a content-hashed package name: time its
-    # integration kernels from here (the per-step overhead is then measured within each step)
-    kern, bare = [0.0], [0.0]
-    for name, mod in list(sys.modules.items()):
-        if name.startswith("bearing_core_") and name.endswith(".dynamics") and hasattr(mod, "DynamicModel"):
-            _time_kernels(mod, kern, bare)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     outs = [vr["cage_speed"], vr["reaction_Fx"], vr["heat_flux_total"]]
     n = int(round(t_end / H))
-    walls, kerns, bares = [], [], []
+    walls = []
     t = 0.0
     for k in range(n):
-        kern[0] = bare[0] = 0.0
         a = time.perf_counter()
         f.doStep(currentCommunicationPoint=t, communicationStepSize=H)
         f.getReal(outs)
         walls.append(time.perf_counter() - a)
-        kerns.append(kern[0])
-        bares.append(bare[0])
         t = (k + 1) * H
     last = f.getReal(outs)
     short = []
     for k in range(SHORT_N):
-        bare[0] = 0.0
         a = time.perf_counter()
         f.doStep(currentCommunicationPoint=t, communicationStepSize=SHORT_H)
         f.getReal(outs)
-        short.append(time.perf_counter() - a - bare[0])
+        short.append(time.perf_counter() - a)
         t = n * H + (k + 1) * SHORT_H
     f.terminate()
     f.freeInstance()
-    return {"init_s": t_init, "first_step_s": walls[0], "step_walls": walls, "kernel_walls": kerns,
-            "bare_kernel_walls": bares, "short_step_overheads": short, "cage_speed_end": last[0]}
+    # the model process's own timings of every fmi2DoStep (BEARING_FMU_PROFILE, written at fmi2FreeInstance)
+    prof = json.loads(Path(os.environ["BEARING_FMU_PROFILE"]).read_text())
+    busy, kerns, bares = prof["busy"], prof["kernel"], prof["bare_kernel"]
+    return {"init_s": t_init, "first_step_s": walls[0], "step_walls": walls, "kernel_walls": kerns[:n],
+            "bare_kernel_walls": bares[:n], "busy": busy[:n],
+            "short_step_overheads": [w - b for w, b in zip(short, bares[n:])],
+            "short_step_exchange": [w - b for w, b in zip(short, busy[n:])], "cage_speed_end": last[0]}
 
 
 def in_process(t_end: float) -> dict:
@@ -116,7 +112,7 @@ def in_process(t_end: float) -> dict:
     from bearing_core.cosim import CoSimParameters, CoSimSession
     from bearing_core.cosim_spec import INPUT_NAMES
     from bearing_core import dynamics
-    sys.path.insert(0, str(ROOT / "fmu_src"))
+    sys.path.insert(0, str(ROOT / "bearing_cosim" / "fmu_src"))
     from bearing_fmu import INPUT_START
     inputs = {k: INPUT_START.get(k, 0.0) for k in INPUT_NAMES}
     # compile / load every integration kernel before timing ('auto' probes both of its methods)
@@ -164,7 +160,7 @@ def in_process(t_end: float) -> dict:
 
 
 def _run_worker(fmu, t_end, cache):
-    env = dict(os.environ, BEARING_FMU_CACHE=str(cache))
+    env = dict(os.environ, BEARING_FMU_CACHE=str(cache), BEARING_FMU_PROFILE=str(Path(cache) / "profile.json"))
     env.pop("NUMBA_CACHE_DIR", None)
     p = subprocess.run([sys.executable, __file__, "--worker", "--fmu", str(fmu), "--t-end", str(t_end)],
                        capture_output=True, text=True, env=env)
@@ -211,6 +207,9 @@ def main(argv=None):
         "fmu_overhead_vs_kernels_us": _median_us(sw, warm["bare_kernel_walls"][1:]),
         "session_overhead_vs_kernels_us": _median_us(ip["step_walls"][1:], ip["bare_kernel_walls"][1:]),
         "fmu_overhead_short_step_us": float(np.median(warm["short_step_overheads"])) * 1e6,
+        # the FMI layer alone: fmpy + native layer + exchange with the model process (step wall - model's time)
+        "exchange_us": _median_us(sw, warm["busy"][1:]),
+        "exchange_short_step_us": float(np.median(warm["short_step_exchange"])) * 1e6,
         "session_overhead_short_step_us": float(np.median(ip["short_step_overheads"])) * 1e6,
         # of which the one right-hand-side call for the outputs and films at the communication point
         "output_eval_us": float(np.median(ip["eval_walls"][1:])) * 1e6,
@@ -233,6 +232,8 @@ def main(argv=None):
               f"the FMU, {out['session_overhead_vs_kernels_us']:.0f} us in the session; at {SHORT_H * 1e6:g} us steps "
               f"(warm caches): {out['fmu_overhead_short_step_us']:.0f} us / "
               f"{out['session_overhead_short_step_us']:.0f} us")
+        print(f"of which the FMI layer and the exchange with the model process: {out['exchange_us']:.0f} us "
+              f"({out['exchange_short_step_us']:.0f} us at {SHORT_H * 1e6:g} us steps)")
         print(f"warm: initialisation {out['warm_init_s']:.2f} s, first step {out['warm_first_step_s']:.3f} s")
         print(f"first run (cold if the cache folder was empty): initialisation {out['cold_init_s']:.2f} s, "
               f"first step {out['cold_first_step_s']:.3f} s")

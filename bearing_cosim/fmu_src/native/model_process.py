@@ -119,8 +119,26 @@ def _writable_copy(src: Path, name: str) -> Path | None:
     return None
 
 
+def _use_shipped_kernels(cfg: dict) -> bool:
+    """The FMU's precompiled kernels fit this process (same Python minor version and numba version, and the
+    user did not choose a target): select their target before numba loads. Otherwise numba compiles (JIT)."""
+    pre = cfg.get("precompiled")
+    if not pre or "NUMBA_CPU_NAME" in os.environ or "NUMBA_CPU_FEATURES" in os.environ:
+        return False
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        fits = version("numba") == pre["numba"] and f"{sys.version_info.major}.{sys.version_info.minor}" == pre["python"]
+    except PackageNotFoundError:
+        return False
+    if fits:
+        os.environ["NUMBA_CPU_NAME"] = pre["target"]
+    return fits
+
+
 def load_slave_class(res: Path, cfg: dict):
-    root = _writable_copy(res / "code", f"code-{cfg['code_hash']}")
+    shipped = _use_shipped_kernels(cfg)
+    root = _writable_copy(res / "code", f"code-{cfg['code_hash']}" + ("-" + cfg["precompiled"]["target"]
+                                                                      if shipped else ""))
     if root is None:
         root = res / "code"
         os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="bearing_fmu_numba_")
@@ -128,6 +146,38 @@ def load_slave_class(res: Path, cfg: dict):
     import importlib
     mod = importlib.import_module(cfg["slave_module"])
     return getattr(mod, cfg["class_name"])
+
+
+class Profile:
+    """BEARING_FMU_PROFILE=<file>: per fmi2DoStep, the model process's time in the call and in the numba
+    integration kernels (bench/bench_fmu.py), written as JSON to <file> at fmi2FreeInstance."""
+
+    def __init__(self, path):
+        from bearing_core import dynamics
+        self.path, self.kern, self.bare = path, [0.0], [0.0]
+        self.rows = []
+        K = dynamics.K
+        for obj, name, box in ((dynamics.DynamicModel, "_integrate", self.kern), (K, "integrate", self.bare),
+                               (K, "integrate_rosw", self.bare)):
+            setattr(obj, name, self._timed(getattr(obj, name), box))
+
+    @staticmethod
+    def _timed(f, box):
+        def timed(*a):
+            t1 = time.perf_counter()
+            try:
+                return f(*a)
+            finally:
+                box[0] += time.perf_counter() - t1
+        return timed
+
+    def record(self, busy):
+        self.rows.append((busy, self.kern[0], self.bare[0]))
+        self.kern[0] = self.bare[0] = 0.0
+
+    def write(self):
+        Path(self.path).write_text(json.dumps({"busy": [r[0] for r in self.rows], "kernel": [r[1] for r in self.rows],
+                                               "bare_kernel": [r[2] for r in self.rows]}))
 
 
 # ---- the FMI calls -----------------------------------------------------------------------------------
@@ -286,7 +336,7 @@ class Model:
 
     def get_state(self, sid):
         if self.mode not in ("init", "step"):
-            raise FmiError(f"fmi2GetFMUstate: no state in {self.mode} mode")
+            raise FmiError(f"no state in {self.mode} mode")
         if sid not in self.states:
             sid = self.next_state
             self.next_state += 1
@@ -393,6 +443,7 @@ def serve(res: Path, fd: int, master_pid: int):
     spin = float(os.environ.get("BEARING_FMU_SPIN_US", "200")) * 1e-6
     cfg = json.loads((res / "model.json").read_text(encoding="utf-8"))
     model = None
+    profile = None
     out_view = None
     last = 0
     import numpy as np
@@ -414,6 +465,7 @@ def serve(res: Path, fd: int, master_pid: int):
         (n_in,) = r.unpack("<I")
         in_vrs = r.unpack(f"<{n_in}I") if n_in else ()
         in_vals = r.unpack(f"<{n_in}d") if n_in else ()
+        r0 = r.off
         try:
             if cmd == C_HELLO:
                 guid, name = r.bytes().decode(), r.bytes().decode()
@@ -428,6 +480,8 @@ def serve(res: Path, fd: int, master_pid: int):
                     slave._out_names = [n for n, *_ in OUTPUT_SPEC] + [n for n, *_ in INT_OUTPUT_SPEC]
                 var_table(model, w)
                 flags |= F_SNAPSHOT
+                if os.environ.get("BEARING_FMU_PROFILE"):
+                    profile = Profile(os.environ["BEARING_FMU_PROFILE"])
             elif model is None:
                 raise FmiError("the model was not instantiated")
             else:
@@ -461,10 +515,7 @@ def serve(res: Path, fd: int, master_pid: int):
                         vals = [r.bytes().decode("utf-8") for _ in range(n)]
                     else:
                         vals = r.unpack(f"<{n}i")
-                    try:
-                        model.set(kind, vrs, vals)
-                    except FmiError as e:
-                        raise FmiError(f"fmi2Set{_KIND[kind]}: {e}") from None
+                    model.set(kind, vrs, vals)
                 elif cmd == C_DEBUG:
                     on, n = r.unpack("<ii")
                     cats = [r.bytes().decode("utf-8", "replace") for _ in range(n)]
@@ -502,7 +553,11 @@ def serve(res: Path, fd: int, master_pid: int):
                     raise FmiError(f"unknown command {cmd} (protocol {PROTOCOL})")
         except FmiError as e:
             if model is not None:
-                model.log(ERROR, str(e))
+                if cmd in (C_GET, C_SET):
+                    name = f"fmi2{'Get' if cmd == C_GET else 'Set'}{_KIND[struct.unpack_from('<I', mm, r0)[0]]}"
+                else:
+                    name = _FMI_NAME.get(cmd)
+                model.log(ERROR, f"{name}: {e}" if name and cmd != C_UNSUPPORTED else str(e))
             else:
                 w.parts = [struct.pack("<I", 0)]
                 logs = f"{ERROR}\x1flogError\x1f{e}\0".encode()
@@ -537,6 +592,8 @@ def serve(res: Path, fd: int, master_pid: int):
                 out_view = np.frombuffer(mm, dtype=np.float64, count=n, offset=resp_off + 16)
             out_view[:] = out
             logs = model.take_logs()
+            if profile is not None:
+                profile.record(time.perf_counter() - t0)
             struct.pack_into("<II", mm, resp_off, n, 0)
             off = resp_off + 16 + 8 * n
             struct.pack_into("<I", mm, off, len(logs))
@@ -547,6 +604,8 @@ def serve(res: Path, fd: int, master_pid: int):
             _respond(mm, words, resp_off, resp_cap, status, MODES.index(model.mode), flags, model.time, t0,
                      model.take_logs(), w, resp_addr, last)
         if cmd == C_FREE:
+            if profile is not None:
+                profile.write()
             return 0
 
 
