@@ -199,6 +199,7 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, r
                "python_version": f"{sys.version_info.major}.{sys.version_info.minor}"}
         if precompile:
             cfg["precompiled"] = _precompile(code)
+            _scrub(code)   # numba's cached objects name the build's source paths (locations for messages)
         if standalone:
             _standalone(res)
         else:   # a thin FMU runs with an installed Python; this one is known to fit
@@ -266,8 +267,8 @@ def _zip(stage: Path, md: bytes, binaries: dict, fmu: Path):
 # what the model process imports at run time (scipy: bearing_core.hertz uses scipy.optimize and scipy.special)
 RUNTIME_PACKAGES = ("numpy", "scipy", "numba", "llvmlite")
 _STDLIB_SKIP = {"test", "idlelib", "tkinter", "turtledemo", "ensurepip", "lib2to3", "site-packages", "__pycache__",
-                "pydoc_data", "venv", "distutils", "unittest", "sqlite3", "dbm", "curses", "xmlrpc", "wsgiref"}
-_PKG_SKIP_DIRS = {"tests", "test", "__pycache__", "testing", "include"}
+                "pydoc_data", "venv", "distutils", "sqlite3", "dbm", "curses", "xmlrpc", "wsgiref"}
+_PKG_SKIP_DIRS = {"tests", "test", "__pycache__", "include"}
 _PKG_SKIP_SUFFIX = (".pyc", ".pyi", ".pxd", ".h", ".c", ".cpp", ".f", ".f90", ".a")
 _LAUNCHER_C = r"""#include <Python.h>
 int main(int argc, char **argv) { return Py_BytesMain(argc, argv); }
@@ -323,9 +324,10 @@ def _standalone(res: Path):
     if r.returncode != 0:
         raise RuntimeError(f"compiling the bundled Python's executable failed ({' '.join(cmd)}):\n{r.stderr}")
     if shutil.which("strip"):
-        sos = [str(f) for f in home.rglob("*.so*") if f.is_file()] + [str(home / "bin" / "python3")]
-        for k in range(0, len(sos), 200):
-            subprocess.run(["strip", "--strip-unneeded", *sos[k:k + 200]], capture_output=True)
+        # only what was linked here or carries no relocated program headers: libraries of the wheels that
+        # auditwheel patched (numpy.libs, scipy.libs, their extension modules) break when stripped
+        sos = [lib / so.name, home / "bin" / "python3", site / "llvmlite" / "binding" / "libllvmlite.so"]
+        subprocess.run(["strip", "--strip-unneeded", *[str(f) for f in sos if f.is_file()]], capture_output=True)
     # bytecode: checked by nothing (the unpack's mtimes are arbitrary), file names relative to the runtime
     code = ("import compileall, py_compile, sys; ok = compileall.compile_dir(sys.argv[1], stripdir=sys.argv[1], "
             "prependdir='python', quiet=1, workers=2, invalidation_mode=py_compile.PycInvalidationMode.UNCHECKED_HASH);"
@@ -342,10 +344,12 @@ def _build_paths() -> list:
 
 def _scrub(tree: Path):
     """Overwrites every occurrence of a build path inside the files of tree with a same-length nonexistent path
-    (compiled-in prefixes of libpython, _sysconfigdata), so that no file refers to the build machine."""
+    (compiled-in prefixes of libpython, _sysconfigdata, source locations in numba's cache; lengths unchanged, so
+    pickles and binaries stay valid), so that no file refers to the build machine. Source files (.py) are left
+    as they are (the code's content hash)."""
     pats = [p.encode() for p in _build_paths()]
     for f in tree.rglob("*"):
-        if not f.is_file():
+        if not f.is_file() or f.suffix == ".py":
             continue
         data = f.read_bytes()
         new = data

@@ -240,7 +240,7 @@ def test_unsolvable_load_refused_fast():
 def test_two_versions_side_by_side(built, tmp_path):
     """Two versions of the FMU in one fmpy process (v2's slave doubles cage_speed), after the host imported
     the installed bearing_core and broke it (contact-stress limit set to 1 Pa): each FMU runs its own code in
-    its own model process, v2 gives exactly twice v1's cage speed and both accept every step."""
+    its own model process, v2 gives twice v1's cage speed and both accept every step."""
     sys.path.insert(0, str(HERE.parent))
     from build_fmu import _build
     src = (HERE.parent / "bearing_cosim" / "fmu_src" / "bearing_fmu.py").read_text()
@@ -279,8 +279,10 @@ print("RESULT", json.dumps(res))
     import json
     res = json.loads(r.stdout.split("RESULT", 1)[1])
     assert all(s == 0 for s, _ in res["v1"] + res["v2"])
+    # v2's code has its own content hash, so its own numba cache: kernels compiled in the process and kernels
+    # loaded from a cache may round differently (1e-13 at the first step, growing over the steps), hence 1e-5
     for (_, a), (_, b) in zip(res["v1"], res["v2"]):
-        assert b == 2.0 * a and a > 0
+        assert b == pytest.approx(2.0 * a, rel=1e-5) and a > 0
 
 
 def test_read_only_unpack_and_home(built, tmp_path):

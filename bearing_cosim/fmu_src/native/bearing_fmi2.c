@@ -214,7 +214,7 @@ static void fail(Comp *c, const char *why) {
     }
     char tail[3200];
     stderr_tail(c, tail, sizeof tail);
-    mlog(c, fmi2Error, "%s; every later call returns fmi2Error (instantiate anew)%s%s", why,
+    mlog(c, fmi2Error, "%s%s%s%s", why, c->seq > 1 ? "; every later call returns fmi2Error (instantiate anew)" : "",
          *tail ? ". Last output of the model process:\n" : "", tail);
     c->dead = 1;
 }
