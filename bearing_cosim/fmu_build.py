@@ -343,10 +343,11 @@ def _build_paths() -> list:
 
 
 def _scrub(tree: Path):
-    """Overwrites every occurrence of a build path inside the files of tree with a same-length nonexistent path
-    (compiled-in prefixes of libpython, _sysconfigdata, source locations in numba's cache; lengths unchanged, so
-    pickles and binaries stay valid), so that no file refers to the build machine. Source files (.py) are left
-    as they are (the code's content hash)."""
+    """Makes every build path inside the files of tree relative by overwriting its leading '/' with '_'
+    (compiled-in prefixes of libpython, _sysconfigdata, source locations in numba's cache), so that no file refers
+    to the build machine. Lengths stay, so pickles and binaries stay valid, and so do strings the linker merged
+    into a path's tail (libpython's version string is the tail of its prefix). Source files (.py) are left as
+    they are (the code's content hash)."""
     pats = [p.encode() for p in _build_paths()]
     for f in tree.rglob("*"):
         if not f.is_file() or f.suffix == ".py":
@@ -355,7 +356,7 @@ def _scrub(tree: Path):
         new = data
         for p in pats:
             if p in new:
-                new = new.replace(p, b"/" + b"_" * (len(p) - 1))
+                new = new.replace(p, b"_" + p[1:])
         if new is not data and new != data:
             f.write_bytes(new)
 
