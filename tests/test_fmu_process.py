@@ -161,7 +161,9 @@ run(w, [])      # same machine code (freshly compiled and cached kernels may rou
 w.terminate(); w.freeInstance()
 fs = [make("a"), make("b")]
 one = []
-t0 = time.perf_counter(); run(make("c"), one); t_one = time.perf_counter() - t0
+c = make("c")
+t0 = time.perf_counter(); run(c, one); t_one = time.perf_counter() - t0
+c.terminate(); c.freeInstance()
 res = [[], []]
 th = [threading.Thread(target=run, args=(f, r)) for f, r in zip(fs, res)]
 t0 = time.perf_counter()
