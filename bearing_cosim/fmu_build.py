@@ -332,8 +332,8 @@ def _standalone(res: Path):
     code = ("import compileall, py_compile, sys; ok = compileall.compile_dir(sys.argv[1], stripdir=sys.argv[1], "
             "prependdir='python', quiet=1, workers=2, invalidation_mode=py_compile.PycInvalidationMode.UNCHECKED_HASH);"
             " sys.exit(0 if ok else 1)")
+    _scrub(home, sources=True)
     subprocess.run([sys.executable, "-c", code, str(stdlib_dst)], capture_output=True, text=True)
-    _scrub(home)
 
 
 def _build_paths() -> list:
@@ -342,15 +342,15 @@ def _build_paths() -> list:
     return sorted({p for p in paths if len(p) > 4}, key=len, reverse=True)
 
 
-def _scrub(tree: Path):
+def _scrub(tree: Path, sources: bool = False):
     """Makes every build path inside the files of tree relative by overwriting its leading '/' with '_'
     (compiled-in prefixes of libpython, _sysconfigdata, source locations in numba's cache), so that no file refers
     to the build machine. Lengths stay, so pickles and binaries stay valid, and so do strings the linker merged
     into a path's tail (libpython's version string is the tail of its prefix). Source files (.py) are left as
-    they are (the code's content hash)."""
+    they are (the code's content hash) unless sources is true (the runtime's standard library)."""
     pats = [p.encode() for p in _build_paths()]
     for f in tree.rglob("*"):
-        if not f.is_file() or f.suffix == ".py":
+        if not f.is_file() or (f.suffix == ".py" and not sources):
             continue
         data = f.read_bytes()
         new = data
