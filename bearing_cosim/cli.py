@@ -66,6 +66,12 @@ def build_parser():
     b.add_argument("--with-reference", action="store_true",
                    help="also run the default experiment and ship the FMI cross-check reference files and a plot "
                         "(documentation/; takes a few seconds, about a minute with an empty numba cache)")
+    b.add_argument("--precompile", action="store_true",
+                   help="ship the compiled kernels (numba cache for the generic x86-64 target; adds a few minutes "
+                        "to the build): no compilation at first use with the build's Python and numba versions")
+    b.add_argument("--standalone", action="store_true",
+                   help="bundle the runtime (this Python's libpython, a pruned standard library, numpy, scipy, "
+                        "numba, llvmlite) and the precompiled kernels: the FMU needs no installed Python")
     b.set_defaults(func=cmd_build_fmu)
     v = sub.add_parser("validate-fmu", help="check an FMU with fmpy's validate_fmu; prints every problem, exit "
                                             "status 1 if there is any")
@@ -113,7 +119,7 @@ def fmu_parameters(fmu: str, pairs) -> dict:
 
 def cmd_build_fmu(a) -> int:
     from .fmu_build import build
-    fmu = build(a.dest, reference=a.with_reference)
+    fmu = build(a.dest, reference=a.with_reference, precompile=a.precompile, standalone=a.standalone)
     print(f"built {fmu} ({fmu.stat().st_size / 1024:.0f} KiB)")
     return 0
 

@@ -5,7 +5,8 @@ Builds the FMU (bearing_cosim.fmu_build.build, as ``bearing build-fmu``) into a 
 --fmu, and runs it in fresh processes:
   * cold: an empty FMU cache folder (BEARING_FMU_CACHE), so numba compiles every kernel;
   * warm: the same folder again (compiled kernels loaded from numba's cache).
-Reports per run the wall time of instantiate + initialisation, of the first doStep, and the marginal wall
+The model runs in its own process, which times its integration kernels and its own share of each doStep
+(BEARING_FMU_PROFILE). Reports per run the wall time of instantiate + initialisation, of the first doStep, and the marginal wall
 time per simulated second over the steps after the first (``wall_per_sim_s``; < 1 is faster than real
 time). The per-step overhead is the wall time per doStep that is not time integration: the same steps are
 run in process through bearing_core.session.cosim.CoSimSession (same arithmetic, same integrator choices) with the
@@ -16,11 +17,6 @@ Python of DynamicModel.advance as overhead. The ``*_short_step_us`` figures are 
 SHORT_N steps of SHORT_H = 10 us after the 1 ms steps: there the processor caches stay warm, so they show the
 overhead's own cost without the cache misses that other processes on a shared machine cause during a long
 integration. On a loaded machine the wall times vary from run to run; the overheads are the robust figures.
-Wall time is the headline throughout; beside it the thread CPU time (time.thread_time; fmpy runs the FMU's
-Python in the calling thread) of the same steps: ``cpu_per_sim_s``, ``in_process_cpu_per_sim_s``,
-``warm_init_cpu_s``, ``warm_first_step_cpu_s``, ``cold_init_cpu_s``, ``cold_first_step_cpu_s``. The JSON output
-carries the machine (bench/machine.py) under "machine"; the text output names it first.
-Quickest check: ``--t-end 0.02`` (the cold run still compiles every kernel: about a minute).
 
     python bench/bench_fmu.py [--t-end 0.2] [--fmu dist/BearingFMU.fmu] [--cache DIR] [--json]
 """
@@ -37,11 +33,10 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from machine import machine_info, machine_line  # noqa: E402
-
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
+sys.path.insert(0, str(HERE))
+from machine import machine_info, machine_line  # noqa: E402
 H = 1e-3
 SHORT_H, SHORT_N = 1e-5, 300
 
@@ -74,7 +69,6 @@ def worker(fmu: str, t_end: float) -> dict:
     """Drive the FMU with fmpy (in this process) and time it."""
     from fmpy import extract, read_model_description
     from fmpy.fmi2 import FMU2Slave
-    c0 = time.thread_time()
     t0 = time.perf_counter()
     md = read_model_description(fmu)
     unz = extract(fmu)
@@ -85,43 +79,34 @@ def worker(fmu: str, t_end: float) -> dict:
     f.enterInitializationMode()
     f.exitInitializationMode()
     t_init = time.perf_counter() - t0
-    c_init = time.thread_time() - c0
-    # the FMU's model code runs in this interpreter under a content-hashed package name: time its
-    # integration kernels from here (the per-step overhead is then measured within each step)
-    kern, bare = [0.0], [0.0]
-    for name, mod in list(sys.modules.items()):
-        if name.startswith("bearing_core_") and name.endswith(".dynamics") and hasattr(mod, "DynamicModel"):
-            _time_kernels(mod, kern, bare)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     outs = [vr["cage_speed"], vr["reaction_Fx"], vr["heat_flux_total"]]
     n = int(round(t_end / H))
-    walls, cpus, kerns, bares = [], [], [], []
+    walls = []
     t = 0.0
     for k in range(n):
-        kern[0] = bare[0] = 0.0
-        c = time.thread_time()
         a = time.perf_counter()
         f.doStep(currentCommunicationPoint=t, communicationStepSize=H)
         f.getReal(outs)
         walls.append(time.perf_counter() - a)
-        cpus.append(time.thread_time() - c)
-        kerns.append(kern[0])
-        bares.append(bare[0])
         t = (k + 1) * H
     last = f.getReal(outs)
     short = []
     for k in range(SHORT_N):
-        bare[0] = 0.0
         a = time.perf_counter()
         f.doStep(currentCommunicationPoint=t, communicationStepSize=SHORT_H)
         f.getReal(outs)
-        short.append(time.perf_counter() - a - bare[0])
+        short.append(time.perf_counter() - a)
         t = n * H + (k + 1) * SHORT_H
     f.terminate()
     f.freeInstance()
-    return {"init_s": t_init, "init_cpu_s": c_init, "first_step_s": walls[0], "first_step_cpu_s": cpus[0],
-            "step_walls": walls, "step_cpus": cpus, "kernel_walls": kerns,
-            "bare_kernel_walls": bares, "short_step_overheads": short, "cage_speed_end": last[0]}
+    # the model process's own timings of every fmi2DoStep (BEARING_FMU_PROFILE, written at fmi2FreeInstance)
+    prof = json.loads(Path(os.environ["BEARING_FMU_PROFILE"]).read_text())
+    busy, kerns, bares = prof["busy"], prof["kernel"], prof["bare_kernel"]
+    return {"init_s": t_init, "first_step_s": walls[0], "step_walls": walls, "kernel_walls": kerns[:n],
+            "bare_kernel_walls": bares[:n], "busy": busy[:n],
+            "short_step_overheads": [w - b for w, b in zip(short, bares[n:])],
+            "short_step_exchange": [w - b for w, b in zip(short, busy[n:])], "cage_speed_end": last[0]}
 
 
 def in_process(t_end: float) -> dict:
@@ -129,7 +114,7 @@ def in_process(t_end: float) -> dict:
     from bearing_core.session.cosim import CoSimParameters, CoSimSession
     from bearing_core.session.cosim_spec import INPUT_NAMES
     from bearing_core.models import dynamics
-    sys.path.insert(0, str(ROOT / "fmu_src"))
+    sys.path.insert(0, str(ROOT / "bearing_cosim" / "fmu_src"))
     from bearing_fmu import INPUT_START
     inputs = {k: INPUT_START.get(k, 0.0) for k in INPUT_NAMES}
     # compile / load every integration kernel before timing ('auto' probes both of its methods)
@@ -153,15 +138,13 @@ def in_process(t_end: float) -> dict:
     undo = _time_kernels(dynamics, kern, bare)
     dynamics.DynamicModel.evaluate_point = timed_ev
     n = int(round(t_end / H))
-    walls, cpus, kerns, bares, evs, short = [], [], [], [], [], []
+    walls, kerns, bares, evs, short = [], [], [], [], []
     try:
         for k in range(n):
             kern[0] = bare[0] = ev[0] = 0.0
-            c = time.thread_time()
             a = time.perf_counter()
             s.step(k * H, H, inputs)
             walls.append(time.perf_counter() - a)
-            cpus.append(time.thread_time() - c)
             kerns.append(kern[0])
             bares.append(bare[0])
             evs.append(ev[0])
@@ -174,12 +157,12 @@ def in_process(t_end: float) -> dict:
     finally:
         undo()
         dynamics.DynamicModel.evaluate_point = orig_ev
-    return {"step_walls": walls, "step_cpus": cpus, "kernel_walls": kerns, "bare_kernel_walls": bares, "eval_walls": evs,
+    return {"step_walls": walls, "kernel_walls": kerns, "bare_kernel_walls": bares, "eval_walls": evs,
             "short_step_overheads": short, "cage_speed_end": end}
 
 
 def _run_worker(fmu, t_end, cache):
-    env = dict(os.environ, BEARING_FMU_CACHE=str(cache))
+    env = dict(os.environ, BEARING_FMU_CACHE=str(cache), BEARING_FMU_PROFILE=str(Path(cache) / "profile.json"))
     env.pop("NUMBA_CACHE_DIR", None)
     p = subprocess.run([sys.executable, __file__, "--worker", "--fmu", str(fmu), "--t-end", str(t_end)],
                        capture_output=True, text=True, env=env)
@@ -220,7 +203,6 @@ def main(argv=None):
         "machine": machine_info(),
         "step_s": H, "simulated_s": a.t_end,
         "wall_per_sim_s": sum(sw) / (n * H),
-        "cpu_per_sim_s": sum(warm["step_cpus"][1:]) / (n * H),
         "wall_per_step_ms": sum(sw) / n * 1e3,
         "fmu_overhead_us": (float(np.median(np.subtract(sw, warm["kernel_walls"][1:]))) * 1e6
                             if any(warm["kernel_walls"]) else float(np.median(np.subtract(sw, kw))) * 1e6),
@@ -228,16 +210,16 @@ def main(argv=None):
         "fmu_overhead_vs_kernels_us": _median_us(sw, warm["bare_kernel_walls"][1:]),
         "session_overhead_vs_kernels_us": _median_us(ip["step_walls"][1:], ip["bare_kernel_walls"][1:]),
         "fmu_overhead_short_step_us": float(np.median(warm["short_step_overheads"])) * 1e6,
+        # the FMI layer alone: fmpy + native layer + exchange with the model process (step wall - model's time)
+        "exchange_us": _median_us(sw, warm["busy"][1:]),
+        "exchange_short_step_us": float(np.median(warm["short_step_exchange"])) * 1e6,
         "session_overhead_short_step_us": float(np.median(ip["short_step_overheads"])) * 1e6,
         # of which the one right-hand-side call for the outputs and films at the communication point
         "output_eval_us": float(np.median(ip["eval_walls"][1:])) * 1e6,
         "kernel_per_step_ms": kern * 1e3,
         "in_process_wall_per_sim_s": sum(ip["step_walls"][1:]) / (n * H),
-        "in_process_cpu_per_sim_s": sum(ip["step_cpus"][1:]) / (n * H),
         "warm_init_s": warm["init_s"], "warm_first_step_s": warm["first_step_s"],
         "cold_init_s": cold["init_s"], "cold_first_step_s": cold["first_step_s"],
-        "warm_init_cpu_s": warm["init_cpu_s"], "warm_first_step_cpu_s": warm["first_step_cpu_s"],
-        "cold_init_cpu_s": cold["init_cpu_s"], "cold_first_step_cpu_s": cold["first_step_cpu_s"],
         "cage_speed_end_fmu": warm["cage_speed_end"], "cage_speed_end_in_process": ip["cage_speed_end"],
     }
     if a.json:
@@ -246,8 +228,7 @@ def main(argv=None):
         print(machine_line(out["machine"]))
         print(f"BearingFMU, default parameters and inputs, {H * 1e3:g} ms steps, {a.t_end:g} s simulated (fmpy)")
         print(f"marginal wall time per simulated second: {out['wall_per_sim_s']:.2f} "
-              f"({out['wall_per_step_ms']:.3f} ms per step, of which integration {out['kernel_per_step_ms']:.3f} ms); "
-              f"thread CPU {out['cpu_per_sim_s']:.2f}")
+              f"({out['wall_per_step_ms']:.3f} ms per step, of which integration {out['kernel_per_step_ms']:.3f} ms)")
         print(f"per-step overhead: {out['fmu_overhead_us']:.0f} us through the FMU, "
               f"{out['session_overhead_us']:.0f} us in the session alone (of which {out['output_eval_us']:.0f} us "
               "the right-hand-side call for outputs and films)")
@@ -255,11 +236,11 @@ def main(argv=None):
               f"the FMU, {out['session_overhead_vs_kernels_us']:.0f} us in the session; at {SHORT_H * 1e6:g} us steps "
               f"(warm caches): {out['fmu_overhead_short_step_us']:.0f} us / "
               f"{out['session_overhead_short_step_us']:.0f} us")
-        print(f"warm: initialisation {out['warm_init_s']:.2f} s (thread CPU {out['warm_init_cpu_s']:.2f} s), "
-              f"first step {out['warm_first_step_s']:.3f} s ({out['warm_first_step_cpu_s']:.3f} s)")
-        print(f"first run (cold if the cache folder was empty): initialisation {out['cold_init_s']:.2f} s "
-              f"(thread CPU {out['cold_init_cpu_s']:.2f} s), first step {out['cold_first_step_s']:.3f} s "
-              f"({out['cold_first_step_cpu_s']:.3f} s)")
+        print(f"of which the FMI layer and the exchange with the model process: {out['exchange_us']:.0f} us "
+              f"({out['exchange_short_step_us']:.0f} us at {SHORT_H * 1e6:g} us steps)")
+        print(f"warm: initialisation {out['warm_init_s']:.2f} s, first step {out['warm_first_step_s']:.3f} s")
+        print(f"first run (cold if the cache folder was empty): initialisation {out['cold_init_s']:.2f} s, "
+              f"first step {out['cold_first_step_s']:.3f} s")
     return out
 
 

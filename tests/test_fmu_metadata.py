@@ -163,23 +163,40 @@ def test_cli_build_and_validate_fmu(tmp_path):
     assert r.returncode == 1 and "problem" in r.stdout
 
 
-def test_wheel_ships_fmu_sources(tmp_path):
-    """`pip wheel --no-deps .` gives a wheel with the FMU sources (slave, bridge, native C layer) as package data of
-    bearing_cosim, the build module, and the `fmu` extra."""
+def test_wheel_and_fmu_carry_the_same_sources(fmu, tmp_path):
+    """`pip wheel --no-deps .` gives a wheel with the FMU sources (slave, model process, launcher, native C layer)
+    as package data of bearing_cosim, the build module and the `fmu` extra; every source file of
+    bearing_cosim/fmu_src is in the wheel byte for byte, the FMU built from the tree carries the same bytes, and
+    the repository holds no symbolic link (git mode 120000)."""
     r = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(tmp_path), str(ROOT)],
                        capture_output=True, text=True, timeout=600)
     if r.returncode != 0 and ("Could not find a version" in r.stderr or "No matching distribution" in r.stderr):
         pytest.skip("build backend (setuptools>=77) not available offline: " + r.stderr[-300:])
     assert r.returncode == 0, r.stderr[-2000:]
-    whl = next(tmp_path.glob("bearing_tribodynamics-*.whl"))
-    names = set(zipfile.ZipFile(whl).namelist())
-    for f in ("bearing_cosim/fmu_build.py", "bearing_cosim/fmu_src/bearing_fmu.py",
-              "bearing_cosim/fmu_src/native/bearing_fmi2.c", "bearing_cosim/fmu_src/native/fmi2_min.h",
-              "bearing_cosim/fmu_src/native/bearing_fmi2_bridge.py", "bearing_core/bearing/presets/7218B.json"):
-        assert f in names, f
+    whl = zipfile.ZipFile(next(tmp_path.glob("bearing_tribodynamics-*.whl")))
+    names = set(whl.namelist())
+    src = ROOT / "bearing_cosim" / "fmu_src"
+    files = [f for f in sorted(src.rglob("*")) if f.is_file() and "__pycache__" not in f.parts]
+    assert {"bearing_fmu.py", "native/bearing_fmi2.c", "native/fmi2_min.h", "native/model_process.py",
+            "native/launch.sh"} <= {f.relative_to(src).as_posix() for f in files}
+    for f in files:
+        name = "bearing_cosim/fmu_src/" + f.relative_to(src).as_posix()
+        assert name in names and whl.read(name) == f.read_bytes(), name
+    assert "bearing_cosim/fmu_build.py" in names and "bearing_core/bearing/presets/7218B.json" in names
     meta = next(n for n in names if n.endswith(".dist-info/METADATA"))
-    text = zipfile.ZipFile(whl).read(meta).decode()
+    text = whl.read(meta).decode()
     assert "Provides-Extra: fmu" in text and "Requires-Dist: fmpy" in text
+    with zipfile.ZipFile(fmu["path"]) as z:
+        pairs = {"resources/code/bearing_fmu.py": "bearing_fmu.py",
+                 "resources/model_process.py": "native/model_process.py", "resources/launch.sh": "native/launch.sh",
+                 "resources/native/bearing_fmi2.c": "native/bearing_fmi2.c",
+                 "resources/native/fmi2_min.h": "native/fmi2_min.h"}
+        for in_fmu, in_pkg in pairs.items():
+            assert z.read(in_fmu) == whl.read("bearing_cosim/fmu_src/" + in_pkg), in_fmu
+    if shutil.which("git") and (ROOT / ".git").exists():
+        ls = subprocess.run(["git", "-C", str(ROOT), "ls-files", "-s"], capture_output=True, text=True).stdout
+        links = [ln for ln in ls.splitlines() if ln.startswith("120000")]
+        assert not links, links
 
 
 def test_documentation_and_osp_model_description(fmu):

@@ -41,9 +41,6 @@ def built(tmp_path_factory):
     host = d / "host"
     subprocess.run([os.environ.get("CC", "gcc"), "-std=gnu99", "-O2", "-Wall", "-o", str(host),
                     str(HERE / "c_host" / "host.c"), "-ldl"], check=True)
-    import json
-    if not json.loads((unz / "resources" / "python_env.json").read_text())["libpython"]:
-        pytest.skip("this Python has no shared libpython: a C master cannot embed it")
     md = read_model_description(str(fmu))
     vr = {v.name: v.valueReference for v in md.modelVariables}
     return {"fmu": fmu, "unz": unz, "host": host, "guid": md.guid, "vr": vr, "cache": _cache(tmp_path_factory),
@@ -87,18 +84,22 @@ def seed000_short(h=1e-3, t_end=0.3):
 
 
 def test_archive_and_native_library(built):
-    """Every archive member is readable by all users (0644, the library 0755) and the native library has no
-    undefined Python symbols (it loads libpython itself)."""
+    """Every archive member is readable by all users (0644, the library 0755); the native library neither
+    needs libpython nor refers to any Python symbol (the model runs in its own process)."""
     with zipfile.ZipFile(built["fmu"]) as z:
         for zi in z.infolist():
             mode = (zi.external_attr >> 16) & 0o777
             assert mode & 0o444 == 0o444, (zi.filename, oct(mode))
         names = z.namelist()
-    assert "binaries/linux64/BearingFMU.so" in names and "resources/python_env.json" in names
+    assert {"binaries/linux64/BearingFMU.so", "resources/model.json", "resources/launch.sh",
+            "resources/model_process.py", "resources/code/bearing_fmu.py"} <= set(names)
+    so = str(built["unz"] / "binaries/linux64/BearingFMU.so")
     if shutil.which("nm"):
-        und = subprocess.run(["nm", "-D", "--undefined-only", str(built["unz"] / "binaries/linux64/BearingFMU.so")],
-                             capture_output=True, text=True).stdout
+        und = subprocess.run(["nm", "-D", "--undefined-only", so], capture_output=True, text=True).stdout
         assert "Py" not in und, und
+    if shutil.which("readelf"):
+        dyn = subprocess.run(["readelf", "-d", so], capture_output=True, text=True).stdout
+        assert "NEEDED" in dyn and "python" not in dyn.lower(), dyn
 
 
 def test_c_host_runs_seed000_profile_like_fmpy(built, tmp_path):
@@ -199,7 +200,7 @@ free
     assert any("bearing is a fixed parameter" in m for m in errs)
     assert any("friction_coefficient is a fixed parameter" in m for m in errs)
     assert any("cage_speed is an output" in m for m in errs)
-    assert any("fmi2SerializeFMUstate is not supported" in m for m in errs)
+    assert any("fmi2SerializeFMUstate: size = 64 bytes is less than the state's" in m for m in errs)
     assert any(s == 2 and c == "logDiscard" and "reversed axial load" in m for s, c, m in logs)
     assert any(s == 2 and c == "logDiscard" and "contact pressure at least" in m for s, c, m in logs)
     assert wall < 120
@@ -238,11 +239,11 @@ def test_unsolvable_load_refused_fast():
 
 def test_two_versions_side_by_side(built, tmp_path):
     """Two versions of the FMU in one fmpy process (v2's slave doubles cage_speed), after the host imported
-    the installed bearing_core and broke it (contact-stress limit set to 1 Pa): each FMU runs its own code,
-    v2 gives exactly twice v1's cage speed and both accept every step."""
+    the installed bearing_core and broke it (contact-stress limit set to 1 Pa): each FMU runs its own code in
+    its own model process, v2 gives twice v1's cage speed and both accept every step."""
     sys.path.insert(0, str(HERE.parent))
     from build_fmu import _build
-    src = (HERE.parent / "fmu_src" / "bearing_fmu.py").read_text()
+    src = (HERE.parent / "bearing_cosim" / "fmu_src" / "bearing_fmu.py").read_text()
     marker = "        self._out = self._session.values\n"
     assert marker in src
     v2 = src.replace(marker, marker + "        self._out = self._out.copy()\n"
@@ -278,15 +279,17 @@ print("RESULT", json.dumps(res))
     import json
     res = json.loads(r.stdout.split("RESULT", 1)[1])
     assert all(s == 0 for s, _ in res["v1"] + res["v2"])
+    # v2's code has its own content hash, so its own numba cache: kernels compiled in the process and kernels
+    # loaded from a cache may round differently (1e-13 at the first step, growing over the steps), hence 1e-5
     for (_, a), (_, b) in zip(res["v1"], res["v2"]):
-        assert b == 2.0 * a and a > 0
+        assert b == pytest.approx(2.0 * a, rel=1e-5) and a > 0
 
 
 def test_read_only_unpack_and_home(built, tmp_path):
     """The FMU unpacked read-only (modes a-w), HOME unwritable (below a regular file, so that not even root
-    can create ~/.cache), no BEARING_FMU_CACHE: the code is copied to a writable folder under TMPDIR (modes of
-    the read-only unpack not kept) and the FMU instantiates, refuses a load case without equilibrium with
-    fmi2Error (model code and numba imported) and frees cleanly."""
+    can create ~/.cache), no BEARING_FMU_CACHE: the code is copied to a folder named by its content hash under
+    TMPDIR (modes of the read-only unpack not kept) and the FMU instantiates, refuses a load case without
+    equilibrium with fmi2Error (model code and numba imported) and frees cleanly."""
     ro = tmp_path / "ro"
     shutil.copytree(built["unz"], ro)
     (tmp_path / "file").write_text("")
@@ -304,7 +307,7 @@ def test_read_only_unpack_and_home(built, tmp_path):
         status, _, logs, _ = parse(r.stdout)
         assert status[:4] == [("instantiate", 0), ("setup", 0), ("enter", 0), ("set_real", 0)]
         assert status[4] == ("exit", 3) and any("reversed axial load" in m for _, _, m in logs)
-        copies = list(tmpd.glob("bearing_fmu-*/bearing_core_*/bearing_core_*/session/cosim.py"))
+        copies = list(tmpd.glob("bearing_fmu-*/code-*/bearing_core/session/cosim.py"))
         assert copies and copies[0].stat().st_mode & 0o200
     finally:
         for p in [ro, *ro.rglob("*")]:
@@ -313,25 +316,37 @@ def test_read_only_unpack_and_home(built, tmp_path):
 
 @pytest.mark.slow
 def test_valgrind_c_host(built, tmp_path):
-    """valgrind memcheck on the C host over instantiate / set / get / fmi2GetFMUstate / refused calls /
-    terminate / free / process exit: no invalid read, write or free with a frame in the FMU's native layer
-    (Python runs with PYTHONMALLOC=malloc so that its allocator is visible to valgrind)."""
+    """valgrind memcheck on the C host (the model process runs outside valgrind) over instantiate / set / get /
+    refused calls / steps / terminate / free / process exit: no invalid read, write or free with a frame in the
+    FMU's native layer, and no memory of the layer definitely lost."""
     vg = shutil.which("valgrind")
     if vg is None:
         pytest.skip("valgrind not installed")
     vr = built["vr"]
     script = (f"instantiate 1\nsetup 0\nenter\nset_real {vr['Fx']} 500\nset_string {vr['bearing']} 7218B\n"
-              f"get_real {vr['Fx']}\nset_real {vr['cage_speed']} 1\nserialize\nterminate\nfree\n"
-              "instantiate 0\nfree\n")
+              f"get_real {vr['Fx']}\nset_real {vr['cage_speed']} 1\nserialize\nexit\n"
+              f"inputs {vr['shaft_speed']} {vr['Fz']}\noutputs {vr['cage_speed']} {vr['reaction_Fz']}\n"
+              "step 0.001 314.159 3000\nstep 0.001 314.159 3000\ngetstate\nsetstate\nfreestate\n"
+              "terminate\nfree\ninstantiate 0\nfree\n")
     log = tmp_path / "vg.txt"
-    r = run_host(built, script, tmp_path, env={"PYTHONMALLOC": "malloc"},
-                 valgrind=[vg, "--error-limit=no", "--num-callers=40", f"--log-file={log}"], timeout=900)
+    r = run_host(built, script, tmp_path,
+                 valgrind=[vg, "--error-limit=no", "--num-callers=40", "--leak-check=full", f"--log-file={log}"],
+                 timeout=900)
     assert r.returncode == 0, r.stderr[-2000:]
-    status, _, _, _ = parse(r.stdout)
-    assert [s for _, s in status] == [0, 0, 0, 0, 0, 0, 3, 3, 0, 0, 0, 0]
+    status, rows, _, _ = parse(r.stdout)
+    assert [s for _, s in status] == [0, 0, 0, 0, 0, 0, 3, 3, 0, 0, 0, 0, 0, 0, 0, 0]
+    assert [int(x[0]) for x in rows] == [0, 0]
     text = log.read_text()
     assert "ERROR SUMMARY" in text
     assert not invalid_in_layer(text)
+    assert not lost_in_layer(text), lost_in_layer(text)
+
+
+def lost_in_layer(text):
+    """valgrind 'definitely lost' records allocated in the FMU's native library."""
+    import re
+    blocks = re.split(r"\n==\d+== \n", text)
+    return [b for b in blocks if "definitely lost" in b and ("BearingFMU.so" in b or "bearing_fmi2" in b)]
 
 
 def invalid_in_layer(text):

@@ -167,6 +167,7 @@ int main(int argc, char **argv) {
             printf("ROW %d %d %.9f", st, s3, t);
             for (size_t k = 0; k < nout; k++) printf(" %.17g", y[k]);
             printf("\n");
+            fflush(stdout);
             continue;
         } else if (!strcmp(cmd, "getstate")) {
             st = getState(c, &state);

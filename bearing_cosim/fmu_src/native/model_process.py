@@ -1,0 +1,636 @@
+"""The model process of the bearing FMU: one per FMU instance, started by the native FMI 2.0 layer
+(bearing_fmi2.c) through resources/launch.sh, which picks the Python.
+
+    python model_process.py <resources dir> <shared-memory fd> <master pid>
+
+The native layer and this process share one memory segment (an anonymous memfd, inherited as a file
+descriptor: nothing to unlink, nothing to leak). Each FMI call that reaches the model is one exchange: the
+master writes a request and bumps ``req_seq``, this process answers and bumps ``resp_seq``; the waiting side
+spins for a short, bounded time and then sleeps on the futex of that word. Layout and command codes are
+those of bearing_fmi2.c (PROTOCOL must match). Every request starts with the inputs the master set since
+the last exchange; a step's answer carries every output.
+
+The model is the pythonfmu slave (bearing_fmu.BearingFMU) around bearing_core's CoSimSession; this module
+only checks and routes FMI calls to it. The code is copied into a writable per-user folder named by its
+content hash ($BEARING_FMU_CACHE, else ~/.cache/bearing_fmu, else <tmp>/bearing_fmu-<uid>), so that numba's
+cache next to the sources holds wherever and however (read-only) the FMU is unpacked.
+"""
+from __future__ import annotations
+
+import ctypes
+import json
+import math
+import mmap
+import os
+import pickle
+import shutil
+import signal
+import struct
+import sys
+import tempfile
+import time
+import traceback
+from pathlib import Path
+
+PROTOCOL = 1
+MAGIC = 0x58475242            # "BRGX"
+HDR = 4096                    # header bytes; requests at HDR, responses at HDR + (size - HDR) // 2
+# header fields (byte offsets)
+O_MAGIC, O_VERSION, O_REQ, O_RESP, O_CMD, O_STATUS, O_MODE, O_FLAGS = 0, 4, 8, 12, 16, 20, 24, 28
+O_REQLEN, O_RESPLEN, O_TIME, O_BUSY, O_PID = 32, 40, 48, 56, 64
+
+(C_HELLO, C_DEBUG, C_SETUP, C_ENTER, C_EXIT, C_STEP, C_TERMINATE, C_RESET, C_FREE, C_GET, C_SET, C_GETSTATE,
+ C_SETSTATE, C_FREESTATE, C_SERIALIZE, C_DESERIALIZE, C_UNSUPPORTED) = range(1, 18)
+T_REAL, T_INTEGER, T_BOOLEAN, T_STRING = range(4)
+MODES = ("instantiated", "init", "step", "failed", "terminated")
+CAUSALITY = ("parameter", "calculatedParameter", "input", "output", "local", "independent")
+F_SNAPSHOT = 1
+
+OK, WARNING, DISCARD, ERROR, FATAL = 0, 1, 2, 3, 4
+_CATEGORY = {OK: "logInfo", WARNING: "logWarning", DISCARD: "logDiscard", ERROR: "logError", FATAL: "logError"}
+_KIND = ("Real", "Integer", "Boolean", "String")
+_CONV = (float, int, bool, lambda b: b.decode("utf-8") if isinstance(b, bytes) else str(b))
+
+_FMI_NAME = {C_DEBUG: "fmi2SetDebugLogging", C_SETUP: "fmi2SetupExperiment", C_ENTER: "fmi2EnterInitializationMode",
+             C_EXIT: "fmi2ExitInitializationMode", C_STEP: "fmi2DoStep", C_TERMINATE: "fmi2Terminate",
+             C_RESET: "fmi2Reset", C_FREE: "fmi2FreeInstance", C_GETSTATE: "fmi2GetFMUstate",
+             C_SETSTATE: "fmi2SetFMUstate", C_FREESTATE: "fmi2FreeFMUstate", C_SERIALIZE: "fmi2SerializeFMUstate",
+             C_DESERIALIZE: "fmi2DeSerializeFMUstate"}
+
+
+class FmiError(Exception):
+    """A call the FMU refuses: fmi2Error with this message, the instance stays usable."""
+
+
+# ---- futex wake-ups ----------------------------------------------------------------------------------
+_libc = ctypes.CDLL(None, use_errno=True)
+_SYS_FUTEX = {"x86_64": 202, "aarch64": 98}.get(os.uname().machine, 202)
+_FUTEX_WAIT, _FUTEX_WAKE = 0, 1
+
+
+class _Timespec(ctypes.Structure):
+    _fields_ = [("tv_sec", ctypes.c_long), ("tv_nsec", ctypes.c_long)]
+
+
+def _futex_wait(addr: int, expected: int, timeout_s: float):
+    ts = _Timespec(int(timeout_s), int((timeout_s % 1.0) * 1e9))
+    _libc.syscall(_SYS_FUTEX, ctypes.c_void_p(addr), _FUTEX_WAIT, ctypes.c_uint32(expected), ctypes.byref(ts),
+                  None, 0)
+
+
+def _futex_wake(addr: int):
+    _libc.syscall(_SYS_FUTEX, ctypes.c_void_p(addr), _FUTEX_WAKE, 0x7FFFFFFF, None, None, 0)
+
+
+# ---- the model code ----------------------------------------------------------------------------------
+def _writable_copy(src: Path, name: str) -> Path | None:
+    """A copy of the code folder, named by its content hash, in the first writable cache base; None if none."""
+    bases = []
+    if os.environ.get("BEARING_FMU_CACHE"):
+        bases.append(Path(os.environ["BEARING_FMU_CACHE"]))
+    try:
+        bases.append(Path.home() / ".cache" / "bearing_fmu")
+    except (RuntimeError, KeyError):
+        pass
+    bases.append(Path(tempfile.gettempdir()) / f"bearing_fmu-{os.getuid()}")
+    for base in bases:
+        dst = base / name
+        if (dst / ".complete").is_file() and os.access(dst, os.W_OK):
+            return dst
+        try:
+            base.mkdir(parents=True, exist_ok=True)
+            tmp = Path(tempfile.mkdtemp(prefix="tmp_", dir=base))
+            for d, dirs, files in os.walk(src):
+                out = tmp / Path(d).relative_to(src)
+                out.mkdir(exist_ok=True)
+                for f in files:
+                    shutil.copyfile(Path(d, f), out / f)   # contents only: the modes of a read-only unpack stay behind
+                    st = os.stat(Path(d, f))
+                    os.utime(out / f, ns=(st.st_atime_ns, st.st_mtime_ns))
+            (tmp / ".complete").write_text("")
+            try:
+                os.replace(tmp, dst)
+            except OSError:   # another process won the race: use its copy
+                shutil.rmtree(tmp, ignore_errors=True)
+            if (dst / ".complete").is_file():
+                return dst
+        except OSError:
+            continue
+    return None
+
+
+def _use_shipped_kernels(cfg: dict) -> bool:
+    """The FMU's precompiled kernels fit this process (same Python minor version and numba version, and the
+    user did not choose a target): select their target before numba loads. Otherwise numba compiles (JIT)."""
+    pre = cfg.get("precompiled")
+    if not pre or "NUMBA_CPU_NAME" in os.environ or "NUMBA_CPU_FEATURES" in os.environ:
+        return False
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        fits = version("numba") == pre["numba"] and f"{sys.version_info.major}.{sys.version_info.minor}" == pre["python"]
+    except PackageNotFoundError:
+        return False
+    if fits:
+        os.environ["NUMBA_CPU_NAME"] = pre["target"]
+    return fits
+
+
+def load_slave_class(res: Path, cfg: dict):
+    shipped = _use_shipped_kernels(cfg)
+    root = _writable_copy(res / "code", f"code-{cfg['code_hash']}" + ("-" + cfg["precompiled"]["target"]
+                                                                      if shipped else ""))
+    if root is None:
+        root = res / "code"
+        os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="bearing_fmu_numba_")
+    sys.path.insert(0, str(root))
+    import importlib
+    mod = importlib.import_module(cfg["slave_module"])
+    return getattr(mod, cfg["class_name"])
+
+
+class Profile:
+    """BEARING_FMU_PROFILE=<file>: per fmi2DoStep, the model process's time in the call and in the numba
+    integration kernels (bench/bench_fmu.py), written as JSON to <file> at fmi2FreeInstance."""
+
+    def __init__(self, path):
+        from bearing_core.models import dynamics
+        self.path, self.kern, self.bare = path, [0.0], [0.0]
+        self.rows = []
+        K = dynamics.K
+        for obj, name, box in ((dynamics.DynamicModel, "_integrate", self.kern), (K, "integrate", self.bare),
+                               (K, "integrate_rosw", self.bare)):
+            setattr(obj, name, self._timed(getattr(obj, name), box))
+
+    @staticmethod
+    def _timed(f, box):
+        def timed(*a):
+            t1 = time.perf_counter()
+            try:
+                return f(*a)
+            finally:
+                box[0] += time.perf_counter() - t1
+        return timed
+
+    def record(self, busy):
+        self.rows.append((busy, self.kern[0], self.bare[0]))
+        self.kern[0] = self.bare[0] = 0.0
+
+    def write(self):
+        Path(self.path).write_text(json.dumps({"busy": [r[0] for r in self.rows], "kernel": [r[1] for r in self.rows],
+                                               "bare_kernel": [r[2] for r in self.rows]}))
+
+
+# ---- the FMI calls -----------------------------------------------------------------------------------
+class Model:
+    """The checks and modes of the FMI calls around one pythonfmu slave."""
+
+    def __init__(self, cls, name, visible, logging_on):
+        self.cls, self.name, self.visible = cls, name, visible
+        self.logging_on = logging_on
+        self.categories = None
+        self.logs = []
+        self.worst = OK
+        self.time = 0.0
+        self.states = {}
+        self.next_state = 1
+        self.new_slave()
+
+    def new_slave(self):
+        self.slave = self.cls(instance_name=self.name, resources=None, visible=self.visible)
+        self.vars = self.slave.vars
+        self.fast_set = {}
+        self.mode = "instantiated"
+        self.failure = None
+
+    # logging
+    def log(self, status, msg, category=None):
+        if status >= WARNING:
+            self.worst = max(self.worst, status)
+        cat = category or _CATEGORY.get(status, "logInfo")
+        if status == OK and not self.logging_on:
+            return
+        if status == OK and self.categories is not None and cat not in self.categories:
+            return
+        self.logs.append(f"{int(status)}\x1f{cat}\x1f{msg}".replace("\0", " "))
+
+    def drain_slave(self):
+        q = getattr(getattr(self, "slave", None), "log_queue", None)
+        while q:
+            m = q.pop(0)
+            self.log(int(m.status), m.msg)
+
+    def take_logs(self) -> bytes:
+        out = "".join(r + "\0" for r in self.logs).encode("utf-8", errors="replace")
+        self.logs.clear()
+        return out
+
+    # variables
+    def var(self, vr, kind):
+        var = self.vars.get(vr)
+        if var is None:
+            raise FmiError(f"unknown value reference {vr}")
+        if type(var).__name__ != kind:
+            raise FmiError(f"value reference {vr} ({var.name}) is a {type(var).__name__}, not a {kind}")
+        return var
+
+    def check_get(self):
+        if self.mode == "failed":
+            raise FmiError(f"no values: the initialisation failed ({self.failure})")
+
+    def check_set(self, var, value):
+        caus, vari = var.causality.name, var.variability.name
+        if self.mode in ("failed", "terminated"):
+            why = f"the initialisation failed ({self.failure})" if self.mode == "failed" else "after fmi2Terminate"
+            raise FmiError(f"cannot set {var.name}: {why}")
+        if caus in ("output", "calculatedParameter", "local") or vari == "constant":
+            raise FmiError(f"{var.name} is a{'n' if caus[0] in 'aeiou' else ''} {caus} ({vari}); it cannot be set")
+        if caus == "parameter" and vari == "fixed" and self.mode == "step":
+            raise FmiError(f"{var.name} is a fixed parameter: it can only be set before fmi2ExitInitializationMode "
+                           f"(it stays {var.getter()!r}; to change it, fmi2Reset or instantiate anew)")
+        items = getattr(self.slave, "_enums", {}).get(var.name, (None, None))[1]
+        if items is not None and not 1 <= value <= len(items):
+            raise FmiError(f"{var.name} = {value!r} is not an item value of its enumeration; allowed: "
+                           + ", ".join(f"{i + 1} ({it})" for i, it in enumerate(items)))
+        if caus == "parameter" and isinstance(value, (float, int)) and not isinstance(value, bool):
+            rng = getattr(self.slave, "_ranges", {}).get(var.name)
+            if not math.isfinite(value) or (rng and not rng[0] <= value <= rng[1]):
+                allowed = f"[{rng[0]:g}, {rng[1]:g}]" if rng else "a finite number"
+                raise FmiError(f"{var.name} = {value!r} is outside the allowed range {allowed}")
+
+    def get(self, kind, vrs):
+        self.check_get()
+        out = []
+        for vr in vrs:
+            var = self.var(vr, _KIND[kind])
+            if self.mode == "instantiated" and var.causality.name == "output":
+                raise FmiError(f"{var.name} is an output: it is computed by fmi2ExitInitializationMode")
+            out.append(_CONV[kind](var.getter()))
+        return out
+
+    def set(self, kind, vrs, values):
+        todo = []
+        for vr, v in zip(vrs, values):
+            var = self.var(vr, _KIND[kind])
+            v = _CONV[kind](v)
+            self.check_set(var, v)
+            todo.append((var, v))
+        for var, v in todo:   # all or nothing
+            var.setter(v)
+
+    def apply_inputs(self, vrs, values):
+        """The inputs the master set in step mode (checked there: known Real/Integer/Boolean inputs)."""
+        fast = self.fast_set
+        for vr, v in zip(vrs, values):
+            entry = fast.get(vr)
+            if entry is None:
+                var = self.vars[vr]
+                entry = fast[vr] = (var.setter, _CONV[_KIND.index(type(var).__name__)])
+            entry[0](entry[1](v))
+
+    # FMI calls
+    def setup(self, tol_defined, tol, start, stop, stop_defined):
+        if self.mode != "instantiated":
+            raise FmiError(f"fmi2SetupExperiment is allowed only after fmi2Instantiate (mode: {self.mode})")
+        self.time = float(start)
+        self.slave.setup_experiment(float(start), float(stop) if stop_defined else None,
+                                    float(tol) if tol_defined else None)
+
+    def enter(self):
+        if self.mode != "instantiated":
+            raise FmiError(f"fmi2EnterInitializationMode is allowed only after fmi2Instantiate (mode: {self.mode})")
+        self.slave.enter_initialization_mode()
+        self.mode = "init"
+
+    def exit(self):
+        if self.mode != "init":
+            raise FmiError(f"fmi2ExitInitializationMode is allowed only in initialization mode (mode: {self.mode})")
+        try:
+            self.slave.exit_initialization_mode()
+        except Exception as e:
+            self.mode = "failed"
+            self.failure = str(e)
+            raise FmiError(f"initialisation failed: {e}") from None
+        self.mode = "step"
+
+    def step(self, t, h):
+        if self.mode != "step":
+            why = {"failed": f"the initialisation failed ({self.failure})", "terminated": "after fmi2Terminate"}
+            raise FmiError("not allowed: " + why.get(self.mode, f"the FMU is in {self.mode} mode, "
+                                                                 "call fmi2ExitInitializationMode first"))
+        ok = self.slave.do_step(t, h)
+        self.drain_slave()
+        if ok:
+            self.time = t + h
+            return OK
+        return max(self.worst, DISCARD)
+
+    def terminate(self):
+        if self.mode in ("step", "init", "failed", "instantiated"):
+            self.slave.terminate()
+        self.mode = "terminated"
+
+    def reset(self):
+        self.slave.terminate()
+        self.states.clear()
+        self.new_slave()
+
+    def get_state(self, sid):
+        if self.mode not in ("init", "step"):
+            raise FmiError(f"no state in {self.mode} mode")
+        if sid not in self.states:
+            sid = self.next_state
+            self.next_state += 1
+        self.states[sid] = (self.slave._get_fmu_state(), self.time, self.mode)
+        return sid
+
+    def set_state(self, sid):
+        if sid not in self.states:
+            raise FmiError(f"unknown FMU state {sid:#x}")
+        if self.mode in ("failed", "terminated"):
+            raise FmiError(f"fmi2SetFMUstate is not allowed in {self.mode} mode")
+        state, self.time, self.mode = self.states[sid]
+        self.slave._set_fmu_state(state)
+
+    def serialize(self, sid):
+        if sid not in self.states:
+            raise FmiError(f"unknown FMU state {sid:#x}")
+        return pickle.dumps((PROTOCOL, self.states[sid]), protocol=4)
+
+    def deserialize(self, data, sid):
+        try:
+            version, state = pickle.loads(data)
+        except Exception as e:
+            raise FmiError(f"not a serialized state of this FMU ({type(e).__name__}: {e})") from None
+        if version != PROTOCOL:
+            raise FmiError(f"serialized state of protocol {version}, this FMU reads {PROTOCOL}")
+        if sid not in self.states:
+            sid = self.next_state
+            self.next_state += 1
+        self.states[sid] = state
+        return sid
+
+
+# ---- the exchange loop -------------------------------------------------------------------------------
+class Reader:
+    def __init__(self, mm, off):
+        self.mm, self.off = mm, off
+
+    def unpack(self, fmt):
+        v = struct.unpack_from(fmt, self.mm, self.off)
+        self.off += struct.calcsize(fmt)
+        return v
+
+    def bytes(self):
+        (n,) = self.unpack("<I")
+        b = self.mm[self.off:self.off + n]
+        self.off += n
+        return b
+
+
+class Writer:
+    def __init__(self):
+        self.parts = []
+
+    def pack(self, fmt, *v):
+        self.parts.append(struct.pack(fmt, *v))
+
+    def bytes(self, b):
+        self.parts.append(struct.pack("<I", len(b)) + b)
+
+
+def snapshot(model: Model, w: Writer):
+    """Every variable's value, in the order of the variable table of the handshake."""
+    for var in model.vars.values():
+        k = _KIND.index(type(var).__name__)
+        try:
+            v = var.getter()
+        except Exception:
+            v = 0
+        if k == T_REAL:
+            w.pack("<d", float(v))
+        elif k == T_STRING:
+            w.bytes(str(v).encode("utf-8"))
+        else:
+            w.pack("<i", int(v))
+
+
+def var_table(model: Model, w: Writer):
+    out_index = {}
+    slave = model.slave
+    if hasattr(slave, "_out") and hasattr(slave, "_out_names"):
+        out_index = {n: i for i, n in enumerate(slave._out_names)}
+    w.pack("<I", len(model.vars))
+    for vr, var in model.vars.items():
+        w.pack("<IBBxxi", vr, _KIND.index(type(var).__name__), CAUSALITY.index(var.causality.name),
+               out_index.get(var.name, -1))
+        w.bytes(var.name.encode("utf-8"))
+
+
+def serve(res: Path, fd: int, master_pid: int):
+    size = os.fstat(fd).st_size
+    mm = mmap.mmap(fd, size)
+    os.close(fd)
+    words = memoryview(mm).cast("I")
+    base = ctypes.addressof(ctypes.c_char.from_buffer(mm))
+    req_addr, resp_addr = base + O_REQ, base + O_RESP
+    req_off, resp_off = HDR, HDR + (size - HDR) // 2
+    resp_cap = size - resp_off
+    if words[O_MAGIC // 4] != MAGIC or words[O_VERSION // 4] != PROTOCOL:
+        sys.stderr.write(f"bearing FMU model process: protocol {words[O_VERSION // 4]} of the native layer, this "
+                         f"model process speaks {PROTOCOL} (mixed FMU files?)\n")
+        return 3
+    struct.pack_into("<i", mm, O_PID, os.getpid())
+    spin = float(os.environ.get("BEARING_FMU_SPIN_US", "200")) * 1e-6
+    cfg = json.loads((res / "model.json").read_text(encoding="utf-8"))
+    model = None
+    profile = None
+    out_view = None
+    last = 0
+    import numpy as np
+    while True:
+        # wait for the next request: a short spin, then sleep on the futex (checking that the master lives)
+        t_end = time.perf_counter() + spin
+        while words[O_REQ // 4] == last and time.perf_counter() < t_end:
+            pass
+        while words[O_REQ // 4] == last:
+            _futex_wait(req_addr, last, 0.5)
+            if os.getppid() != master_pid:
+                return 0
+        last = words[O_REQ // 4]
+        t0 = time.perf_counter()
+        cmd = words[O_CMD // 4]
+        r = Reader(mm, req_off)
+        w = Writer()
+        status, flags = OK, 0
+        (n_in,) = r.unpack("<I")
+        in_vrs = r.unpack(f"<{n_in}I") if n_in else ()
+        in_vals = r.unpack(f"<{n_in}d") if n_in else ()
+        r0 = r.off
+        try:
+            if cmd == C_HELLO:
+                guid, name = r.bytes().decode(), r.bytes().decode()
+                visible, logging_on = r.unpack("<ii")
+                if guid and guid != cfg["guid"]:
+                    raise FmiError(f"fmi2Instantiate: GUID {guid} does not match this FMU's {cfg['guid']}")
+                cls = load_slave_class(res, cfg)
+                model = Model(cls, name, bool(visible), bool(logging_on))
+                slave = model.slave
+                if hasattr(slave, "_out"):
+                    from bearing_core.session.cosim_spec import INT_OUTPUT_SPEC, OUTPUT_SPEC
+                    slave._out_names = [n for n, *_ in OUTPUT_SPEC] + [n for n, *_ in INT_OUTPUT_SPEC]
+                var_table(model, w)
+                flags |= F_SNAPSHOT
+                if os.environ.get("BEARING_FMU_PROFILE"):
+                    profile = Profile(os.environ["BEARING_FMU_PROFILE"])
+            elif model is None:
+                raise FmiError("the model was not instantiated")
+            else:
+                if n_in:
+                    model.apply_inputs(in_vrs, in_vals)
+                if cmd == C_STEP:
+                    t, h, _ = r.unpack("<ddi")
+                    try:
+                        status = model.step(t, h)
+                    except FmiError:
+                        raise
+                    except Exception as e:
+                        model.log(ERROR, f"fmi2DoStep: {type(e).__name__}: {e}")
+                        status = ERROR
+                elif cmd == C_GET:
+                    kind, n = r.unpack("<II")
+                    vals = model.get(kind, r.unpack(f"<{n}I"))
+                    if kind == T_REAL:
+                        w.pack(f"<{n}d", *vals)
+                    elif kind == T_STRING:
+                        for v in vals:
+                            w.bytes(v.encode("utf-8"))
+                    else:
+                        w.pack(f"<{n}i", *vals)
+                elif cmd == C_SET:
+                    kind, n = r.unpack("<II")
+                    vrs = r.unpack(f"<{n}I")
+                    if kind == T_REAL:
+                        vals = r.unpack(f"<{n}d")
+                    elif kind == T_STRING:
+                        vals = [r.bytes().decode("utf-8") for _ in range(n)]
+                    else:
+                        vals = r.unpack(f"<{n}i")
+                    model.set(kind, vrs, vals)
+                elif cmd == C_DEBUG:
+                    on, n = r.unpack("<ii")
+                    cats = [r.bytes().decode("utf-8", "replace") for _ in range(n)]
+                    model.logging_on = bool(on)
+                    model.categories = set(cats) if cats else None
+                elif cmd == C_SETUP:
+                    model.setup(*r.unpack("<idddi")[:5])
+                elif cmd == C_ENTER:
+                    model.enter()
+                elif cmd == C_EXIT:
+                    model.exit()
+                elif cmd == C_TERMINATE:
+                    model.terminate()
+                elif cmd == C_RESET:
+                    model.reset()
+                elif cmd == C_FREE:
+                    if model.mode in ("step", "init"):
+                        model.slave.terminate()
+                    model.states.clear()
+                elif cmd == C_GETSTATE:
+                    w.pack("<Q", model.get_state(r.unpack("<Q")[0]))
+                elif cmd == C_SETSTATE:
+                    model.set_state(r.unpack("<Q")[0])
+                elif cmd == C_FREESTATE:
+                    model.states.pop(r.unpack("<Q")[0], None)
+                elif cmd == C_SERIALIZE:
+                    w.bytes(model.serialize(r.unpack("<Q")[0]))
+                elif cmd == C_DESERIALIZE:
+                    data = r.bytes()
+                    w.pack("<Q", model.deserialize(data, r.unpack("<Q")[0]))
+                elif cmd == C_UNSUPPORTED:
+                    raise FmiError(f"{r.bytes().decode()} is not supported by this FMU (see modelDescription.xml); "
+                                   "the instance is unchanged and stays usable")
+                else:
+                    raise FmiError(f"unknown command {cmd} (protocol {PROTOCOL})")
+        except FmiError as e:
+            if model is not None:
+                if cmd in (C_GET, C_SET):
+                    name = f"fmi2{'Get' if cmd == C_GET else 'Set'}{_KIND[struct.unpack_from('<I', mm, r0)[0]]}"
+                else:
+                    name = _FMI_NAME.get(cmd)
+                model.log(ERROR, f"{name}: {e}" if name and cmd != C_UNSUPPORTED else str(e))
+            else:
+                w.parts = [struct.pack("<I", 0)]
+                logs = f"{ERROR}\x1flogError\x1f{e}\0".encode()
+                _respond(mm, words, resp_off, resp_cap, ERROR, 0, 0, 0.0, t0, logs, w, resp_addr, last)
+                return 3
+            status = ERROR
+        except Exception as e:   # the model's own failure: fmi2Error with the reason, never fatal
+            name = _FMI_NAME.get(cmd, "FMI call")
+            if model is not None:
+                model.log(ERROR, f"{name}: {type(e).__name__}: {e}")
+                if model.logging_on:
+                    model.log(OK, traceback.format_exc())
+                status = ERROR
+            else:
+                traceback.print_exc()
+                logs = f"{ERROR}\x1flogError\x1f{name}: cannot load the model: {type(e).__name__}: {e}\0".encode()
+                w.parts = [struct.pack("<I", 0)]
+                _respond(mm, words, resp_off, resp_cap, ERROR, 0, 0, 0.0, t0, logs, w, resp_addr, last)
+                return 3
+        model.drain_slave()
+        status = max(status, model.worst)
+        model.worst = OK
+        if model.mode == "step" and cmd in (C_HELLO, C_EXIT, C_SETSTATE, C_RESET, C_DESERIALIZE):
+            flags |= F_SNAPSHOT
+        if flags & F_SNAPSHOT:
+            snapshot(model, w)
+        if cmd == C_STEP:
+            # outputs already in place after the 16 bytes (count, logs offset) at resp_off
+            out = model.slave._out
+            n = len(out)
+            if out_view is None or len(out_view) != n:
+                out_view = np.frombuffer(mm, dtype=np.float64, count=n, offset=resp_off + 16)
+            out_view[:] = out
+            logs = model.take_logs()
+            if profile is not None:
+                profile.record(time.perf_counter() - t0)
+            struct.pack_into("<II", mm, resp_off, n, 0)
+            off = resp_off + 16 + 8 * n
+            struct.pack_into("<I", mm, off, len(logs))
+            mm[off + 4:off + 4 + len(logs)] = logs
+            _finish(mm, words, status, MODES.index(model.mode), flags, model.time, t0, off + 4 + len(logs) - resp_off,
+                    resp_addr, last)
+        else:
+            _respond(mm, words, resp_off, resp_cap, status, MODES.index(model.mode), flags, model.time, t0,
+                     model.take_logs(), w, resp_addr, last)
+        if cmd == C_FREE:
+            if profile is not None:
+                profile.write()
+            return 0
+
+
+def _respond(mm, words, resp_off, resp_cap, status, mode, flags, t, t0, logs, w, resp_addr, seq):
+    body = struct.pack("<I", len(logs)) + logs + b"".join(w.parts)
+    if len(body) > resp_cap:
+        body = struct.pack("<I", 0) + b""
+        status = ERROR
+    mm[resp_off:resp_off + len(body)] = body
+    _finish(mm, words, status, mode, flags, t, t0, len(body), resp_addr, seq)
+
+
+def _finish(mm, words, status, mode, flags, t, t0, length, resp_addr, seq):
+    struct.pack_into("<iII", mm, O_STATUS, status, mode, flags)
+    struct.pack_into("<Qdd", mm, O_RESPLEN, length, t, time.perf_counter() - t0)
+    words[O_RESP // 4] = seq
+    _futex_wake(resp_addr)
+
+
+def main(argv):
+    signal.signal(signal.SIGINT, signal.SIG_IGN)   # the master decides; its death ends this process
+    res, fd, master_pid = Path(argv[1]), int(argv[2]), int(argv[3])
+    os.environ.pop("NUMBA_CACHE_DIR", None)         # numba's cache lives with the content-addressed code copy
+    return serve(res, fd, master_pid)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
