@@ -4,12 +4,14 @@
 
 -> build/fmus/BearingFMU.fmu (= dist/BearingFMU.fmu, via build_fmu.build; the SSDs choose bearing preset and
 coupling through its Enumeration parameters, so every master that sets Integer values can run them), the helper FMUs
-(JeffcottRotor, SpeedRamp, InductionMotor, ShaftInertia, FanLoad; sources in <example>/fmus/), and
+(JeffcottRotor, SpeedRamp, InductionMotor, ShaftInertia, FanLoad; pythonfmu slaves in <example>/fmus/) built on the
+bearing FMU's own FMI layer (each instance's model in a process of its own, so no master hosts their Python), and
 build/rotor_bearings.ssp, build/drivetrain.ssp (by each example's make_ssp.py). Nothing here is committed.
 """
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 from pathlib import Path
 
@@ -22,16 +24,26 @@ HELPERS = {"rotor_bearings": ("jeffcott_rotor.py", "speed_ramp.py"),
            "drivetrain": ("induction_motor.py", "shaft_inertia.py", "fan_load.py")}
 
 
+def slave_class(source: str) -> str:
+    """Name of the pythonfmu Fmi2Slave subclass a helper's source defines (one per file)."""
+    names = re.findall(r"(?m)^class (\w+)\(Fmi2Slave\)", source)
+    if len(names) != 1:
+        raise ValueError(f"expected one Fmi2Slave subclass, found {names}")
+    return names[0]
+
+
 def build_fmus(dest: Path) -> Path:
-    from pythonfmu.builder import FmuBuilder
     import build_fmu
+    from bearing_cosim import fmu_build
 
     fmus = Path(dest) / "fmus"
     fmus.mkdir(parents=True, exist_ok=True)
     build_fmu.build(fmus)
     for example, scripts in HELPERS.items():
         for s in scripts:
-            FmuBuilder.build_FMU(HERE / example / "fmus" / s, dest=fmus)
+            src = (HERE / example / "fmus" / s).read_text()
+            module = Path(s).stem
+            fmu_build._build(slave_class(src), {module: src}, module, fmus)
     return fmus
 
 

@@ -4,11 +4,10 @@
     python ssp_examples/masters.py libcosim SYSTEM.ssp OUT.npz [--stop-time T]
 
 writes every connector's time series to OUT.npz (keys 'time' and 'component.connector', SI units) and prints
-one line 'RESULT {json}' (wall time, number of samples); then leaves with os._exit(0). The examples' helper FMUs
-(speed ramp, motor, shaft, fan) are built with stock pythonfmu, whose native library frees a static shared_ptr
-before its unload hook uses it (PythonFMU issues #228/#229): a host that loaded them can abort at exit
-("corrupted double-linked list", measured in the drivetrain example). The bearing FMU has its own native layer
-and does not need this (docs/fmu.md).
+one line 'RESULT {json}' (wall time, number of samples), and exits normally. Every FMU of the examples, the
+bearing and the helpers (speed ramp, rotor, motor, shaft, fan), runs on the bearing FMU's native FMI layer: the
+model of each instance lives in a process of its own, so the master's process holds no Python of the FMUs and
+nothing of theirs runs in its exit handlers (docs/fmu.md).
 
 fmpy (0.3.32): fmpy.ssp.simulation.simulate_ssp, stock. It applies only its parameter_set argument (not the SSD's
 ParameterBindings) and sets Real, Integer and Enumeration values (not String; bound Booleans would all become
@@ -165,6 +164,3 @@ def main(argv):
 
 if __name__ == "__main__":
     main(sys.argv[1:])
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(0)   # before the C exit handlers: the stock-pythonfmu helper FMUs (module docstring)

@@ -166,3 +166,36 @@ def test_drivetrain_two_masters_energy(build, tmp_path):
     qf = (f["bearing_A.heat_flux_total"] + f["bearing_B.heat_flux_total"])[f["time"] > 0.2].mean()
     ql = (l["bearing_A.heat_flux_total"] + l["bearing_B.heat_flux_total"])[l["time"] > 0.2].mean()
     assert abs(qf / ql - 1) < 0.10, (qf, ql)
+
+
+def test_helper_fmus_run_on_the_project_fmi_layer(build):
+    """Every FMU of the examples carries the project's FMI layer and model process, none pythonfmu's exported
+    native library."""
+    for fmu in sorted(Path(build["fmus"]).glob("*.fmu")):
+        with zipfile.ZipFile(fmu) as z:
+            names = z.namelist()
+            tool = ET.fromstring(z.read("modelDescription.xml")).get("generationTool")
+        assert "resources/model_process.py" in names and "native FMI 2.0 layer" in tool, fmu.name
+        assert not any("pythonfmu-export" in n for n in names), fmu.name
+
+
+def test_examples_exit_normally_in_fresh_processes(build, tmp_path):
+    """Each example briefly (10 steps) in a fresh master process, 5 times per example and master (20 runs):
+    every run exits with status 0 and prints its result, with nothing on stderr about a crash at exit."""
+    ssps = {"rotor": rotor_make.make(tmp_path / "rotor.ssp", rotor_make.RotorDesign(stop_time=1e-3),
+                                     fmu_dir=build["fmus"]),
+            "drivetrain": drive_make.make(tmp_path / "drivetrain.ssp", drive_make.DrivetrainDesign(stop_time=0.01),
+                                          fmu_dir=build["fmus"])}
+    import subprocess
+    codes = []
+    for name, ssp in ssps.items():
+        for master in ("fmpy", "libcosim"):
+            for k in range(5):
+                cmd = [sys.executable, str(SSP / "masters.py"), master, str(ssp), str(tmp_path / f"{name}{k}.npz")]
+                r = subprocess.run(cmd, capture_output=True, text=True, env=build["env"], timeout=300)
+                codes.append((name, master, r.returncode))
+                assert r.returncode == 0, f"{name} / {master}: exit {r.returncode}\n{r.stderr[-2000:]}"
+                assert "RESULT " in r.stdout
+                for bad in ("corrupted", "double free", "Segmentation", "Aborted"):
+                    assert bad not in r.stderr, f"{name} / {master}: {r.stderr[-2000:]}"
+    assert len(codes) == 20 and all(c == 0 for _, _, c in codes)
