@@ -215,9 +215,12 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, r
         fmu = dest / f"{model_id}.fmu"
         doc = stage / "documentation"
         doc.mkdir()
-        osp = osp_model_description(xml)
-        (doc / f"{model_id}_OspModelDescription.xml").write_text(osp, encoding="utf-8")
-        (dest / f"{model_id}_OspModelDescription.xml").write_text(osp, encoding="utf-8")   # libcosim reads it there
+        if {"friction_torque", "shaft_speed"} <= {sv.get("name") for sv in xml.find("ModelVariables")}:
+            # the bearing's mechanical ports (OSP); other slaves built on this layer (the SSP examples' helpers)
+            # have none
+            osp = osp_model_description(xml)
+            (doc / f"{model_id}_OspModelDescription.xml").write_text(osp, encoding="utf-8")
+            (dest / f"{model_id}_OspModelDescription.xml").write_text(osp, encoding="utf-8")   # libcosim reads it there
         (doc / "index.html").write_text(documentation_html(xml), encoding="utf-8")
         _zip(stage, md, binaries, fmu)
         if reference:
