@@ -1174,28 +1174,93 @@ def _error_norm(e, y, ynew, atol_scale, rtol):
 
 
 @hot
-def _accept_fsal(y, ynew, k1, kf, quad, h, dq, t, diag, d0):
-    """Take an accepted explicit step ending at t: y <- ynew, first stage <- the FSAL derivative kf, its
-    integrals added and the end point's channels diag kept in d0."""
-    for i in range(y.size):
-        y[i] = ynew[i]
-        k1[i] = kf[i]
+def _start_point(quad, t, diag, d0):
+    """First point (t, y) of an adaptive integration call, its channels diag: stored for the integrals
+    (a zero-width interval at the start of a call) and kept in d0 as the accepted point's channels."""
+    _quad_point(quad, t, diag)
+    for k in range(NOUT):
+        d0[k] = diag[k]
+
+
+@hot
+def _accept_point(quad, h, dq, t, diag, d0):
+    """Bookkeeping of an accepted step h ending at t: its integrals added (_quad_step) and the end point's
+    channels diag kept in d0."""
     _quad_step(quad, h, dq, t, diag)
     for k in range(NOUT):
         d0[k] = diag[k]
 
 
 @hot
-def _pi_next_step(h, h_prop, err, err_prev, q, fac_max):
-    """Next step after an accepted step h with error norm err (<= 1): PI controller for an order-q error
-    estimate (Gustafsson; Hairer & Wanner II, IV.8), growth limited to fac_max; a step shortened to hit a
-    record or the interval end (h < h_prop) does not shrink the next one. Returns (h_next, err_prev)."""
+def _propose_step(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0, h):
+    """Before an attempt from the accepted point t (channels d0): record it when due (_record_point) and
+    cap the proposed step h at the interval end and the next record time (_step_cap). Returns (nrec,
+    next_rec, step to attempt)."""
+    nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
+    return nrec, next_rec, min(h, _step_cap(t, t1, next_rec, rec_dt))
+
+
+@hot
+def _store_outputs(diag_out, bd_out, diag, bd):
+    """Output channels and per-ball details at the end of an integration call."""
+    for k in range(NOUT):
+        diag_out[k] = diag[k]
+    for j in range(bd.shape[0]):
+        for k in range(NBD):
+            bd_out[j, k] = bd[j, k]
+
+
+@hot
+def _all_finite(y):
+    """True if every entry of y is finite."""
+    for i in range(y.size):
+        if not math.isfinite(y[i]):
+            return False
+    return True
+
+
+@hot
+def _accept_fsal(y, ynew, k1, kf, quad, h, dq, t, diag, d0):
+    """Take an accepted explicit step ending at t: y <- ynew, first stage <- the FSAL derivative kf, its
+    integrals added and the end point's channels diag kept in d0."""
+    for i in range(y.size):
+        y[i] = ynew[i]
+        k1[i] = kf[i]
+    _accept_point(quad, h, dq, t, diag, d0)
+
+
+@hot
+def _pi_factor(err, err_prev, q, fac_max):
+    """Step factor of the PI controller for an order-q error estimate (Gustafsson; Hairer & Wanner II,
+    IV.8) after an accepted step with error norm err, the previous accepted one err_prev; in [0.2, fac_max]."""
     fac = 0.9 * (max(err, 1e-10) ** (-0.7 / q)) * (max(err_prev, 1e-10) ** (0.4 / q))
-    fac = min(fac_max, max(0.2, fac))
+    return min(fac_max, max(0.2, fac))
+
+
+@hot
+def _pi_next_step(h, h_prop, err, err_prev, q, fac_max):
+    """Next step after an accepted step h with error norm err (<= 1): PI controller (_pi_factor), growth
+    limited to fac_max; a step shortened to hit a record or the interval end (h < h_prop) does not shrink the
+    next one. Returns (h_next, err_prev)."""
+    fac = _pi_factor(err, err_prev, q, fac_max)
     hn = h * fac
     if h_prop > hn and fac >= 1.0:
         hn = h_prop
     return hn, max(err, 1e-4)
+
+
+@hot
+def _pi_next_step_held(h, hs, err, err_prev, q, fac_max, hold):
+    """Next step after an accepted step hs (h proposed) of a method that refactors its matrix on a change of
+    step (the Rosenbrock-W integrator): PI factor (_pi_factor); a step shortened to hit a record or the
+    interval end (hs < h) keeps h (growing it from a short step let h run away, to 1e70), and factors in
+    [1, hold] keep h (small increases keep the factorisation). Returns (h_next, err_prev)."""
+    fac = _pi_factor(err, err_prev, q, fac_max)
+    if hs < h:
+        pass
+    elif fac < 1.0 or fac > hold:
+        h = hs * fac
+    return h, max(err, 1e-4)
 
 
 @hot
@@ -1204,6 +1269,19 @@ def _rejected_step(h, ok, err, q):
     if not ok:
         return h * 0.25
     return h * max(0.2, 0.9 * err ** (-1.0 / q))
+
+
+@hot
+def _reject(stats, h, ok, err, q):
+    """A rejected attempt h (ok: finite; err: error norm of an order-q estimate): counted in stats[1], the
+    next attempt from _rejected_step. Returns (h_next, failed): failed when the step collapsed below 1e-12 s,
+    flagged stats[4] = 2."""
+    stats[1] += 1
+    h = _rejected_step(h, ok, err, q)
+    if h < 1e-12:
+        stats[4] = 2.0
+        return h, True
+    return h, False
 
 
 @hot(inline="always")
@@ -1227,6 +1305,45 @@ def _rk4_stages(t, h, y, out, yt, k1, k2, k3, k4, dq, P, U, tab_i, tab_o, ta0, t
     _quad_stage(dq, 1.0 / 6.0, diag, False)
     for i in range(n):
         out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+
+
+@hot(inline="always")
+def _dp5_stages(t, h, y, y5, yt, k1, k2, k3, k4, k5, k6, k7, ev, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy,
+                qwy, diag, bd, last):
+    """Stages 2-7 of Dormand-Prince 5(4) from y with the first stage k1 given (Hairer, Norsett & Wanner,
+    Solving ODEs I, Sec. II.5): y5 <- the order-5 solution, k7 = f(t + h, y5) its FSAL derivative (with the
+    per-ball details when last), ev <- the local error estimate; the stages' output channels added to the
+    step integrals dq (weights b = (35/384, 0, 500/1113, ...), the first one's added by the caller); yt is
+    scratch."""
+    n = y.size
+    for i in range(n):
+        yt[i] = y[i] + h * (0.2 * k1[i])
+    rhs(t + 0.2 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    for i in range(n):
+        yt[i] = y[i] + h * (3.0 / 40.0 * k1[i] + 9.0 / 40.0 * k2[i])
+    rhs(t + 0.3 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, 500.0 / 1113.0, diag, False)
+    for i in range(n):
+        yt[i] = y[i] + h * (44.0 / 45.0 * k1[i] - 56.0 / 15.0 * k2[i] + 32.0 / 9.0 * k3[i])
+    rhs(t + 0.8 * h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, 125.0 / 192.0, diag, False)
+    for i in range(n):
+        yt[i] = y[i] + h * (19372.0 / 6561.0 * k1[i] - 25360.0 / 2187.0 * k2[i]
+                            + 64448.0 / 6561.0 * k3[i] - 212.0 / 729.0 * k4[i])
+    rhs(t + 8.0 / 9.0 * h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, -2187.0 / 6784.0, diag, False)
+    for i in range(n):
+        yt[i] = y[i] + h * (9017.0 / 3168.0 * k1[i] - 355.0 / 33.0 * k2[i] + 46732.0 / 5247.0 * k3[i]
+                            + 49.0 / 176.0 * k4[i] - 5103.0 / 18656.0 * k5[i])
+    rhs(t + h, yt, k6, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, 11.0 / 84.0, diag, False)
+    for i in range(n):
+        y5[i] = y[i] + h * (35.0 / 384.0 * k1[i] + 500.0 / 1113.0 * k3[i] + 125.0 / 192.0 * k4[i]
+                            - 2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i])
+    rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, last)
+    for i in range(n):
+        ev[i] = h * (71.0 / 57600.0 * k1[i] - 71.0 / 16695.0 * k3[i] + 71.0 / 1920.0 * k4[i]
+                     - 17253.0 / 339200.0 * k5[i] + 22.0 / 525.0 * k6[i] - 1.0 / 40.0 * k7[i])
 
 
 @hot(nogil=True)
@@ -1265,10 +1382,9 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, diag)
             _rk4_stages(t, h, y, y, yt, k1, k2, k3, k4, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                         diag, bd)
-            for i in range(n):
-                if not math.isfinite(y[i]):
-                    stats[4] = 1.0
-                    return nrec
+            if not _all_finite(y):
+                stats[4] = 1.0
+                return nrec
             t += h
             for k in range(NOUT):
                 quad[k] += h * dq[k]
@@ -1290,15 +1406,12 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         # Error norm, tolerances and PI control as for method 1 with the exponents of an order-3 estimate.
         k5 = np.empty(n)
         rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
-        _quad_point(quad, t, diag)
-        for k in range(NOUT):
-            d0[k] = diag[k]
+        _start_point(quad, t, diag, d0)
         stats[2] += 1
         err_prev = 1e-4
         while t < t1 - 1e-15:
-            nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
             h_prop = h
-            h = min(h, _step_cap(t, t1, next_rec, rec_dt))
+            nrec, next_rec, h = _propose_step(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0, h)
             _quad_stage(dq, 1.0 / 6.0, d0, True)
             _rk4_stages(t, h, y, yt, yt, k1, k2, k3, k4, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                         diag, bd)
@@ -1315,10 +1428,8 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 stats[0] += 1
                 h, err_prev = _pi_next_step(h, h_prop, err, err_prev, 4.0, 4.0)
             else:
-                stats[1] += 1
-                h = _rejected_step(h, ok, err, 4.0)
-                if h < 1e-12:
-                    stats[4] = 2.0
+                h, failed = _reject(stats, h, ok, err, 4.0)
+                if failed:
                     return nrec
         stats[3] = h
     else:
@@ -1327,45 +1438,16 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         # their atol_scale entries are negative, flagging an absolute-only tolerance), PI step control.
         k5 = np.empty(n); k6 = np.empty(n); k7 = np.empty(n); y5 = np.empty(n)
         rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
-        _quad_point(quad, t, diag)
-        for k in range(NOUT):
-            d0[k] = diag[k]
+        _start_point(quad, t, diag, d0)
         stats[2] += 1
         err_prev = 1e-4
         while t < t1 - 1e-15:
-            nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
             h_prop = h
-            h = min(h, _step_cap(t, t1, next_rec, rec_dt))
+            nrec, next_rec, h = _propose_step(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0, h)
             _quad_stage(dq, 35.0 / 384.0, d0, True)     # Dormand-Prince b = (35/384, 0, 500/1113, ...)
-            for i in range(n):
-                yt[i] = y[i] + h * (0.2 * k1[i])
-            rhs(t + 0.2 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            for i in range(n):
-                yt[i] = y[i] + h * (3.0 / 40.0 * k1[i] + 9.0 / 40.0 * k2[i])
-            rhs(t + 0.3 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 500.0 / 1113.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + h * (44.0 / 45.0 * k1[i] - 56.0 / 15.0 * k2[i] + 32.0 / 9.0 * k3[i])
-            rhs(t + 0.8 * h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 125.0 / 192.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + h * (19372.0 / 6561.0 * k1[i] - 25360.0 / 2187.0 * k2[i]
-                                    + 64448.0 / 6561.0 * k3[i] - 212.0 / 729.0 * k4[i])
-            rhs(t + 8.0 / 9.0 * h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, -2187.0 / 6784.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + h * (9017.0 / 3168.0 * k1[i] - 355.0 / 33.0 * k2[i] + 46732.0 / 5247.0 * k3[i]
-                                    + 49.0 / 176.0 * k4[i] - 5103.0 / 18656.0 * k5[i])
-            rhs(t + h, yt, k6, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 11.0 / 84.0, diag, False)
-            for i in range(n):
-                y5[i] = y[i] + h * (35.0 / 384.0 * k1[i] + 500.0 / 1113.0 * k3[i] + 125.0 / 192.0 * k4[i]
-                                    - 2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i])
-            rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
+            _dp5_stages(t, h, y, y5, yt, k1, k2, k3, k4, k5, k6, k7, ev, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx,
+                        qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
             stats[2] += 6
-            for i in range(n):
-                ev[i] = h * (71.0 / 57600.0 * k1[i] - 71.0 / 16695.0 * k3[i] + 71.0 / 1920.0 * k4[i]
-                             - 17253.0 / 339200.0 * k5[i] + 22.0 / 525.0 * k6[i] - 1.0 / 40.0 * k7[i])
             err = _error_norm(ev, y, y5, atol_scale, rtol)
             ok = err < 1e300
             if ok and err <= 1.0:
@@ -1374,17 +1456,11 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 stats[0] += 1
                 h, err_prev = _pi_next_step(h, h_prop, err, err_prev, 5.0, 5.0)
             else:
-                stats[1] += 1
-                h = _rejected_step(h, ok, err, 5.0)
-                if h < 1e-12:
-                    stats[4] = 2.0
+                h, failed = _reject(stats, h, ok, err, 5.0)
+                if failed:
                     return nrec
         stats[3] = h
-    for k in range(NOUT):
-        diag_out[k] = diag[k]
-    for j in range(nb):
-        for k in range(NBD):
-            bd_out[j, k] = bd[j, k]
+    _store_outputs(diag_out, bd_out, diag, bd)
     return nrec
 
 
@@ -1748,6 +1824,65 @@ def rosw_workspace(nb):
             np.array([float(JAC_EVERY), -1.0]))
 
 
+@hot(inline="always")
+def _rosw_stages(t, hs, hg, y, f0, us, yt, r, tmp9, dq, Wbf, Minv, Z, S, pivs, P, U, tab_i, tab_o, ta0, tda, tp, qx,
+                 qwx, qy, qwy, diag, bd):
+    """The four transformed stages us of ROS34PW2 (see ROSW_TA ..) for the step hs from (t, y), f0 = f(t, y),
+    with the factorised W of hg = h_lu gamma (_w_solve); their output channels added to the step integrals
+    dq (the first one's added by the caller). yt, r, tmp9: scratch. Returns False if a stage is not
+    finite."""
+    n = y.size
+    ok = True
+    for s in range(4):
+        if s == 0:
+            for i in range(n):
+                r[i] = ROSW_G * f0[i]
+        else:
+            for i in range(n):
+                acc = 0.0
+                for q in range(s):
+                    acc += ROSW_TA[s, q] * us[q, i]
+                yt[i] = y[i] + hs * acc
+            rhs(t + ROSW_C[s] * hs, yt, r, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd,
+                False)
+            # integrals: the W-method on q' = p(y) with zero Jacobian rows gives q += h sum b_s p(Y_s)
+            _quad_stage(dq, ROSW_B[s], diag, False)
+            for i in range(n):
+                acc = r[i]
+                for q in range(s):
+                    acc += ROSW_TC[s, q] * us[q, i]
+                r[i] = ROSW_G * acc
+        _w_solve(hg, r, Wbf, Minv, Z, S, pivs, tmp9)
+        for i in range(n):
+            us[s, i] = r[i]
+            if not math.isfinite(r[i]):
+                ok = False
+    return ok
+
+
+@hot(inline="always")
+def _rosw_solution(y, us, hs, ynew, atol_scale, rtol):
+    """The order-3 solution ynew = y + hs sum_s m_s u_s of ROS34PW2 from its transformed stages us; returns
+    the RMS norm of the local error estimate hs sum_s (m_s - mhat_s) u_s (ROSW_TM, ROSW_TE), with the
+    scales of _error_norm, in the same pass (no error vector), 1e300 if not finite."""
+    n = y.size
+    acc2 = 0.0
+    for i in range(n):
+        e = 0.0
+        yn = y[i]
+        for s in range(4):
+            yn += hs * ROSW_TM[s] * us[s, i]
+            e += hs * ROSW_TE[s] * us[s, i]
+        ynew[i] = yn
+        at = atol_scale[i]
+        sc = -at if at < 0.0 else at + rtol * max(abs(y[i]), abs(yn))
+        q = e / sc
+        acc2 += q * q
+    if not math.isfinite(acc2):
+        return 1e300
+    return math.sqrt(acc2 / n)
+
+
 @hot(nogil=True)
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                    rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out, Wff, Wbf, Wfb, Wbb, LUb, pivb, Minv, Z, S,
@@ -1780,9 +1915,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     err_prev = 1e-4
     # f0, d0 and bd0 always describe the accepted point (t, y); bd0 feeds the Jacobian's fixed-state rows
     rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
-    _quad_point(quad, t, diag)
-    for k in range(NOUT):
-        d0[k] = diag[k]
+    _start_point(quad, t, diag, d0)
     stats[2] += 1
     while t < t1 - 1e-15:
         if jac_age >= JAC_EVERY:
@@ -1790,56 +1923,17 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
                                   qwy, atol_scale, yt, ft, diag, bd, bd0)
             jac_age = 0
             h_lu = -1.0
-        nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
-        hmax = _step_cap(t, t1, next_rec, rec_dt)
-        hs = min(h, hmax)
+        nrec, next_rec, hs = _propose_step(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0, h)
         if h_lu <= 0.0 or hs * ROSW_REUSE_LO > h_lu or hs * ROSW_REUSE_HI < h_lu:
             _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, Minv, Z, S, pivs)
             h_lu = hs
         hg = h_lu * ROSW_G
-        ok = True
         _quad_stage(dq, ROSW_B[0], d0, True)
-        for s in range(4):
-            if s == 0:
-                for i in range(n):
-                    r[i] = ROSW_G * f0[i]
-            else:
-                for i in range(n):
-                    acc = 0.0
-                    for q in range(s):
-                        acc += ROSW_TA[s, q] * us[q, i]
-                    yt[i] = y[i] + hs * acc
-                rhs(t + ROSW_C[s] * hs, yt, r, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd,
-                    False)
-                # integrals: the W-method on q' = p(y) with zero Jacobian rows gives q += h sum b_s p(Y_s)
-                _quad_stage(dq, ROSW_B[s], diag, False)
-                for i in range(n):
-                    acc = r[i]
-                    for q in range(s):
-                        acc += ROSW_TC[s, q] * us[q, i]
-                    r[i] = ROSW_G * acc
-            _w_solve(hg, r, Wbf, Minv, Z, S, pivs, tmp9)
-            for i in range(n):
-                us[s, i] = r[i]
-                if not math.isfinite(r[i]):
-                    ok = False
+        ok = _rosw_stages(t, hs, hg, y, f0, us, yt, r, tmp9, dq, Wbf, Minv, Z, S, pivs, P, U, tab_i, tab_o, ta0,
+                          tda, tp, qx, qwx, qy, qwy, diag, bd)
         stats[2] += 3
-        acc2 = 0.0
-        if ok:
-            for i in range(n):
-                e = 0.0
-                yn = y[i]
-                for s in range(4):
-                    yn += hs * ROSW_TM[s] * us[s, i]
-                    e += hs * ROSW_TE[s] * us[s, i]
-                ynew[i] = yn
-                at = atol_scale[i]
-                sc = -at if at < 0.0 else at + rtol * max(abs(y[i]), abs(yn))
-                q = e / sc
-                acc2 += q * q
-            if not math.isfinite(acc2):
-                ok = False
-        err = math.sqrt(acc2 / n) if ok else 1e300
+        err = _rosw_solution(y, us, hs, ynew, atol_scale, rtol) if ok else 1e300
+        ok = err < 1e300
         if ok and err <= 1.0:
             t += hs
             for i in range(n):
@@ -1848,38 +1942,20 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
             jac_age += 1
             nrej = 0
             rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
-            _quad_step(quad, hs, dq, t, diag)
-            for k in range(NOUT):
-                d0[k] = diag[k]
+            _accept_point(quad, hs, dq, t, diag, d0)
             stats[2] += 1
-            # PI controller for an order-2 error estimate (Gustafsson; Hairer & Wanner II, IV.8)
-            fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 3.0)) * (max(err_prev, 1e-10) ** (0.4 / 3.0))
-            fac = min(4.0, max(0.2, fac))
-            err_prev = max(err, 1e-4)
-            if hs < h:
-                pass                      # a step shortened to hit a record/interval end: keep h
-                                          # (growing it from a short step let h run away, to 1e70)
-            elif fac < 1.0 or fac > 1.25:  # small increases keep h
-                h = hs * fac
+            # PI controller for an order-2 error estimate; factors in [1, 1.25] keep h (and W's factors)
+            h, err_prev = _pi_next_step_held(h, hs, err, err_prev, 3.0, 4.0, 1.25)
         else:
-            stats[1] += 1
-            if not ok:
-                h = hs * 0.25
-            else:
-                h = hs * max(0.2, 0.9 * err ** (-1.0 / 3.0))
+            h, failed = _reject(stats, hs, ok, err, 3.0)
             nrej += 1
             if nrej >= 2 and jac_age > 0:
                 jac_age = JAC_EVERY       # repeated rejections: refresh the lagged Jacobian
-            if h < 1e-12:
-                stats[4] = 2.0
+            if failed:
                 jst[0] = JAC_EVERY
                 return nrec
     stats[3] = h
     jst[0] = jac_age
     jst[1] = h_lu
-    for k in range(NOUT):
-        diag_out[k] = diag[k]
-    for j in range(nb):
-        for k in range(NBD):
-            bd_out[j, k] = bd0[j, k]
+    _store_outputs(diag_out, bd_out, diag, bd0)
     return nrec
