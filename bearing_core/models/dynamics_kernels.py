@@ -210,11 +210,615 @@ def _first_arc(c1, c2):
     return c1[1] >= c2[1]
 
 
+@hot(inline="always")
+def _ring_pose(y, U, disp):
+    """Inner-ring pose and rates (x, y, z, tilt x, tilt y, then their rates) at the state y, or the inputs U
+    when displacement-driven."""
+    if disp:
+        # displacement-driven: ring pose and rates are inputs (held over the step)
+        return U[U_DX], U[U_DY], U[U_DZ], U[U_TX], U[U_TY], U[U_VX], U[U_VY], U[U_VZ], U[U_WX], U[U_WY]
+    return y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], y[8], y[9]
+
+
+@hot(inline="always")
+def _groove_centres(th, rb, zb, Cr0, Cz0, Ri, Roo, Zoo, xi_, yi_, zi_, txi, tyi, vxi, vyi, vzi, wxi, wyi, xo, yo,
+                    vxo, vyo):
+    """The ball's azimuth (c, s) = (cos th, sin th), the inner groove centre C = (Cr, Cz) and its velocity
+    (vrr, vrt, vrz) in the ball's local frame, the ball centre relative to the outer groove centre X = (Xr,
+    Xz) and the outer ring's translation velocity (vor, vot) in the local frame (module docstring)."""
+    c = math.cos(th)
+    s = math.sin(th)
+    # groove centres (QS mapping) and their rates
+    Cr = Cr0 + xi_ * c + yi_ * s
+    Cz = Cz0 + zi_ + Ri * (txi * s - tyi * c)
+    vrr = vxi * c + vyi * s                    # ring translation velocity at the ball, local frame
+    vrt = -vxi * s + vyi * c
+    vrz = vzi + Ri * (wxi * s - wyi * c)
+    Xr = rb - Roo - (xo * c + yo * s)      # outer groove centre moves with the outer ring
+    Xz = zb - Zoo
+    vor = vxo * c + vyo * s                # outer ring translation velocity, local frame
+    vot = -vxo * s + vyo * c
+    return c, s, Cr, Cz, vrr, vrt, vrz, Xr, Xz, vor, vot
+
+
+@hot(inline="always")
+def _inner_race_traction_loads(Fr, Ft, Fz, Mr, Mt, Mz, P_ri, P_sl, P_sp, TRz, rb, Fni, nir, niz, fti, fmi, mni,
+                               mmi, mti, pli, vsti, vsmi, wspi):
+    """Traction of the first inner contact added to the ball's forces and moments, the race losses and the
+    torque on the inner ring about z; returns these and the contact's load on the ring (radial, tangential,
+    axial) in the ball's local frame."""
+    # traction, inner race (contact_kernels: force on the ball along t and m = (-n_z, n_r), moments
+    # along n, m, t about the ball centre)
+    Fr += -fmi * niz; Ft += fti; Fz += fmi * nir
+    Mr += mni * nir - mmi * niz; Mt += mti; Mz += mni * niz + mmi * nir
+    P_ri += pli
+    P_sl -= fti * vsti + fmi * vsmi   # sliding of the contact centre (rolling direction and across)
+    P_sp -= mni * wspi                # spin about the contact normal
+    # the ring receives the normal force and the opposite traction; torque about z at the contact
+    fr_ring = Fni * nir + fmi * niz
+    ft_ring = -fti
+    fz_ring = Fni * niz - fmi * nir
+    # torque of the traction about the bearing axis, exact for the distributed shear: on the ball it is
+    # rb F_t + (M about the ball centre) . z = rb F_t + n_z M_n + n_r M_m; the ring gets the opposite
+    TRz -= rb * fti + niz * mni + nir * mmi
+    return Fr, Ft, Fz, Mr, Mt, Mz, P_ri, P_sl, P_sp, TRz, fr_ring, ft_ring, fz_ring
+
+
+@hot(inline="always")
+def _outer_race_traction_loads(Fr, Ft, Fz, Mr, Mt, Mz, P_ro, P_sl, P_sp, FOx, FOy, TOz, c, s, rb, Fno, nor, noz,
+                               fto, fmo, mno, mmo, mto, plo, vsto, vsmo, wspo):
+    """Traction of the first outer contact (race turning at wo) added to the ball's forces and moments, the
+    race losses, and the contact's load on the outer ring (global x, y and torque about z)."""
+    # traction, outer race (turning at wo)
+    Fr += -fmo * noz; Ft += fto; Fz += fmo * nor
+    Mr += mno * nor - mmo * noz; Mt += mto; Mz += mno * noz + mmo * nor
+    P_ro += plo
+    P_sl -= fto * vsto + fmo * vsmo
+    P_sp -= mno * wspo
+    # the outer ring receives the normal force and the opposite traction (radial / tangential parts)
+    for_r = Fno * nor + fmo * noz
+    for_t = -fto
+    FOx += for_r * c - for_t * s
+    FOy += for_r * s + for_t * c
+    TOz -= rb * fto + noz * mno + nor * mmo
+    return Fr, Ft, Fz, Mr, Mt, Mz, P_ro, P_sl, P_sp, FOx, FOy, TOz
+
+
+@hot(inline="always")
+def _second_inner_arc(Fr, Ft, Fz, Mr, Mt, Mz, P_ri, P_sl, P_sp, P_dp, Uel, TRz, cb, ball, w, vrr, zib, tdot, vrt,
+                      vrz, D, gD, zeta, mb, Rdi, Ryi, trac):
+    """Second inner arc of a four-point bearing (cb, loaded): the same contact kernel as the first contact,
+    its loads added to the ball, the losses and the ring's torque about z; returns these and the arc's load
+    on the ring (radial, tangential, axial) in the ball's local frame. ball = (rb, rd, thd, zd, Wr, Wt, Wz):
+    the ball's state in its local frame; trac = (kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy,
+    sc): the traction model and its arrays (set up in rhs)."""
+    rb, rd, thd, zd, Wr, Wt, Wz = ball
+    kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc = trac
+    _, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2 = cb
+    (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
+     ur2) = _raceway_contact(dli2, nir2, niz2, Qi2, rb, rd, thd, zd, Wr, Wt, Wz, w,
+                             vrr - zib * tdot, vrt, vrz, D, gD, zeta, mb)
+    ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ai2_s, bi2_s, Qi2, pi2, D, Rdi, Rx2, Ryi, vst2,
+                                                  vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
+                                                  fny, qx, qwx, qy, qwy, sc)
+    P_dp += pd2; Uel += ue2
+    Fr += -Fn2 * nir2 - fm2 * niz2; Ft += ft2; Fz += -Fn2 * niz2 + fm2 * nir2
+    Mr += mn2 * nir2 - mm2 * niz2; Mt += mt2; Mz += mn2 * niz2 + mm2 * nir2
+    P_ri += pl2
+    P_sl -= ft2 * vst2 + fm2 * vsm2
+    P_sp -= mn2 * wsp2
+    fr2_ring = Fn2 * nir2 + fm2 * niz2
+    ft2_ring = -ft2
+    fz2_ring = Fn2 * niz2 - fm2 * nir2
+    TRz -= rb * ft2 + niz2 * mn2 + nir2 * mm2
+    return Fr, Ft, Fz, Mr, Mt, Mz, P_ri, P_sl, P_sp, P_dp, Uel, TRz, fr2_ring, ft2_ring, fz2_ring
+
+
+@hot(inline="always")
+def _second_outer_arc(Fr, Ft, Fz, Mr, Mt, Mz, P_ro, P_sl, P_sp, P_dp, Uel, FOx, FOy, TOz, ob, c, s, ball, wo, vor,
+                      vot, D, gD, zeta, mb, Rdo, Ryo, trac):
+    """Second outer arc of a four-point bearing (ob, loaded): the same contact kernel, its loads added to the
+    ball, the losses and the outer ring (global x, y, torque about z). ball, trac: _second_inner_arc."""
+    rb, rd, thd, zd, Wr, Wt, Wz = ball
+    kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc = trac
+    _, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2 = ob
+    (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
+     ur2) = _raceway_contact(dlo2, nor2, noz2, Qo2, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot,
+                             0.0, D, gD, zeta, mb)
+    ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ao2_s, bo2_s, Qo2, po2, D, Rdo, Rx2, Ryo, vst2,
+                                                  vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
+                                                  fny, qx, qwx, qy, qwy, sc)
+    P_dp += pd2; Uel += ue2
+    Fr += -Fn2 * nor2 - fm2 * noz2; Ft += ft2; Fz += -Fn2 * noz2 + fm2 * nor2
+    Mr += mn2 * nor2 - mm2 * noz2; Mt += mt2; Mz += mn2 * noz2 + mm2 * nor2
+    P_ro += pl2
+    P_sl -= ft2 * vst2 + fm2 * vsm2
+    P_sp -= mn2 * wsp2
+    for_r = Fn2 * nor2 + fm2 * noz2
+    for_t = -ft2
+    FOx += for_r * c - for_t * s
+    FOy += for_r * s + for_t * c
+    TOz -= rb * ft2 + noz2 * mn2 + nor2 * mm2
+    return Fr, Ft, Fz, Mr, Mt, Mz, P_ro, P_sl, P_sp, P_dp, Uel, FOx, FOy, TOz
+
+
+@hot(inline="always")
+def _ball_pocket(Fr, Ft, Fz, Mr, Mz, FCx, FCy, TC, Uel, P_dp, P_pk, j, Z, th, c, s, ball, thc, wc, xc, yc, vxc,
+                 vyc, D, lube, pocket):
+    """Ball-pocket contact of ball j (dry Coulomb or lubricated pocket; pocket = (clearance, stiffness,
+    damping, friction coefficient, then for the lubricated pocket the boundary and full-film friction
+    coefficients, viscosity, pressure-viscosity coefficient, reduced modulus, roughness: P_CPOCKET ..
+    P_MUPOCKET, P_MUBL, P_MUEHL, P_ETA_PK .. P_SIGPK)) added to the ball's forces and moments, to the cage's
+    forces and torque and to the elastic energy, damping and pocket losses; returns these and the pocket
+    force Fpk. ball: _second_inner_arc. Scalar arguments only: inlined without reference counting."""
+    rb, rd, thd, zd, Wr, Wt, Wz = ball
+    cpk, kpk, cpkd, mupk, mubl, muehl, eta_pk, alpha_pk, epk, sigpk = pocket
+    # ball-pocket contact (seed 000 Eq. 6, contact_kernels.ball_pocket_contact) in the frame of the
+    # (possibly whirling) cage: ball azimuth about the cage centre against the pocket azimuth
+    # dth: azimuth of the ball centre about the cage centre minus the pocket azimuth thc + 2 pi j / Z,
+    # = (th - pocket azimuth) + the angle of the ball centre seen from the cage centre against the ball's
+    # radial direction (c, s), small (cage offset over pitch radius): no arctangent of a full angle, and
+    # a wrap only if the state puts the ball a turn away from its pocket
+    d0 = th - thc - 2.0 * math.pi * j / Z
+    if abs(d0) > math.pi:
+        d0 = wrap_angle(d0)
+    dth = d0 + atan2(xc * s - yc * c, rb - xc * c - yc * s)
+    bx_ = rb * c - xc
+    by_ = rb * s - yc
+    rr2 = bx_ * bx_ + by_ * by_
+    vbx = rd * c - rb * thd * s - vxc
+    vby = rd * s + rb * thd * c - vyc
+    vcr_ = vxc * c + vyc * s
+    rbc = math.sqrt(rr2)   # ball radius about the cage centre: the arm of the pocket force
+    irbc = 1.0 / rbc
+    thb_d = (bx_ * vby - by_ * vbx) * (irbc * irbc)
+    if lube:
+        (Fpk, fpt, fpr, fpz, mpr, mpz, tw_, pl_, pd_, ue_) = ball_pocket_lubricated_rel(
+            dth, thb_d, wc, rbc, cpk, kpk, cpkd, mubl, muehl, 0.01, eta_pk,
+            alpha_pk, epk, sigpk, D, rd, zd, Wr, Wz, vcr_, 0.0)
+    else:
+        Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact_rel(dth, thb_d, wc, rbc, cpk, kpk, cpkd, mupk,
+                                                               0.01, D, rd, zd, Wr, Wz, vcr_, 0.0)
+        tw_ = pl_ = pd_ = ue_ = 0.0
+    if lube or Fpk > 0.0:
+        # pocket force along the cage-frame tangential direction at the ball; the cage gets (-fx, -fy) at
+        # the ball centre (a torque about its centre) and the films' shear torque tw_
+        tpx = -by_ * irbc         # (-sin, cos) of the ball's azimuth about the cage centre
+        tpy = bx_ * irbc
+        fx = fpt * tpx + fpr * c
+        fy = fpt * tpy + fpr * s
+        Fr += fx * c + fy * s
+        Ft += -fx * s + fy * c
+        Fz += fpz
+        Mr += mpr
+        Mz += mpz
+        FCx -= fx
+        FCy -= fy
+        TC += by_ * fx - bx_ * fy + tw_
+    if lube:
+        Uel += ue_
+        P_dp += pd_
+        P_pk += pl_
+    elif Fpk > 0.0:
+        sg = 1.0 if fpt < 0.0 else -1.0                         # side of the pocket wall (+t or -t)
+        TC += sg * 0.5 * D * fpr       # the wall friction acts at the offset sg D/2 t: torque on the cage
+        pen = rbc * abs(dth) - cpk
+        Uel += 0.5 * kpk * pen * pen
+        # dissipation: friction and damping of the pocket contact = -(power of its forces on the
+        # relative motion) - d(elastic energy)/dt, evaluated from the relative velocities
+        vrel_t = (thb_d - wc) * rbc
+        P_dp += (Fpk - kpk * pen) * vrel_t * sg
+        vsr = rd - vcr_ - sg * 0.5 * D * (Wz - wc)
+        vsz = zd + sg * 0.5 * D * Wr
+        P_pk -= fpr * vsr + fpz * vsz
+    return Fpk, Fr, Ft, Fz, Mr, Mz, FCx, FCy, TC, Uel, P_dp, P_pk
+
+
+@hot(inline="always")
+def _ball_drag(Ft, P_dr, rb, thd, wc, rp, rho_eff, cd, D):
+    """Drag of the ball in the oil-air mixture added to its tangential force and to the drag loss."""
+    # ball drag in the oil-air mixture (seed 001 Eq. 10): opposes the orbital motion
+    vorb = rb * thd - wc * rp * 0.0
+    Fd = 0.5 * rho_eff * cd * (math.pi * D * D / 4.0) * vorb * abs(vorb)
+    Ft -= Fd
+    P_dr += Fd * vorb
+    return Ft, P_dr
+
+
+@hot(inline="always")
+def _ball_eom(Fr, Ft, Fz, Mr, Mt, Mz, rb, rd, thd, Wr, Wt, imb, iJb):
+    """Equations of motion of a ball (module docstring) under the forces (Fr, Ft, Fz) and moments (Mr, Mt,
+    Mz) in its local frame, imb = 1 / m, iJb = 1 / J: (theta_dd, r_dd, z_dd, dOmega_r, dOmega_t,
+    dOmega_z) / dt."""
+    return ((Ft * imb - 2.0 * rd * thd) / rb, Fr * imb + rb * thd * thd, Fz * imb,
+            Mr * iJb + thd * Wt, Mt * iJb - thd * Wr, Mz * iJb)
+
+
+@hot(inline="always")
+def _inner_ring_loads(FRx, FRy, FRz, MRx, MRy, axisym, fourpt, c, s, Ri, zia, zib, fr_ring, ft_ring, fz_ring,
+                      fr2_ring, ft2_ring, fz2_ring):
+    """The loads of one ball's inner contacts (local radial, tangential, axial; second arc for four-point
+    bearings) added to the inner ring's forces and tilting moments (global)."""
+    # ring loads from ball j (global)
+    gx = fr_ring * c - ft_ring * s
+    gy = fr_ring * s + ft_ring * c
+    if not axisym:
+        FRx += gx
+        FRy += gy
+        MRx += Ri * s * fz_ring
+        MRy += -Ri * c * fz_ring
+    FRz += fz_ring
+    if fourpt:
+        # second inner arc, and the arms z = +-e_i of the arc centres above the inner-ring mid-plane:
+        # the force (fr, ft, fz) at Ri e_r + z e_z has the moment Ri fz - z fr about e_t and -z ft about e_r
+        FRz += fz2_ring
+        if not axisym:
+            FRx += fr2_ring * c - ft2_ring * s
+            FRy += fr2_ring * s + ft2_ring * c
+            MRx += (Ri * s * fz2_ring - zia * (fr_ring * s + ft_ring * c)
+                    - zib * (fr2_ring * s + ft2_ring * c))
+            MRy += (-Ri * c * fz2_ring + zia * (fr_ring * c - ft_ring * s)
+                    + zib * (fr2_ring * c - ft2_ring * s))
+    return FRx, FRy, FRz, MRx, MRy
+
+
+@hot(inline="always")
+def _contact_statistics(sai, nai, sao, nao, Qimax, Qomax, Qimin, pmax, sco, sci, npr, fourpt, w, wo, gD, ai, ao,
+                        nir, niz, nor, noz, Qi, Qo, Qi2, Qo2, pi_, po, pi2, po2):
+    """One ball added to the contact statistics: sums and counts of the loaded contact angles, largest /
+    smallest loads, largest pressure, sums of the pure-rolling cage speeds of the balls loaded at both
+    races."""
+    # four-point contact: the first contacts' angles by magnitude (a diagonal pair i2/o2 is the mirror
+    # image of i1/o1, with the same pure-rolling cage speed; a ball on i1 and o2 gets the estimate of
+    # equal-sign angles)
+    ai_k = abs(ai) if fourpt else ai
+    ao_k = abs(ao) if fourpt else ao
+    sai_k = abs(niz) if fourpt else -niz      # sin of ai_k, ao_k from the contact normals
+    sao_k = abs(noz) if fourpt else noz
+    if Qi > 0.0:
+        sai += ai_k; nai += 1.0
+        Qimax = max(Qimax, Qi)
+        pmax = max(pmax, pi_)          # p_max = 1.5 Q / (pi a b) of the contact kernel
+    Qimin = min(Qimin, Qi)
+    if Qi > 0.0 and Qo > 0.0:
+        wco, wci = pure_rolling_cage_speeds_cs(w, -nir, sai_k, nor, sao_k, gD, wo)
+        sco += wco; sci += wci; npr += 1.0
+    if Qo > 0.0:
+        sao += ao_k; nao += 1.0
+        Qomax = max(Qomax, Qo)
+        pmax = max(pmax, po)
+    if Qi2 > 0.0:
+        Qimax = max(Qimax, Qi2)
+        pmax = max(pmax, pi2)
+    if Qo2 > 0.0:
+        Qomax = max(Qomax, Qo2)
+        pmax = max(pmax, po2)
+    return sai, nai, sao, nao, Qimax, Qomax, Qimin, pmax, sco, sci, npr
+
+
+@hot(nrt=False)
+def _ball_details(bd, j, ca, cb, oa, ob, tri_t, tri_m, tro_t, tro_m, sl_i, sl_o, u_i, u_o, sp_i, sp_o, sm_i, sm_o,
+                  Fpk, contrib):
+    """Row j of the per-ball details bd (BD_* columns): contacts, traction, kinematics, pocket force and the
+    ball's contributions contrib = (dFRx, dFRy, dFRz, dMRx, dMRy, dFCx, dFCy, dTC, dFOx, dFOy) to the ring,
+    cage and outer-ring loads. Stores only; compiled without reference counting (bd owned by the caller)."""
+    dFRx, dFRy, dFRz, dMRx, dMRy, dFCx, dFCy, dTC, dFOx, dFOy = contrib
+    _, dli, nir, niz, ai, Qi, ai_s, bi_s, pi_ = ca
+    _, dlo, nor, noz, ao, Qo, ao_s, bo_s, po = oa
+    _, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2 = cb
+    _, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2 = ob
+    bd[j, BD_QI2] = Qi2; bd[j, BD_AI2] = ai2; bd[j, BD_QO2] = Qo2; bd[j, BD_AO2] = ao2
+    bd[j, BD_AI] = ai; bd[j, BD_AO] = ao; bd[j, BD_QI] = Qi; bd[j, BD_QO] = Qo
+    bd[j, BD_DI] = dli; bd[j, BD_DO] = dlo
+    bd[j, BD_AI_SEMI] = ai_s; bd[j, BD_BI] = bi_s; bd[j, BD_AO_SEMI] = ao_s; bd[j, BD_BO] = bo_s
+    bd[j, BD_PI] = pi_
+    bd[j, BD_PO] = po
+    bd[j, BD_FTI] = tri_t; bd[j, BD_FMI] = tri_m; bd[j, BD_FTO] = tro_t; bd[j, BD_FMO] = tro_m
+    bd[j, BD_VSI] = sl_i; bd[j, BD_VSO] = sl_o; bd[j, BD_UI] = u_i; bd[j, BD_UO] = u_o
+    bd[j, BD_SPI] = sp_i; bd[j, BD_SPO] = sp_o; bd[j, BD_WSI] = sm_i; bd[j, BD_WSO] = sm_o
+    bd[j, BD_FPOCKET] = Fpk
+    bd[j, BD_CFRX] = dFRx; bd[j, BD_CFRY] = dFRy; bd[j, BD_CFRZ] = dFRz
+    bd[j, BD_CMRX] = dMRx; bd[j, BD_CMRY] = dMRy
+    bd[j, BD_CFCX] = dFCx; bd[j, BD_CFCY] = dFCy; bd[j, BD_CTC] = dTC
+    bd[j, BD_CFOX] = dFOx; bd[j, BD_CFOY] = dFOy
+
+
+@hot(nrt=False)
+def _ball0_channels(diag, D, Wr, Wt, Wz, thd, sl_i, sl_o, u_i, u_o, sp_i, sp_o, ai, ao, Qi, Qo, tri_t, tro_t):
+    """The output channels of ball 0 (spin, orbit speed, slide / spin to roll ratios, contacts); compiled
+    without reference counting (diag owned by the caller)."""
+    diag[O_BALL0_WR] = Wr
+    diag[O_BALL0_WT] = Wt
+    diag[O_BALL0_WZ] = Wz
+    diag[O_BALL0_ORBIT_SPEED] = thd
+    diag[O_BALL0_SLIDE_ROLL_I] = sl_i / max(u_i, 1e-12)
+    diag[O_BALL0_SLIDE_ROLL_O] = sl_o / max(u_o, 1e-12)
+    diag[O_BALL0_SPIN_ROLL_I] = sp_i * 0.5 * D / max(u_i, 1e-12)
+    diag[O_BALL0_SPIN_ROLL_O] = sp_o * 0.5 * D / max(u_o, 1e-12)
+    diag[O_BALL0_ALPHA_I] = ai
+    diag[O_BALL0_ALPHA_O] = ao
+    diag[O_BALL0_Q_I] = Qi
+    diag[O_BALL0_Q_O] = Qo
+    diag[O_BALL0_FT_I] = tri_t
+    diag[O_BALL0_FT_O] = tro_t
+
+
+@hot(inline="always")
+def _cage_land_contact(e, cl, xc, yc, vxc, vyc, wc, w, wo, lube, P, FCx, FCy, FRx, FRy, FOx, FOy, TC, TRz, TOz,
+                       P_dp, Uel):
+    """Dry contact of the cage with its guiding land at eccentricity e > clearance cl: forces and friction
+    torque on the cage and the guiding ring, damping and land losses, elastic energy. Returns the land loss
+    P_ld and the updated loads and energies."""
+    P_ld = 0.0
+    pen = e - cl
+    ex = xc / e
+    ey = yc / e
+    ve = vxc * ex + vyc * ey
+    Fl = max(P[P_KLAND] * pen + P[P_CLANDD] * ve, 0.0)
+    P_dp += (Fl - P[P_KLAND] * pen) * ve
+    Uel += 0.5 * P[P_KLAND] * pen * pen
+    FCx -= Fl * ex
+    FCy -= Fl * ey
+    if P[P_GUIDE] > 0.5:        # the guiding land takes the opposite force: inner ring or outer ring
+        FRx += Fl * ex
+        FRy += Fl * ey
+    else:
+        FOx += Fl * ex
+        FOy += Fl * ey
+    vsl = (wc - wo) * P[P_RLAND]    # land turning with the outer ring or with the shaft (inner)
+    if P[P_GUIDE] > 0.5:
+        vsl = (wc - w) * P[P_RLAND]
+    muf = (P[P_MUBL] if lube else P[P_MULAND]) * math.tanh(vsl / 0.01)
+    TC -= muf * Fl * P[P_RLAND]
+    P_ld += muf * Fl * vsl
+    if P[P_GUIDE] > 0.5:
+        TRz += muf * Fl * P[P_RLAND]   # inner-land guided: the ring gets the opposite friction torque
+    else:
+        TOz += muf * Fl * P[P_RLAND]
+    return P_ld, FCx, FCy, FRx, FRy, FOx, FOy, TC, TRz, TOz, P_dp, Uel
+
+
+@hot(inline="always")
+def _cage_flooded_land(eta, e, cl, xc, yc, vxc, vyc, wc, w, wo, P, FCx, FCy, FRx, FRy, FOx, FOy, TC, TRz, TOz,
+                       P_ld):
+    """Oil film of the flooded guiding land (viscosity eta > 0): film force and drag torque on the cage and
+    the guiding ring, added to the land loss."""
+    # oil-flooded guiding land: short journal bearing (seed 001 Eq. 4; Ocvirk, Hamrock 'Fundamentals of
+    # Fluid Film Lubrication' Ch. 12) and Petroff drag torque with eccentricity (seed 001 Eq. 5)
+    cg = cl
+    R = P[P_RLAND]
+    B = P[P_WLAND]
+    wg = w if P[P_GUIDE] > 0.5 else wo
+    eps = min(e / cg, P[P_EPSMAX])
+    Us = R * (wg + wc)
+    if e > 1e-15:
+        ex = xc / e
+        ey = yc / e
+    else:
+        ex = 1.0
+        ey = 0.0
+    Fr_h = eta * abs(Us) * B ** 3 * eps * eps / (cg * cg * (1.0 - eps * eps) ** 2)
+    Ft_h = math.pi * eta * Us * B ** 3 * eps / (4.0 * cg * cg * (1.0 - eps * eps) ** 1.5)
+    fhx = -Fr_h * ex - Ft_h * ey
+    fhy = -Fr_h * ey + Ft_h * ex
+    FCx += fhx
+    FCy += fhy
+    if P[P_GUIDE] > 0.5:
+        FRx -= fhx
+        FRy -= fhy
+    else:
+        FOx -= fhx
+        FOy -= fhy
+    Th = 2.0 * math.pi * eta * R ** 3 * B * (wg - wc) / (cg * math.sqrt(1.0 - eps * eps))
+    TC += Th
+    if P[P_GUIDE] > 0.5:
+        TRz -= Th
+    else:
+        TOz -= Th
+    P_ld += Th * (wg - wc) - (fhx * vxc + fhy * vyc)
+    return FCx, FCy, FRx, FRy, FOx, FOy, TC, TRz, TOz, P_ld
+
+
+@hot(inline="always")
+def _churning(P, wc, w, wo, TC, TRz, TOz):
+    """Oil churning torques on the cage (reaction on the facing ring) and on the inner ring: returns the
+    updated torques TC, TRz, TOz, the cage's and the ring's churning losses and the ring's torque T_chs."""
+    # oil churning (seed 001 Eqs. 12-17 as torques, bearing_core.lubrication.churning): on the cage against its
+    # speed relative to the facing wall, and on the inner ring (the drive supplies it)
+    P_chc = 0.0
+    P_chs = 0.0
+    T_chs = 0.0
+    if P[P_CH_ON] > 0.5:
+        wrel = wc - (w if P[P_CH_WALL] > 0.5 else wo)      # facing wall: inner ring or outer ring
+        Tch = cylinder_churning_torque(P[P_CH_RHO], P[P_CH_ETA], wrel, P[P_CH_BC], P[P_CH_DC], P[P_CH_CC])
+        TC += Tch
+        P_chc = -Tch * wrel
+        if P[P_CH_WALL] > 0.5:
+            TRz -= Tch            # the shaft-speed wall (inner ring) takes the reaction
+        else:
+            TOz -= Tch            # the outer-ring wall takes it (no power when the outer ring stands)
+        T_chs = cylinder_churning_torque(P[P_CH_RHO], P[P_CH_ETA], w, P[P_CH_BIR], P[P_CH_DLI], P[P_CH_CS])
+        P_chs = -T_chs * w
+    return TC, TRz, TOz, P_chc, P_chs, T_chs
+
+
+@hot(inline="always")
+def _cage_eom(dy, P, axisym, wc, vxc, vyc, TC, FCx, FCy):
+    """Equations of motion of the cage: dy[10:16]."""
+    # cage equations
+    dy[10] = wc
+    dy[11] = TC / P[P_IC]
+    dy[12] = vxc
+    dy[13] = vyc
+    dy[14] = FCx / P[P_MC]
+    dy[15] = FCy / P[P_MC]
+    if axisym:  # one representative ball: the cage cannot whirl
+        dy[12] = 0.0; dy[13] = 0.0; dy[14] = 0.0; dy[15] = 0.0
+
+
+@hot(inline="always")
+def _outer_ring_eom(dy, diag, P, axisym, mult, xo, yo, vxo, vyo, FOx, FOy, KE, Uel, P_dp):
+    """Equations of motion of the outer ring (dy[16:20]; fixed, or elastic housing) and its channels; returns
+    KE, Uel, P_dp with the housing's share."""
+    # outer ring: fixed, or elastically mounted in the housing (2 DOF, stiffness kh, damping ch)
+    hx = P[P_KH] * xo + P[P_CH] * vxo
+    hy = P[P_KH] * yo + P[P_CH] * vyo
+    if P[P_OUTER_ELASTIC] > 0.5 and not axisym:
+        dy[16] = vxo
+        dy[17] = vyo
+        dy[18] = (FOx - hx) / P[P_MO]
+        dy[19] = (FOy - hy) / P[P_MO]
+        KE += 0.5 * P[P_MO] * (vxo * vxo + vyo * vyo)
+        Uel += 0.5 * P[P_KH] * (xo * xo + yo * yo)
+        P_dp += P[P_CH] * (vxo * vxo + vyo * vyo)
+    else:
+        dy[16] = 0.0; dy[17] = 0.0; dy[18] = 0.0; dy[19] = 0.0
+        hx = FOx * mult if not axisym else 0.0
+        hy = FOy * mult if not axisym else 0.0
+    diag[O_OUTER_X] = xo
+    diag[O_OUTER_Y] = yo
+    diag[O_HOUSING_FX] = hx
+    diag[O_HOUSING_FY] = hy
+    return KE, Uel, P_dp
+
+
+@hot(inline="always")
+def _inner_ring_eom(dy, P, U, disp, axisym, w, vxi, vyi, vzi, wxi, wyi, FRx, FRy, FRz, MRx, MRy, P_dp, KE):
+    """Equations of motion of the inner ring (dy[0:10]; zero when displacement-driven): returns its
+    accelerations (axx, ayy, azz), the power of the external loads and P_dp, KE with the ring's share."""
+    Ip = P[P_IP]
+    It = P[P_IT]
+    mi = P[P_MI]
+    if disp:
+        for k in range(10):
+            dy[k] = 0.0
+        axx = 0.0; ayy = 0.0; azz = 0.0
+        Pext = 0.0
+    else:
+        dy[0] = vxi; dy[1] = vyi; dy[2] = vzi; dy[3] = wxi; dy[4] = wyi
+        # support damping of the shaft mounting (viscous, to ground; zero force at rest)
+        dfx = -P[P_CRX] * vxi
+        dfy = -P[P_CRY] * vyi
+        dfz = -P[P_CRZ] * vzi
+        dmx = -P[P_CRTX] * wxi
+        dmy = -P[P_CRTY] * wyi
+        P_dp -= dfx * vxi + dfy * vyi + dfz * vzi + dmx * wxi + dmy * wyi
+        axx = (U[U_FX] + FRx + dfx) / mi
+        ayy = (U[U_FY] + FRy + dfy) / mi
+        azz = (U[U_FZ] + FRz + dfz) / mi
+        dy[5] = axx
+        dy[6] = ayy
+        dy[7] = azz
+        # tilt with the spinning ring's gyroscopic coupling (Ip w)
+        dy[8] = (U[U_MX] + MRx + dmx - Ip * w * wyi) / It
+        dy[9] = (U[U_MY] + MRy + dmy + Ip * w * wxi) / It
+        if P[P_FIXTILT] > 0.5:   # rigid shaft held by other bearings: no tilt, Mx, My are reactions
+            dy[3] = 0.0; dy[4] = 0.0; dy[8] = 0.0; dy[9] = 0.0
+        if axisym:
+            dy[0] = 0.0; dy[1] = 0.0; dy[3] = 0.0; dy[4] = 0.0
+            dy[5] = 0.0; dy[6] = 0.0; dy[8] = 0.0; dy[9] = 0.0
+            axx = 0.0; ayy = 0.0
+        Pext = U[U_FX] * vxi + U[U_FY] * vyi + U[U_FZ] * vzi + U[U_MX] * wxi + U[U_MY] * wyi
+        KE += 0.5 * mi * (vxi * vxi + vyi * vyi + vzi * vzi) + 0.5 * It * (wxi * wxi + wyi * wyi)
+    return axx, ayy, azz, Pext, P_dp, KE
+
+
+@hot(inline="always")
+def _drive_channels(diag, t, w, wdot, wo, wc, xc, yc, FRx, FRy, FRz, MRx, MRy, xi_, yi_, zi_, txi, tyi, vxi, vyi,
+                    vzi, axx, ayy, azz, TRz, TOz, T_chs, Pext):
+    """Output channels of the shaft, cage, ring loads and pose, and the drive torques and powers of both
+    rings."""
+    # drive: the shaft must supply the traction torque (TRz is the torque of the balls on the ring)
+    fric = -TRz - T_chs
+    fric_o = -TOz
+    diag[O_T] = t
+    diag[O_SHAFT_SPEED] = w
+    diag[O_SHAFT_ACCEL] = wdot
+    diag[O_CAGE_SPEED] = wc
+    diag[O_CAGE_X] = xc
+    diag[O_CAGE_Y] = yc
+    diag[O_FX] = FRx
+    diag[O_FY] = FRy
+    diag[O_FZ] = FRz
+    diag[O_MX] = MRx
+    diag[O_MY] = MRy
+    diag[O_IR_X] = xi_; diag[O_IR_Y] = yi_; diag[O_IR_Z] = zi_
+    diag[O_IR_TX] = txi; diag[O_IR_TY] = tyi
+    diag[O_IR_VX] = vxi; diag[O_IR_VY] = vyi; diag[O_IR_VZ] = vzi
+    diag[O_IR_AX] = axx; diag[O_IR_AY] = ayy; diag[O_IR_AZ] = azz
+    diag[O_FRICTION_TORQUE] = fric
+    diag[O_P_DRIVE] = fric * w + fric_o * wo     # both rings' drives
+    diag[O_OUTER_RING_SPEED] = wo
+    diag[O_FRICTION_TORQUE_OUTER] = fric_o
+    diag[O_P_EXT] = Pext
+
+
+@hot(inline="always")
+def _loss_channels(diag, P_ri, P_ro, P_sl, P_sp, P_pk, P_chc, P_chs, P_ld, P_dr, P_dp, KE, Uel):
+    """Output channels of the losses (race losses split by motion), kinetic and elastic energy."""
+    diag[O_P_RACE_INNER] = P_ri
+    diag[O_P_RACE_OUTER] = P_ro
+    # split of the race losses: centre sliding, spin, and the rest = differential slip across the curved
+    # contact (Heathcote slip, the 'rolling' loss of the conformal groove); the three add up to the total
+    diag[O_P_RACE_SLIDE] = P_sl
+    diag[O_P_RACE_SPIN] = P_sp
+    diag[O_P_RACE_DIFFSLIP] = P_ri + P_ro - P_sl - P_sp
+    diag[O_P_POCKET] = P_pk
+    diag[O_P_CHURN_CAGE] = P_chc
+    diag[O_P_CHURN_RING] = P_chs
+    diag[O_P_LAND] = P_ld
+    diag[O_P_DRAG] = P_dr
+    diag[O_P_DAMPING] = P_dp
+    diag[O_KE] = KE
+    diag[O_U_ELASTIC] = Uel
+
+
+@hot(inline="always")
+def _contact_channels(diag, D, dm, a0, w, wo, sai, nai, sao, nao, Qimax, Qomax, Qimin, pmax, sco, sci, npr):
+    """Output channels of the contact statistics and the pure-rolling cage speed estimates."""
+    diag[O_ALPHA_I_MEAN] = sai / nai if nai > 0 else 0.0
+    diag[O_ALPHA_O_MEAN] = sao / nao if nao > 0 else 0.0
+    diag[O_Q_I_MAX] = Qimax
+    diag[O_Q_O_MAX] = Qomax
+    diag[O_Q_I_MIN] = Qimin
+    ami = sai / nai if nai > 0 else a0
+    amo = sao / nao if nao > 0 else a0
+    # theoretical cage speed, spin neglected (seed 000 Eq. 26): both rolling radii D/2, so
+    # (w - wc) (1 - D cos ai / dm) = (wc - wo) (1 + D cos ao / dm); equal angles give the classical
+    # [w (1 - g) + wo (1 + g)] / 2 (Harris & Kotzalas Vol. 1 Ch. 8, both rings rotating). Linear in the
+    # speeds: no division by a speed, finite and continuous through zero.
+    gi = D * math.cos(ami) / dm
+    go = D * math.cos(amo) / dm
+    diag[O_PURE_ROLLING_CAGE_SPEED] = (w * (1.0 - gi) + wo * (1.0 + go)) / (2.0 - gi + go)
+    # Jones-Harris pure rolling at both contact centres with outer raceway control (kinematics.py), in the
+    # frame turning with the outer ring (kinematics depend on the ring speed difference only)
+    bet = math.atan2(math.sin(amo), math.cos(amo) + D / dm)
+    ci_ = math.cos(ami - bet)
+    co_ = math.cos(amo - bet)
+    diag[O_PURE_ROLLING_CAGE_SPEED_JH] = wo + (w - wo) * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci_ / co_)
+    diag[O_P_MAX] = pmax
+    diag[O_CAGE_SPEED_PURE_ROLLING_OUTER] = sco / npr if npr > 0 else diag[O_PURE_ROLLING_CAGE_SPEED_JH]
+    diag[O_CAGE_SPEED_PURE_ROLLING_INNER] = sci / npr if npr > 0 else diag[O_PURE_ROLLING_CAGE_SPEED_JH]
+
+
 @hot
 def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, want_bd):
     """dy/dt of the bearing model. diag (len NOUT) receives the output channels at (t, y); bd (nb x NBD)
     receives per-ball details when want_bd is True. tp: contact_kernels traction parameters; (qx, qwx,
-    qy, qwy): contact_kernels.ellipse_quadrature."""
+    qy, qwy): contact_kernels.ellipse_quadrature.
+    Per ball: raceway contacts (_groove_centres, contact_kernels' normal contact, _raceway_contact and
+    _race_traction or the EHL pair kernel, the tractions' loads _inner_race_traction_loads /
+    _outer_race_traction_loads, second arcs of four-point bearings _second_inner_arc / _second_outer_arc),
+    pocket (_ball_pocket), drag (_ball_drag), equations of motion (_ball_eom), its loads on the inner ring
+    (_inner_ring_loads) and statistics (_contact_statistics, _ball_details, _ball0_channels); then cage
+    guidance (_cage_land_contact, _cage_flooded_land), churning (_churning), the equations of the cage
+    (_cage_eom), outer ring (_outer_ring_eom) and inner ring (_inner_ring_eom), and the output channels
+    (_drive_channels, _loss_channels, _contact_channels).
+    Kernels inlined into the ball loop take scalars (tuples of scalars) only: an array argument of an inlined
+    kernel is reference-counted per ball. The normal contact and the first contacts' traction, whose callees
+    take the tables and quadrature arrays, stay in this loop: moved into a kernel compiled on its own (no
+    reference counting), the fastmath re-association no longer spans the call and the results change in
+    the last bits."""
     Z = P[P_Z]
     tmodel = int(tp[P_LUBMODEL]) if P[P_TRACTION] < 0.5 else TRACTION_COULOMB   # lubricated: EHL or curve
     kalker = P[P_TRACTION] > 1.5          # Kalker's simplified theory (FASTSIM), seed 000 Eqs. 7-9
@@ -253,13 +857,7 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     w, wdot = _shaft(U, t)
     wo = U[U_WO]
     disp = P[P_COUPLING] > 0.5
-    if disp:
-        # displacement-driven: ring pose and rates are inputs (held over the step)
-        xi_ = U[U_DX]; yi_ = U[U_DY]; zi_ = U[U_DZ]; txi = U[U_TX]; tyi = U[U_TY]
-        vxi = U[U_VX]; vyi = U[U_VY]; vzi = U[U_VZ]; wxi = U[U_WX]; wyi = U[U_WY]
-    else:
-        xi_ = y[0]; yi_ = y[1]; zi_ = y[2]; txi = y[3]; tyi = y[4]
-        vxi = y[5]; vyi = y[6]; vzi = y[7]; wxi = y[8]; wyi = y[9]
+    xi_, yi_, zi_, txi, tyi, vxi, vyi, vzi, wxi, wyi = _ring_pose(y, U, disp)
     thc = y[10]
     wc = y[11]
     xc = y[12]
@@ -292,6 +890,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     gD = D / dm
     imb = 1.0 / mb
     iJb = 1.0 / Jb
+    trac = (kalker, tmodel, tp, Gc, nuc, fnx, fny, qx, qwx, qy, qwy, sc)
+    pocket = (cpk, kpk, cpkd, mupk, P[P_MUBL], P[P_MUEHL], P[P_ETA_PK], P[P_ALPHA_PK], P[P_EPK], P[P_SIGPK])
     for j in range(nb):
         o = NSTATE_FIXED + NSB * j
         th = y[o]; rb = y[o + 1]; zb = y[o + 2]
@@ -299,18 +899,10 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         s_frx = FRx; s_fry = FRy; s_frz = FRz; s_mrx = MRx; s_mry = MRy
         s_fcx = FCx; s_fcy = FCy; s_tc = TC; s_fox = FOx; s_foy = FOy
         Wr = y[o + 6]; Wt = y[o + 7]; Wz = y[o + 8]
-        c = math.cos(th)
-        s = math.sin(th)
-        # groove centres (QS mapping) and their rates
-        Cr = Cr0 + xi_ * c + yi_ * s
-        Cz = Cz0 + zi_ + Ri * (txi * s - tyi * c)
-        vrr = vxi * c + vyi * s                    # ring translation velocity at the ball, local frame
-        vrt = -vxi * s + vyi * c
-        vrz = vzi + Ri * (wxi * s - wyi * c)
-        Xr = rb - Roo - (xo * c + yo * s)      # outer groove centre moves with the outer ring
-        Xz = zb - Zoo
-        vor = vxo * c + vyo * s                # outer ring translation velocity, local frame
-        vot = -vxo * s + vyo * c
+        ball = (rb, rd, thd, zd, Wr, Wt, Wz)
+        c, s, Cr, Cz, vrr, vrt, vrz, Xr, Xz, vor, vot = _groove_centres(th, rb, zb, Cr0, Cz0, Ri, Roo, Zoo, xi_,
+                                                                       yi_, zi_, txi, tyi, vxi, vyi, vzi, wxi,
+                                                                       wyi, xo, yo, vxo, vyo)
         # normal contact with the raceways (contact_kernels): single-arc grooves, or the four arcs of
         # gothic-arch grooves. Inner arc 1 is centred at C, arc 2 at C - 2 e_i axially; outer arc 1 at the
         # outer groove centre, arc 2 at + 2 e_o; an inner arc centre at height z_k = +-e_i above the
@@ -346,8 +938,8 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
             vri = vrr
         _, dli, nir, niz, ai, Qi, ai_s, bi_s, pi_ = ca
         _, dlo, nor, noz, ao, Qo, ao_s, bo_s, po = oa
-        _, dli2, nir2, niz2, ai2, Qi2, ai2_s, bi2_s, pi2 = cb
-        _, dlo2, nor2, noz2, ao2, Qo2, ao2_s, bo2_s, po2 = ob
+        Qi2 = cb[5]; pi2 = cb[8]
+        Qo2 = ob[5]; po2 = ob[8]
         # each contact: normal force with damping and contact kinematics (_raceway_contact), traction
         # (_race_traction)
         (Fni, pd_i, ue_i, Rxi, vsti, vsmi, wspi, wrmi, wrti,
@@ -377,222 +969,50 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
         Ft = 0.0
         Fz = -Fni * niz - Fno * noz
         Mr = 0.0; Mt = 0.0; Mz = 0.0
-        # traction, inner race (contact_kernels: force on the ball along t and m = (-n_z, n_r), moments
-        # along n, m, t about the ball centre)
-        Fr += -fmi * niz; Ft += fti; Fz += fmi * nir
-        Mr += mni * nir - mmi * niz; Mt += mti; Mz += mni * niz + mmi * nir
-        P_ri += pli
-        P_sl -= fti * vsti + fmi * vsmi   # sliding of the contact centre (rolling direction and across)
-        P_sp -= mni * wspi                # spin about the contact normal
+        (Fr, Ft, Fz, Mr, Mt, Mz, P_ri, P_sl, P_sp, TRz,
+         fr_ring, ft_ring, fz_ring) = _inner_race_traction_loads(Fr, Ft, Fz, Mr, Mt, Mz, P_ri, P_sl, P_sp, TRz, rb,
+                                                                 Fni, nir, niz, fti, fmi, mni, mmi, mti, pli, vsti,
+                                                                 vsmi, wspi)
         tri_t = fti; tri_m = fmi
         sl_i = vsti; u_i = abs(uri); sp_i = wspi; sm_i = vsmi
-        # the ring receives the normal force and the opposite traction; torque about z at the contact
-        fr_ring = Fni * nir + fmi * niz
-        ft_ring = -fti
-        fz_ring = Fni * niz - fmi * nir
-        # torque of the traction about the bearing axis, exact for the distributed shear: on the ball it is
-        # rb F_t + (M about the ball centre) . z = rb F_t + n_z M_n + n_r M_m; the ring gets the opposite
-        TRz -= rb * fti + niz * mni + nir * mmi
-        # traction, outer race (turning at wo)
-        Fr += -fmo * noz; Ft += fto; Fz += fmo * nor
-        Mr += mno * nor - mmo * noz; Mt += mto; Mz += mno * noz + mmo * nor
-        P_ro += plo
-        P_sl -= fto * vsto + fmo * vsmo
-        P_sp -= mno * wspo
+        (Fr, Ft, Fz, Mr, Mt, Mz, P_ro, P_sl, P_sp, FOx, FOy,
+         TOz) = _outer_race_traction_loads(Fr, Ft, Fz, Mr, Mt, Mz, P_ro, P_sl, P_sp, FOx, FOy, TOz, c, s, rb, Fno,
+                                           nor, noz, fto, fmo, mno, mmo, mto, plo, vsto, vsmo, wspo)
         tro_t = fto; tro_m = fmo
-        # the outer ring receives the normal force and the opposite traction (radial / tangential parts)
-        for_r = Fno * nor + fmo * noz
-        for_t = -fto
-        FOx += for_r * c - for_t * s
-        FOy += for_r * s + for_t * c
-        TOz -= rb * fto + noz * mno + nor * mmo
         sl_o = vsto; u_o = abs(uro); sp_o = wspo; sm_o = vsmo
         # second arcs (four-point contact): the same contact kernel, with their loads on ball and rings
         fr2_ring = 0.0; ft2_ring = 0.0; fz2_ring = 0.0
         if Qi2 > 0.0:
-            (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
-             ur2) = _raceway_contact(dli2, nir2, niz2, Qi2, rb, rd, thd, zd, Wr, Wt, Wz, w,
-                                     vrr - zib * tdot, vrt, vrz, D, gD, zeta, mb)
-            ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ai2_s, bi2_s, Qi2, pi2, D, Rdi, Rx2, Ryi, vst2,
-                                                          vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
-                                                          fny, qx, qwx, qy, qwy, sc)
-            P_dp += pd2; Uel += ue2
-            Fr += -Fn2 * nir2 - fm2 * niz2; Ft += ft2; Fz += -Fn2 * niz2 + fm2 * nir2
-            Mr += mn2 * nir2 - mm2 * niz2; Mt += mt2; Mz += mn2 * niz2 + mm2 * nir2
-            P_ri += pl2
-            P_sl -= ft2 * vst2 + fm2 * vsm2
-            P_sp -= mn2 * wsp2
-            fr2_ring = Fn2 * nir2 + fm2 * niz2
-            ft2_ring = -ft2
-            fz2_ring = Fn2 * niz2 - fm2 * nir2
-            TRz -= rb * ft2 + niz2 * mn2 + nir2 * mm2
+            (Fr, Ft, Fz, Mr, Mt, Mz, P_ri, P_sl, P_sp, P_dp, Uel, TRz, fr2_ring, ft2_ring,
+             fz2_ring) = _second_inner_arc(Fr, Ft, Fz, Mr, Mt, Mz, P_ri, P_sl, P_sp, P_dp, Uel, TRz, cb, ball, w,
+                                           vrr, zib, tdot, vrt, vrz, D, gD, zeta, mb, Rdi, Ryi, trac)
         if Qo2 > 0.0:
-            (Fn2, pd2, ue2, Rx2, vst2, vsm2, wsp2, wrm2, wrt2,
-             ur2) = _raceway_contact(dlo2, nor2, noz2, Qo2, rb, rd, thd, zd, Wr, Wt, Wz, wo, vor, vot,
-                                     0.0, D, gD, zeta, mb)
-            ft2, fm2, mn2, mm2, mt2, pl2 = _race_traction(kalker, ao2_s, bo2_s, Qo2, po2, D, Rdo, Rx2, Ryo, vst2,
-                                                          vsm2, wsp2, wrm2, wrt2, ur2, tmodel, tp, Gc, nuc, fnx,
-                                                          fny, qx, qwx, qy, qwy, sc)
-            P_dp += pd2; Uel += ue2
-            Fr += -Fn2 * nor2 - fm2 * noz2; Ft += ft2; Fz += -Fn2 * noz2 + fm2 * nor2
-            Mr += mn2 * nor2 - mm2 * noz2; Mt += mt2; Mz += mn2 * noz2 + mm2 * nor2
-            P_ro += pl2
-            P_sl -= ft2 * vst2 + fm2 * vsm2
-            P_sp -= mn2 * wsp2
-            for_r = Fn2 * nor2 + fm2 * noz2
-            for_t = -ft2
-            FOx += for_r * c - for_t * s
-            FOy += for_r * s + for_t * c
-            TOz -= rb * ft2 + noz2 * mn2 + nor2 * mm2
-        # ball-pocket contact (seed 000 Eq. 6, contact_kernels.ball_pocket_contact) in the frame of the
-        # (possibly whirling) cage: ball azimuth about the cage centre against the pocket azimuth
-        # dth: azimuth of the ball centre about the cage centre minus the pocket azimuth thc + 2 pi j / Z,
-        # = (th - pocket azimuth) + the angle of the ball centre seen from the cage centre against the ball's
-        # radial direction (c, s), small (cage offset over pitch radius): no arctangent of a full angle, and
-        # a wrap only if the state puts the ball a turn away from its pocket
-        d0 = th - thc - 2.0 * math.pi * j / Z
-        if abs(d0) > math.pi:
-            d0 = wrap_angle(d0)
-        dth = d0 + atan2(xc * s - yc * c, rb - xc * c - yc * s)
-        bx_ = rb * c - xc
-        by_ = rb * s - yc
-        rr2 = bx_ * bx_ + by_ * by_
-        vbx = rd * c - rb * thd * s - vxc
-        vby = rd * s + rb * thd * c - vyc
-        vcr_ = vxc * c + vyc * s
-        rbc = math.sqrt(rr2)   # ball radius about the cage centre: the arm of the pocket force
-        irbc = 1.0 / rbc
-        thb_d = (bx_ * vby - by_ * vbx) * (irbc * irbc)
-        if lube:
-            (Fpk, fpt, fpr, fpz, mpr, mpz, tw_, pl_, pd_, ue_) = ball_pocket_lubricated_rel(
-                dth, thb_d, wc, rbc, cpk, kpk, cpkd, P[P_MUBL], P[P_MUEHL], 0.01, P[P_ETA_PK],
-                P[P_ALPHA_PK], P[P_EPK], P[P_SIGPK], D, rd, zd, Wr, Wz, vcr_, 0.0)
-        else:
-            Fpk, fpt, fpr, fpz, mpr, mpz = ball_pocket_contact_rel(dth, thb_d, wc, rbc, cpk, kpk, cpkd, mupk,
-                                                                   0.01, D, rd, zd, Wr, Wz, vcr_, 0.0)
-            tw_ = pl_ = pd_ = ue_ = 0.0
-        if lube or Fpk > 0.0:
-            # pocket force along the cage-frame tangential direction at the ball; the cage gets (-fx, -fy) at
-            # the ball centre (a torque about its centre) and the films' shear torque tw_
-            tpx = -by_ * irbc         # (-sin, cos) of the ball's azimuth about the cage centre
-            tpy = bx_ * irbc
-            fx = fpt * tpx + fpr * c
-            fy = fpt * tpy + fpr * s
-            Fr += fx * c + fy * s
-            Ft += -fx * s + fy * c
-            Fz += fpz
-            Mr += mpr
-            Mz += mpz
-            FCx -= fx
-            FCy -= fy
-            TC += by_ * fx - bx_ * fy + tw_
-        if lube:
-            Uel += ue_
-            P_dp += pd_
-            P_pk += pl_
-        elif Fpk > 0.0:
-            sg = 1.0 if fpt < 0.0 else -1.0                         # side of the pocket wall (+t or -t)
-            TC += sg * 0.5 * D * fpr       # the wall friction acts at the offset sg D/2 t: torque on the cage
-            pen = rbc * abs(dth) - cpk
-            Uel += 0.5 * kpk * pen * pen
-            # dissipation: friction and damping of the pocket contact = -(power of its forces on the
-            # relative motion) - d(elastic energy)/dt, evaluated from the relative velocities
-            vrel_t = (thb_d - wc) * rbc
-            P_dp += (Fpk - kpk * pen) * vrel_t * sg
-            vsr = rd - vcr_ - sg * 0.5 * D * (Wz - wc)
-            vsz = zd + sg * 0.5 * D * Wr
-            P_pk -= fpr * vsr + fpz * vsz
-        # ball drag in the oil-air mixture (seed 001 Eq. 10): opposes the orbital motion
-        vorb = rb * thd - wc * rp * 0.0
-        Fd = 0.5 * rho_eff * cd * (math.pi * D * D / 4.0) * vorb * abs(vorb)
-        Ft -= Fd
-        P_dr += Fd * vorb
+            (Fr, Ft, Fz, Mr, Mt, Mz, P_ro, P_sl, P_sp, P_dp, Uel, FOx, FOy,
+             TOz) = _second_outer_arc(Fr, Ft, Fz, Mr, Mt, Mz, P_ro, P_sl, P_sp, P_dp, Uel, FOx, FOy, TOz, ob, c,
+                                      s, ball, wo, vor, vot, D, gD, zeta, mb, Rdo, Ryo, trac)
+        Fpk, Fr, Ft, Fz, Mr, Mz, FCx, FCy, TC, Uel, P_dp, P_pk = _ball_pocket(
+            Fr, Ft, Fz, Mr, Mz, FCx, FCy, TC, Uel, P_dp, P_pk, j, Z, th, c, s, ball, thc, wc, xc, yc, vxc, vyc, D,
+            lube, pocket)
+        Ft, P_dr = _ball_drag(Ft, P_dr, rb, thd, wc, rp, rho_eff, cd, D)
         # equations of motion, ball j
         dy[o] = thd
         dy[o + 1] = rd
         dy[o + 2] = zd
-        dy[o + 3] = (Ft * imb - 2.0 * rd * thd) / rb
-        dy[o + 4] = Fr * imb + rb * thd * thd
-        dy[o + 5] = Fz * imb
-        dy[o + 6] = Mr * iJb + thd * Wt
-        dy[o + 7] = Mt * iJb - thd * Wr
-        dy[o + 8] = Mz * iJb
-        # ring loads from ball j (global)
-        gx = fr_ring * c - ft_ring * s
-        gy = fr_ring * s + ft_ring * c
-        if not axisym:
-            FRx += gx
-            FRy += gy
-            MRx += Ri * s * fz_ring
-            MRy += -Ri * c * fz_ring
-        FRz += fz_ring
-        if fourpt:
-            # second inner arc, and the arms z = +-e_i of the arc centres above the inner-ring mid-plane:
-            # the force (fr, ft, fz) at Ri e_r + z e_z has the moment Ri fz - z fr about e_t and -z ft about e_r
-            FRz += fz2_ring
-            if not axisym:
-                FRx += fr2_ring * c - ft2_ring * s
-                FRy += fr2_ring * s + ft2_ring * c
-                MRx += (Ri * s * fz2_ring - zia * (fr_ring * s + ft_ring * c)
-                        - zib * (fr2_ring * s + ft2_ring * c))
-                MRy += (-Ri * c * fz2_ring + zia * (fr_ring * c - ft_ring * s)
-                        + zib * (fr2_ring * c - ft2_ring * s))
+        (dy[o + 3], dy[o + 4], dy[o + 5], dy[o + 6], dy[o + 7],
+         dy[o + 8]) = _ball_eom(Fr, Ft, Fz, Mr, Mt, Mz, rb, rd, thd, Wr, Wt, imb, iJb)
+        FRx, FRy, FRz, MRx, MRy = _inner_ring_loads(FRx, FRy, FRz, MRx, MRy, axisym, fourpt, c, s, Ri, zia, zib,
+                                                    fr_ring, ft_ring, fz_ring, fr2_ring, ft2_ring, fz2_ring)
         KE += 0.5 * mb * (rd * rd + (rb * thd) ** 2 + zd * zd) + 0.5 * Jb * (Wr * Wr + Wt * Wt + Wz * Wz)
-        # four-point contact: the first contacts' angles by magnitude (a diagonal pair i2/o2 is the mirror
-        # image of i1/o1, with the same pure-rolling cage speed; a ball on i1 and o2 gets the estimate of
-        # equal-sign angles)
-        ai_k = abs(ai) if fourpt else ai
-        ao_k = abs(ao) if fourpt else ao
-        sai_k = abs(niz) if fourpt else -niz      # sin of ai_k, ao_k from the contact normals
-        sao_k = abs(noz) if fourpt else noz
-        if Qi > 0.0:
-            sai += ai_k; nai += 1.0
-            Qimax = max(Qimax, Qi)
-            pmax = max(pmax, pi_)          # p_max = 1.5 Q / (pi a b) of the contact kernel
-        Qimin = min(Qimin, Qi)
-        if Qi > 0.0 and Qo > 0.0:
-            wco, wci = pure_rolling_cage_speeds_cs(w, -nir, sai_k, nor, sao_k, gD, wo)
-            sco += wco; sci += wci; npr += 1.0
-        if Qo > 0.0:
-            sao += ao_k; nao += 1.0
-            Qomax = max(Qomax, Qo)
-            pmax = max(pmax, po)
-        if Qi2 > 0.0:
-            Qimax = max(Qimax, Qi2)
-            pmax = max(pmax, pi2)
-        if Qo2 > 0.0:
-            Qomax = max(Qomax, Qo2)
-            pmax = max(pmax, po2)
+        (sai, nai, sao, nao, Qimax, Qomax, Qimin, pmax, sco, sci,
+         npr) = _contact_statistics(sai, nai, sao, nao, Qimax, Qomax, Qimin, pmax, sco, sci, npr, fourpt, w, wo,
+                                    gD, ai, ao, nir, niz, nor, noz, Qi, Qo, Qi2, Qo2, pi_, po, pi2, po2)
         if want_bd:
-            bd[j, BD_QI2] = Qi2; bd[j, BD_AI2] = ai2; bd[j, BD_QO2] = Qo2; bd[j, BD_AO2] = ao2
-            bd[j, BD_AI] = ai; bd[j, BD_AO] = ao; bd[j, BD_QI] = Qi; bd[j, BD_QO] = Qo
-            bd[j, BD_DI] = dli; bd[j, BD_DO] = dlo
-            bd[j, BD_AI_SEMI] = ai_s; bd[j, BD_BI] = bi_s; bd[j, BD_AO_SEMI] = ao_s; bd[j, BD_BO] = bo_s
-            bd[j, BD_PI] = pi_
-            bd[j, BD_PO] = po
-            bd[j, BD_FTI] = tri_t; bd[j, BD_FMI] = tri_m; bd[j, BD_FTO] = tro_t; bd[j, BD_FMO] = tro_m
-            bd[j, BD_VSI] = sl_i; bd[j, BD_VSO] = sl_o; bd[j, BD_UI] = u_i; bd[j, BD_UO] = u_o
-            bd[j, BD_SPI] = sp_i; bd[j, BD_SPO] = sp_o; bd[j, BD_WSI] = sm_i; bd[j, BD_WSO] = sm_o
-            bd[j, BD_FPOCKET] = Fpk
-            bd[j, BD_CFRX] = FRx - s_frx; bd[j, BD_CFRY] = FRy - s_fry; bd[j, BD_CFRZ] = FRz - s_frz
-            bd[j, BD_CMRX] = MRx - s_mrx; bd[j, BD_CMRY] = MRy - s_mry
-            bd[j, BD_CFCX] = FCx - s_fcx; bd[j, BD_CFCY] = FCy - s_fcy; bd[j, BD_CTC] = TC - s_tc
-            bd[j, BD_CFOX] = FOx - s_fox; bd[j, BD_CFOY] = FOy - s_foy
+            _ball_details(bd, j, ca, cb, oa, ob, tri_t, tri_m, tro_t, tro_m, sl_i, sl_o, u_i, u_o, sp_i, sp_o,
+                          sm_i, sm_o, Fpk, (FRx - s_frx, FRy - s_fry, FRz - s_frz, MRx - s_mrx, MRy - s_mry,
+                                            FCx - s_fcx, FCy - s_fcy, TC - s_tc, FOx - s_fox, FOy - s_foy))
         if j == 0:
-            diag[O_BALL0_WR] = Wr
-            diag[O_BALL0_WT] = Wt
-            diag[O_BALL0_WZ] = Wz
-            diag[O_BALL0_ORBIT_SPEED] = thd
-            diag[O_BALL0_SLIDE_ROLL_I] = sl_i / max(u_i, 1e-12)
-            diag[O_BALL0_SLIDE_ROLL_O] = sl_o / max(u_o, 1e-12)
-            diag[O_BALL0_SPIN_ROLL_I] = sp_i * 0.5 * D / max(u_i, 1e-12)
-            diag[O_BALL0_SPIN_ROLL_O] = sp_o * 0.5 * D / max(u_o, 1e-12)
-            diag[O_BALL0_ALPHA_I] = ai
-            diag[O_BALL0_ALPHA_O] = ao
-            diag[O_BALL0_Q_I] = Qi
-            diag[O_BALL0_Q_O] = Qo
-            diag[O_BALL0_FT_I] = tri_t
-            diag[O_BALL0_FT_O] = tro_t
+            _ball0_channels(diag, D, Wr, Wt, Wz, thd, sl_i, sl_o, u_i, u_o, sp_i, sp_o, ai, ao, Qi, Qo, tri_t,
+                            tro_t)
     # multiplicity (reduced axisymmetric model: one ball stands for Z)
     FRz *= mult
     TRz *= mult
@@ -607,207 +1027,23 @@ def rhs(t, y, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, 
     e = math.sqrt(xc * xc + yc * yc)
     cl = P[P_CLAND]
     if e > cl and P[P_GUIDE] < 1.5:
-        pen = e - cl
-        ex = xc / e
-        ey = yc / e
-        ve = vxc * ex + vyc * ey
-        Fl = max(P[P_KLAND] * pen + P[P_CLANDD] * ve, 0.0)
-        P_dp += (Fl - P[P_KLAND] * pen) * ve
-        Uel += 0.5 * P[P_KLAND] * pen * pen
-        FCx -= Fl * ex
-        FCy -= Fl * ey
-        if P[P_GUIDE] > 0.5:        # the guiding land takes the opposite force: inner ring or outer ring
-            FRx += Fl * ex
-            FRy += Fl * ey
-        else:
-            FOx += Fl * ex
-            FOy += Fl * ey
-        vsl = (wc - wo) * P[P_RLAND]    # land turning with the outer ring or with the shaft (inner)
-        if P[P_GUIDE] > 0.5:
-            vsl = (wc - w) * P[P_RLAND]
-        muf = (P[P_MUBL] if lube else P[P_MULAND]) * math.tanh(vsl / 0.01)
-        TC -= muf * Fl * P[P_RLAND]
-        P_ld += muf * Fl * vsl
-        if P[P_GUIDE] > 0.5:
-            TRz += muf * Fl * P[P_RLAND]   # inner-land guided: the ring gets the opposite friction torque
-        else:
-            TOz += muf * Fl * P[P_RLAND]
+        P_ld, FCx, FCy, FRx, FRy, FOx, FOy, TC, TRz, TOz, P_dp, Uel = _cage_land_contact(
+            e, cl, xc, yc, vxc, vyc, wc, w, wo, lube, P, FCx, FCy, FRx, FRy, FOx, FOy, TC, TRz, TOz, P_dp, Uel)
     eta = P[P_ETA_LAND]
     if eta > 0.0 and P[P_GUIDE] < 1.5:
-        # oil-flooded guiding land: short journal bearing (seed 001 Eq. 4; Ocvirk, Hamrock 'Fundamentals of
-        # Fluid Film Lubrication' Ch. 12) and Petroff drag torque with eccentricity (seed 001 Eq. 5)
-        cg = cl
-        R = P[P_RLAND]
-        B = P[P_WLAND]
-        wg = w if P[P_GUIDE] > 0.5 else wo
-        eps = min(e / cg, P[P_EPSMAX])
-        Us = R * (wg + wc)
-        if e > 1e-15:
-            ex = xc / e
-            ey = yc / e
-        else:
-            ex = 1.0
-            ey = 0.0
-        Fr_h = eta * abs(Us) * B ** 3 * eps * eps / (cg * cg * (1.0 - eps * eps) ** 2)
-        Ft_h = math.pi * eta * Us * B ** 3 * eps / (4.0 * cg * cg * (1.0 - eps * eps) ** 1.5)
-        fhx = -Fr_h * ex - Ft_h * ey
-        fhy = -Fr_h * ey + Ft_h * ex
-        FCx += fhx
-        FCy += fhy
-        if P[P_GUIDE] > 0.5:
-            FRx -= fhx
-            FRy -= fhy
-        else:
-            FOx -= fhx
-            FOy -= fhy
-        Th = 2.0 * math.pi * eta * R ** 3 * B * (wg - wc) / (cg * math.sqrt(1.0 - eps * eps))
-        TC += Th
-        if P[P_GUIDE] > 0.5:
-            TRz -= Th
-        else:
-            TOz -= Th
-        P_ld += Th * (wg - wc) - (fhx * vxc + fhy * vyc)
-    # oil churning (seed 001 Eqs. 12-17 as torques, bearing_core.lubrication.churning): on the cage against its
-    # speed relative to the facing wall, and on the inner ring (the drive supplies it)
-    P_chc = 0.0
-    P_chs = 0.0
-    T_chs = 0.0
-    if P[P_CH_ON] > 0.5:
-        wrel = wc - (w if P[P_CH_WALL] > 0.5 else wo)      # facing wall: inner ring or outer ring
-        Tch = cylinder_churning_torque(P[P_CH_RHO], P[P_CH_ETA], wrel, P[P_CH_BC], P[P_CH_DC], P[P_CH_CC])
-        TC += Tch
-        P_chc = -Tch * wrel
-        if P[P_CH_WALL] > 0.5:
-            TRz -= Tch            # the shaft-speed wall (inner ring) takes the reaction
-        else:
-            TOz -= Tch            # the outer-ring wall takes it (no power when the outer ring stands)
-        T_chs = cylinder_churning_torque(P[P_CH_RHO], P[P_CH_ETA], w, P[P_CH_BIR], P[P_CH_DLI], P[P_CH_CS])
-        P_chs = -T_chs * w
-    # cage equations
-    dy[10] = wc
-    dy[11] = TC / P[P_IC]
-    dy[12] = vxc
-    dy[13] = vyc
-    dy[14] = FCx / P[P_MC]
-    dy[15] = FCy / P[P_MC]
-    if axisym:  # one representative ball: the cage cannot whirl
-        dy[12] = 0.0; dy[13] = 0.0; dy[14] = 0.0; dy[15] = 0.0
-    # outer ring: fixed, or elastically mounted in the housing (2 DOF, stiffness kh, damping ch)
-    hx = P[P_KH] * xo + P[P_CH] * vxo
-    hy = P[P_KH] * yo + P[P_CH] * vyo
-    if P[P_OUTER_ELASTIC] > 0.5 and not axisym:
-        dy[16] = vxo
-        dy[17] = vyo
-        dy[18] = (FOx - hx) / P[P_MO]
-        dy[19] = (FOy - hy) / P[P_MO]
-        KE += 0.5 * P[P_MO] * (vxo * vxo + vyo * vyo)
-        Uel += 0.5 * P[P_KH] * (xo * xo + yo * yo)
-        P_dp += P[P_CH] * (vxo * vxo + vyo * vyo)
-    else:
-        dy[16] = 0.0; dy[17] = 0.0; dy[18] = 0.0; dy[19] = 0.0
-        hx = FOx * mult if not axisym else 0.0
-        hy = FOy * mult if not axisym else 0.0
-    diag[O_OUTER_X] = xo
-    diag[O_OUTER_Y] = yo
-    diag[O_HOUSING_FX] = hx
-    diag[O_HOUSING_FY] = hy
+        FCx, FCy, FRx, FRy, FOx, FOy, TC, TRz, TOz, P_ld = _cage_flooded_land(
+            eta, e, cl, xc, yc, vxc, vyc, wc, w, wo, P, FCx, FCy, FRx, FRy, FOx, FOy, TC, TRz, TOz, P_ld)
+    TC, TRz, TOz, P_chc, P_chs, T_chs = _churning(P, wc, w, wo, TC, TRz, TOz)
+    _cage_eom(dy, P, axisym, wc, vxc, vyc, TC, FCx, FCy)
+    KE, Uel, P_dp = _outer_ring_eom(dy, diag, P, axisym, mult, xo, yo, vxo, vyo, FOx, FOy, KE, Uel, P_dp)
     KE += 0.5 * P[P_IC] * wc * wc + 0.5 * P[P_MC] * (vxc * vxc + vyc * vyc)
     # inner ring
-    Ip = P[P_IP]
-    It = P[P_IT]
-    mi = P[P_MI]
-    if disp:
-        for k in range(10):
-            dy[k] = 0.0
-        axx = 0.0; ayy = 0.0; azz = 0.0
-        Pext = 0.0
-    else:
-        dy[0] = vxi; dy[1] = vyi; dy[2] = vzi; dy[3] = wxi; dy[4] = wyi
-        # support damping of the shaft mounting (viscous, to ground; zero force at rest)
-        dfx = -P[P_CRX] * vxi
-        dfy = -P[P_CRY] * vyi
-        dfz = -P[P_CRZ] * vzi
-        dmx = -P[P_CRTX] * wxi
-        dmy = -P[P_CRTY] * wyi
-        P_dp -= dfx * vxi + dfy * vyi + dfz * vzi + dmx * wxi + dmy * wyi
-        axx = (U[U_FX] + FRx + dfx) / mi
-        ayy = (U[U_FY] + FRy + dfy) / mi
-        azz = (U[U_FZ] + FRz + dfz) / mi
-        dy[5] = axx
-        dy[6] = ayy
-        dy[7] = azz
-        # tilt with the spinning ring's gyroscopic coupling (Ip w)
-        dy[8] = (U[U_MX] + MRx + dmx - Ip * w * wyi) / It
-        dy[9] = (U[U_MY] + MRy + dmy + Ip * w * wxi) / It
-        if P[P_FIXTILT] > 0.5:   # rigid shaft held by other bearings: no tilt, Mx, My are reactions
-            dy[3] = 0.0; dy[4] = 0.0; dy[8] = 0.0; dy[9] = 0.0
-        if axisym:
-            dy[0] = 0.0; dy[1] = 0.0; dy[3] = 0.0; dy[4] = 0.0
-            dy[5] = 0.0; dy[6] = 0.0; dy[8] = 0.0; dy[9] = 0.0
-            axx = 0.0; ayy = 0.0
-        Pext = U[U_FX] * vxi + U[U_FY] * vyi + U[U_FZ] * vzi + U[U_MX] * wxi + U[U_MY] * wyi
-        KE += 0.5 * mi * (vxi * vxi + vyi * vyi + vzi * vzi) + 0.5 * It * (wxi * wxi + wyi * wyi)
-    # drive: the shaft must supply the traction torque (TRz is the torque of the balls on the ring)
-    fric = -TRz - T_chs
-    fric_o = -TOz
-    diag[O_T] = t
-    diag[O_SHAFT_SPEED] = w
-    diag[O_SHAFT_ACCEL] = wdot
-    diag[O_CAGE_SPEED] = wc
-    diag[O_CAGE_X] = xc
-    diag[O_CAGE_Y] = yc
-    diag[O_FX] = FRx
-    diag[O_FY] = FRy
-    diag[O_FZ] = FRz
-    diag[O_MX] = MRx
-    diag[O_MY] = MRy
-    diag[O_IR_X] = xi_; diag[O_IR_Y] = yi_; diag[O_IR_Z] = zi_
-    diag[O_IR_TX] = txi; diag[O_IR_TY] = tyi
-    diag[O_IR_VX] = vxi; diag[O_IR_VY] = vyi; diag[O_IR_VZ] = vzi
-    diag[O_IR_AX] = axx; diag[O_IR_AY] = ayy; diag[O_IR_AZ] = azz
-    diag[O_FRICTION_TORQUE] = fric
-    diag[O_P_DRIVE] = fric * w + fric_o * wo     # both rings' drives
-    diag[O_OUTER_RING_SPEED] = wo
-    diag[O_FRICTION_TORQUE_OUTER] = fric_o
-    diag[O_P_EXT] = Pext
-    diag[O_P_RACE_INNER] = P_ri
-    diag[O_P_RACE_OUTER] = P_ro
-    # split of the race losses: centre sliding, spin, and the rest = differential slip across the curved
-    # contact (Heathcote slip, the 'rolling' loss of the conformal groove); the three add up to the total
-    diag[O_P_RACE_SLIDE] = P_sl
-    diag[O_P_RACE_SPIN] = P_sp
-    diag[O_P_RACE_DIFFSLIP] = P_ri + P_ro - P_sl - P_sp
-    diag[O_P_POCKET] = P_pk
-    diag[O_P_CHURN_CAGE] = P_chc
-    diag[O_P_CHURN_RING] = P_chs
-    diag[O_P_LAND] = P_ld
-    diag[O_P_DRAG] = P_dr
-    diag[O_P_DAMPING] = P_dp
-    diag[O_KE] = KE
-    diag[O_U_ELASTIC] = Uel
-    diag[O_ALPHA_I_MEAN] = sai / nai if nai > 0 else 0.0
-    diag[O_ALPHA_O_MEAN] = sao / nao if nao > 0 else 0.0
-    diag[O_Q_I_MAX] = Qimax
-    diag[O_Q_O_MAX] = Qomax
-    diag[O_Q_I_MIN] = Qimin
-    ami = sai / nai if nai > 0 else a0
-    amo = sao / nao if nao > 0 else a0
-    # theoretical cage speed, spin neglected (seed 000 Eq. 26): both rolling radii D/2, so
-    # (w - wc) (1 - D cos ai / dm) = (wc - wo) (1 + D cos ao / dm); equal angles give the classical
-    # [w (1 - g) + wo (1 + g)] / 2 (Harris & Kotzalas Vol. 1 Ch. 8, both rings rotating). Linear in the
-    # speeds: no division by a speed, finite and continuous through zero.
-    gi = D * math.cos(ami) / dm
-    go = D * math.cos(amo) / dm
-    diag[O_PURE_ROLLING_CAGE_SPEED] = (w * (1.0 - gi) + wo * (1.0 + go)) / (2.0 - gi + go)
-    # Jones-Harris pure rolling at both contact centres with outer raceway control (kinematics.py), in the
-    # frame turning with the outer ring (kinematics depend on the ring speed difference only)
-    bet = math.atan2(math.sin(amo), math.cos(amo) + D / dm)
-    ci_ = math.cos(ami - bet)
-    co_ = math.cos(amo - bet)
-    diag[O_PURE_ROLLING_CAGE_SPEED_JH] = wo + (w - wo) * (1.0 - gi) / ((1.0 - gi) + (1.0 + go) * ci_ / co_)
-    diag[O_P_MAX] = pmax
-    diag[O_CAGE_SPEED_PURE_ROLLING_OUTER] = sco / npr if npr > 0 else diag[O_PURE_ROLLING_CAGE_SPEED_JH]
-    diag[O_CAGE_SPEED_PURE_ROLLING_INNER] = sci / npr if npr > 0 else diag[O_PURE_ROLLING_CAGE_SPEED_JH]
+    axx, ayy, azz, Pext, P_dp, KE = _inner_ring_eom(dy, P, U, disp, axisym, w, vxi, vyi, vzi, wxi, wyi, FRx, FRy,
+                                                    FRz, MRx, MRy, P_dp, KE)
+    _drive_channels(diag, t, w, wdot, wo, wc, xc, yc, FRx, FRy, FRz, MRx, MRy, xi_, yi_, zi_, txi, tyi, vxi, vyi,
+                    vzi, axx, ayy, azz, TRz, TOz, T_chs, Pext)
+    _loss_channels(diag, P_ri, P_ro, P_sl, P_sp, P_pk, P_chc, P_chs, P_ld, P_dr, P_dp, KE, Uel)
+    _contact_channels(diag, D, dm, a0, w, wo, sai, nai, sao, nao, Qimax, Qomax, Qimin, pmax, sco, sci, npr)
 
 
 @hot
@@ -938,28 +1174,93 @@ def _error_norm(e, y, ynew, atol_scale, rtol):
 
 
 @hot
-def _accept_fsal(y, ynew, k1, kf, quad, h, dq, t, diag, d0):
-    """Take an accepted explicit step ending at t: y <- ynew, first stage <- the FSAL derivative kf, its
-    integrals added and the end point's channels diag kept in d0."""
-    for i in range(y.size):
-        y[i] = ynew[i]
-        k1[i] = kf[i]
+def _start_point(quad, t, diag, d0):
+    """First point (t, y) of an adaptive integration call, its channels diag: stored for the integrals
+    (a zero-width interval at the start of a call) and kept in d0 as the accepted point's channels."""
+    _quad_point(quad, t, diag)
+    for k in range(NOUT):
+        d0[k] = diag[k]
+
+
+@hot
+def _accept_point(quad, h, dq, t, diag, d0):
+    """Bookkeeping of an accepted step h ending at t: its integrals added (_quad_step) and the end point's
+    channels diag kept in d0."""
     _quad_step(quad, h, dq, t, diag)
     for k in range(NOUT):
         d0[k] = diag[k]
 
 
 @hot
-def _pi_next_step(h, h_prop, err, err_prev, q, fac_max):
-    """Next step after an accepted step h with error norm err (<= 1): PI controller for an order-q error
-    estimate (Gustafsson; Hairer & Wanner II, IV.8), growth limited to fac_max; a step shortened to hit a
-    record or the interval end (h < h_prop) does not shrink the next one. Returns (h_next, err_prev)."""
+def _propose_step(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0, h):
+    """Before an attempt from the accepted point t (channels d0): record it when due (_record_point) and
+    cap the proposed step h at the interval end and the next record time (_step_cap). Returns (nrec,
+    next_rec, step to attempt)."""
+    nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
+    return nrec, next_rec, min(h, _step_cap(t, t1, next_rec, rec_dt))
+
+
+@hot
+def _store_outputs(diag_out, bd_out, diag, bd):
+    """Output channels and per-ball details at the end of an integration call."""
+    for k in range(NOUT):
+        diag_out[k] = diag[k]
+    for j in range(bd.shape[0]):
+        for k in range(NBD):
+            bd_out[j, k] = bd[j, k]
+
+
+@hot
+def _all_finite(y):
+    """True if every entry of y is finite."""
+    for i in range(y.size):
+        if not math.isfinite(y[i]):
+            return False
+    return True
+
+
+@hot
+def _accept_fsal(y, ynew, k1, kf, quad, h, dq, t, diag, d0):
+    """Take an accepted explicit step ending at t: y <- ynew, first stage <- the FSAL derivative kf, its
+    integrals added and the end point's channels diag kept in d0."""
+    for i in range(y.size):
+        y[i] = ynew[i]
+        k1[i] = kf[i]
+    _accept_point(quad, h, dq, t, diag, d0)
+
+
+@hot
+def _pi_factor(err, err_prev, q, fac_max):
+    """Step factor of the PI controller for an order-q error estimate (Gustafsson; Hairer & Wanner II,
+    IV.8) after an accepted step with error norm err, the previous accepted one err_prev; in [0.2, fac_max]."""
     fac = 0.9 * (max(err, 1e-10) ** (-0.7 / q)) * (max(err_prev, 1e-10) ** (0.4 / q))
-    fac = min(fac_max, max(0.2, fac))
+    return min(fac_max, max(0.2, fac))
+
+
+@hot
+def _pi_next_step(h, h_prop, err, err_prev, q, fac_max):
+    """Next step after an accepted step h with error norm err (<= 1): PI controller (_pi_factor), growth
+    limited to fac_max; a step shortened to hit a record or the interval end (h < h_prop) does not shrink the
+    next one. Returns (h_next, err_prev)."""
+    fac = _pi_factor(err, err_prev, q, fac_max)
     hn = h * fac
     if h_prop > hn and fac >= 1.0:
         hn = h_prop
     return hn, max(err, 1e-4)
+
+
+@hot
+def _pi_next_step_held(h, hs, err, err_prev, q, fac_max, hold):
+    """Next step after an accepted step hs (h proposed) of a method that refactors its matrix on a change of
+    step (the Rosenbrock-W integrator): PI factor (_pi_factor); a step shortened to hit a record or the
+    interval end (hs < h) keeps h (growing it from a short step let h run away, to 1e70), and factors in
+    [1, hold] keep h (small increases keep the factorisation). Returns (h_next, err_prev)."""
+    fac = _pi_factor(err, err_prev, q, fac_max)
+    if hs < h:
+        pass
+    elif fac < 1.0 or fac > hold:
+        h = hs * fac
+    return h, max(err, 1e-4)
 
 
 @hot
@@ -968,6 +1269,19 @@ def _rejected_step(h, ok, err, q):
     if not ok:
         return h * 0.25
     return h * max(0.2, 0.9 * err ** (-1.0 / q))
+
+
+@hot
+def _reject(stats, h, ok, err, q):
+    """A rejected attempt h (ok: finite; err: error norm of an order-q estimate): counted in stats[1], the
+    next attempt from _rejected_step. Returns (h_next, failed): failed when the step collapsed below 1e-12 s,
+    flagged stats[4] = 2."""
+    stats[1] += 1
+    h = _rejected_step(h, ok, err, q)
+    if h < 1e-12:
+        stats[4] = 2.0
+        return h, True
+    return h, False
 
 
 @hot(inline="always")
@@ -991,6 +1305,45 @@ def _rk4_stages(t, h, y, out, yt, k1, k2, k3, k4, dq, P, U, tab_i, tab_o, ta0, t
     _quad_stage(dq, 1.0 / 6.0, diag, False)
     for i in range(n):
         out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+
+
+@hot(inline="always")
+def _dp5_stages(t, h, y, y5, yt, k1, k2, k3, k4, k5, k6, k7, ev, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy,
+                qwy, diag, bd, last):
+    """Stages 2-7 of Dormand-Prince 5(4) from y with the first stage k1 given (Hairer, Norsett & Wanner,
+    Solving ODEs I, Sec. II.5): y5 <- the order-5 solution, k7 = f(t + h, y5) its FSAL derivative (with the
+    per-ball details when last), ev <- the local error estimate; the stages' output channels added to the
+    step integrals dq (weights b = (35/384, 0, 500/1113, ...), the first one's added by the caller); yt is
+    scratch."""
+    n = y.size
+    for i in range(n):
+        yt[i] = y[i] + h * (0.2 * k1[i])
+    rhs(t + 0.2 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    for i in range(n):
+        yt[i] = y[i] + h * (3.0 / 40.0 * k1[i] + 9.0 / 40.0 * k2[i])
+    rhs(t + 0.3 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, 500.0 / 1113.0, diag, False)
+    for i in range(n):
+        yt[i] = y[i] + h * (44.0 / 45.0 * k1[i] - 56.0 / 15.0 * k2[i] + 32.0 / 9.0 * k3[i])
+    rhs(t + 0.8 * h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, 125.0 / 192.0, diag, False)
+    for i in range(n):
+        yt[i] = y[i] + h * (19372.0 / 6561.0 * k1[i] - 25360.0 / 2187.0 * k2[i]
+                            + 64448.0 / 6561.0 * k3[i] - 212.0 / 729.0 * k4[i])
+    rhs(t + 8.0 / 9.0 * h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, -2187.0 / 6784.0, diag, False)
+    for i in range(n):
+        yt[i] = y[i] + h * (9017.0 / 3168.0 * k1[i] - 355.0 / 33.0 * k2[i] + 46732.0 / 5247.0 * k3[i]
+                            + 49.0 / 176.0 * k4[i] - 5103.0 / 18656.0 * k5[i])
+    rhs(t + h, yt, k6, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
+    _quad_stage(dq, 11.0 / 84.0, diag, False)
+    for i in range(n):
+        y5[i] = y[i] + h * (35.0 / 384.0 * k1[i] + 500.0 / 1113.0 * k3[i] + 125.0 / 192.0 * k4[i]
+                            - 2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i])
+    rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, last)
+    for i in range(n):
+        ev[i] = h * (71.0 / 57600.0 * k1[i] - 71.0 / 16695.0 * k3[i] + 71.0 / 1920.0 * k4[i]
+                     - 17253.0 / 339200.0 * k5[i] + 22.0 / 525.0 * k6[i] - 1.0 / 40.0 * k7[i])
 
 
 @hot(nogil=True)
@@ -1029,10 +1382,9 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
             nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, diag)
             _rk4_stages(t, h, y, y, yt, k1, k2, k3, k4, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                         diag, bd)
-            for i in range(n):
-                if not math.isfinite(y[i]):
-                    stats[4] = 1.0
-                    return nrec
+            if not _all_finite(y):
+                stats[4] = 1.0
+                return nrec
             t += h
             for k in range(NOUT):
                 quad[k] += h * dq[k]
@@ -1054,15 +1406,12 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         # Error norm, tolerances and PI control as for method 1 with the exponents of an order-3 estimate.
         k5 = np.empty(n)
         rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
-        _quad_point(quad, t, diag)
-        for k in range(NOUT):
-            d0[k] = diag[k]
+        _start_point(quad, t, diag, d0)
         stats[2] += 1
         err_prev = 1e-4
         while t < t1 - 1e-15:
-            nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
             h_prop = h
-            h = min(h, _step_cap(t, t1, next_rec, rec_dt))
+            nrec, next_rec, h = _propose_step(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0, h)
             _quad_stage(dq, 1.0 / 6.0, d0, True)
             _rk4_stages(t, h, y, yt, yt, k1, k2, k3, k4, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                         diag, bd)
@@ -1079,10 +1428,8 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 stats[0] += 1
                 h, err_prev = _pi_next_step(h, h_prop, err, err_prev, 4.0, 4.0)
             else:
-                stats[1] += 1
-                h = _rejected_step(h, ok, err, 4.0)
-                if h < 1e-12:
-                    stats[4] = 2.0
+                h, failed = _reject(stats, h, ok, err, 4.0)
+                if failed:
                     return nrec
         stats[3] = h
     else:
@@ -1091,45 +1438,16 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
         # their atol_scale entries are negative, flagging an absolute-only tolerance), PI step control.
         k5 = np.empty(n); k6 = np.empty(n); k7 = np.empty(n); y5 = np.empty(n)
         rhs(t, y, k1, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
-        _quad_point(quad, t, diag)
-        for k in range(NOUT):
-            d0[k] = diag[k]
+        _start_point(quad, t, diag, d0)
         stats[2] += 1
         err_prev = 1e-4
         while t < t1 - 1e-15:
-            nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
             h_prop = h
-            h = min(h, _step_cap(t, t1, next_rec, rec_dt))
+            nrec, next_rec, h = _propose_step(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0, h)
             _quad_stage(dq, 35.0 / 384.0, d0, True)     # Dormand-Prince b = (35/384, 0, 500/1113, ...)
-            for i in range(n):
-                yt[i] = y[i] + h * (0.2 * k1[i])
-            rhs(t + 0.2 * h, yt, k2, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            for i in range(n):
-                yt[i] = y[i] + h * (3.0 / 40.0 * k1[i] + 9.0 / 40.0 * k2[i])
-            rhs(t + 0.3 * h, yt, k3, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 500.0 / 1113.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + h * (44.0 / 45.0 * k1[i] - 56.0 / 15.0 * k2[i] + 32.0 / 9.0 * k3[i])
-            rhs(t + 0.8 * h, yt, k4, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 125.0 / 192.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + h * (19372.0 / 6561.0 * k1[i] - 25360.0 / 2187.0 * k2[i]
-                                    + 64448.0 / 6561.0 * k3[i] - 212.0 / 729.0 * k4[i])
-            rhs(t + 8.0 / 9.0 * h, yt, k5, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, -2187.0 / 6784.0, diag, False)
-            for i in range(n):
-                yt[i] = y[i] + h * (9017.0 / 3168.0 * k1[i] - 355.0 / 33.0 * k2[i] + 46732.0 / 5247.0 * k3[i]
-                                    + 49.0 / 176.0 * k4[i] - 5103.0 / 18656.0 * k5[i])
-            rhs(t + h, yt, k6, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, False)
-            _quad_stage(dq, 11.0 / 84.0, diag, False)
-            for i in range(n):
-                y5[i] = y[i] + h * (35.0 / 384.0 * k1[i] + 500.0 / 1113.0 * k3[i] + 125.0 / 192.0 * k4[i]
-                                    - 2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i])
-            rhs(t + h, y5, k7, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
+            _dp5_stages(t, h, y, y5, yt, k1, k2, k3, k4, k5, k6, k7, ev, dq, P, U, tab_i, tab_o, ta0, tda, tp, qx,
+                        qwx, qy, qwy, diag, bd, t + h >= t1 - 1e-15)
             stats[2] += 6
-            for i in range(n):
-                ev[i] = h * (71.0 / 57600.0 * k1[i] - 71.0 / 16695.0 * k3[i] + 71.0 / 1920.0 * k4[i]
-                             - 17253.0 / 339200.0 * k5[i] + 22.0 / 525.0 * k6[i] - 1.0 / 40.0 * k7[i])
             err = _error_norm(ev, y, y5, atol_scale, rtol)
             ok = err < 1e300
             if ok and err <= 1.0:
@@ -1138,17 +1456,11 @@ def integrate(y, t0, t1, dt, method, rtol, atol_scale, P, U, tab_i, tab_o, ta0, 
                 stats[0] += 1
                 h, err_prev = _pi_next_step(h, h_prop, err, err_prev, 5.0, 5.0)
             else:
-                stats[1] += 1
-                h = _rejected_step(h, ok, err, 5.0)
-                if h < 1e-12:
-                    stats[4] = 2.0
+                h, failed = _reject(stats, h, ok, err, 5.0)
+                if failed:
                     return nrec
         stats[3] = h
-    for k in range(NOUT):
-        diag_out[k] = diag[k]
-    for j in range(nb):
-        for k in range(NBD):
-            bd_out[j, k] = bd[j, k]
+    _store_outputs(diag_out, bd_out, diag, bd)
     return nrec
 
 
@@ -1512,6 +1824,65 @@ def rosw_workspace(nb):
             np.array([float(JAC_EVERY), -1.0]))
 
 
+@hot(inline="always")
+def _rosw_stages(t, hs, hg, y, f0, us, yt, r, tmp9, dq, Wbf, Minv, Z, S, pivs, P, U, tab_i, tab_o, ta0, tda, tp, qx,
+                 qwx, qy, qwy, diag, bd):
+    """The four transformed stages us of ROS34PW2 (see ROSW_TA ..) for the step hs from (t, y), f0 = f(t, y),
+    with the factorised W of hg = h_lu gamma (_w_solve); their output channels added to the step integrals
+    dq (the first one's added by the caller). yt, r, tmp9: scratch. Returns False if a stage is not
+    finite."""
+    n = y.size
+    ok = True
+    for s in range(4):
+        if s == 0:
+            for i in range(n):
+                r[i] = ROSW_G * f0[i]
+        else:
+            for i in range(n):
+                acc = 0.0
+                for q in range(s):
+                    acc += ROSW_TA[s, q] * us[q, i]
+                yt[i] = y[i] + hs * acc
+            rhs(t + ROSW_C[s] * hs, yt, r, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd,
+                False)
+            # integrals: the W-method on q' = p(y) with zero Jacobian rows gives q += h sum b_s p(Y_s)
+            _quad_stage(dq, ROSW_B[s], diag, False)
+            for i in range(n):
+                acc = r[i]
+                for q in range(s):
+                    acc += ROSW_TC[s, q] * us[q, i]
+                r[i] = ROSW_G * acc
+        _w_solve(hg, r, Wbf, Minv, Z, S, pivs, tmp9)
+        for i in range(n):
+            us[s, i] = r[i]
+            if not math.isfinite(r[i]):
+                ok = False
+    return ok
+
+
+@hot(inline="always")
+def _rosw_solution(y, us, hs, ynew, atol_scale, rtol):
+    """The order-3 solution ynew = y + hs sum_s m_s u_s of ROS34PW2 from its transformed stages us; returns
+    the RMS norm of the local error estimate hs sum_s (m_s - mhat_s) u_s (ROSW_TM, ROSW_TE), with the
+    scales of _error_norm, in the same pass (no error vector), 1e300 if not finite."""
+    n = y.size
+    acc2 = 0.0
+    for i in range(n):
+        e = 0.0
+        yn = y[i]
+        for s in range(4):
+            yn += hs * ROSW_TM[s] * us[s, i]
+            e += hs * ROSW_TE[s] * us[s, i]
+        ynew[i] = yn
+        at = atol_scale[i]
+        sc = -at if at < 0.0 else at + rtol * max(abs(y[i]), abs(yn))
+        q = e / sc
+        acc2 += q * q
+    if not math.isfinite(acc2):
+        return 1e300
+    return math.sqrt(acc2 / n)
+
+
 @hot(nogil=True)
 def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                    rec_dt, rec, nrec_max, stats, quad, diag_out, bd_out, Wff, Wbf, Wfb, Wbb, LUb, pivb, Minv, Z, S,
@@ -1544,9 +1915,7 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
     err_prev = 1e-4
     # f0, d0 and bd0 always describe the accepted point (t, y); bd0 feeds the Jacobian's fixed-state rows
     rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
-    _quad_point(quad, t, diag)
-    for k in range(NOUT):
-        d0[k] = diag[k]
+    _start_point(quad, t, diag, d0)
     stats[2] += 1
     while t < t1 - 1e-15:
         if jac_age >= JAC_EVERY:
@@ -1554,56 +1923,17 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
                                   qwy, atol_scale, yt, ft, diag, bd, bd0)
             jac_age = 0
             h_lu = -1.0
-        nrec, next_rec = _record_point(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0)
-        hmax = _step_cap(t, t1, next_rec, rec_dt)
-        hs = min(h, hmax)
+        nrec, next_rec, hs = _propose_step(rec, nrec, nrec_max, next_rec, rec_dt, t, t1, d0, h)
         if h_lu <= 0.0 or hs * ROSW_REUSE_LO > h_lu or hs * ROSW_REUSE_HI < h_lu:
             _w_factor(hs * ROSW_G, Wff, Wbf, Wfb, Wbb, LUb, pivb, Minv, Z, S, pivs)
             h_lu = hs
         hg = h_lu * ROSW_G
-        ok = True
         _quad_stage(dq, ROSW_B[0], d0, True)
-        for s in range(4):
-            if s == 0:
-                for i in range(n):
-                    r[i] = ROSW_G * f0[i]
-            else:
-                for i in range(n):
-                    acc = 0.0
-                    for q in range(s):
-                        acc += ROSW_TA[s, q] * us[q, i]
-                    yt[i] = y[i] + hs * acc
-                rhs(t + ROSW_C[s] * hs, yt, r, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd,
-                    False)
-                # integrals: the W-method on q' = p(y) with zero Jacobian rows gives q += h sum b_s p(Y_s)
-                _quad_stage(dq, ROSW_B[s], diag, False)
-                for i in range(n):
-                    acc = r[i]
-                    for q in range(s):
-                        acc += ROSW_TC[s, q] * us[q, i]
-                    r[i] = ROSW_G * acc
-            _w_solve(hg, r, Wbf, Minv, Z, S, pivs, tmp9)
-            for i in range(n):
-                us[s, i] = r[i]
-                if not math.isfinite(r[i]):
-                    ok = False
+        ok = _rosw_stages(t, hs, hg, y, f0, us, yt, r, tmp9, dq, Wbf, Minv, Z, S, pivs, P, U, tab_i, tab_o, ta0,
+                          tda, tp, qx, qwx, qy, qwy, diag, bd)
         stats[2] += 3
-        acc2 = 0.0
-        if ok:
-            for i in range(n):
-                e = 0.0
-                yn = y[i]
-                for s in range(4):
-                    yn += hs * ROSW_TM[s] * us[s, i]
-                    e += hs * ROSW_TE[s] * us[s, i]
-                ynew[i] = yn
-                at = atol_scale[i]
-                sc = -at if at < 0.0 else at + rtol * max(abs(y[i]), abs(yn))
-                q = e / sc
-                acc2 += q * q
-            if not math.isfinite(acc2):
-                ok = False
-        err = math.sqrt(acc2 / n) if ok else 1e300
+        err = _rosw_solution(y, us, hs, ynew, atol_scale, rtol) if ok else 1e300
+        ok = err < 1e300
         if ok and err <= 1.0:
             t += hs
             for i in range(n):
@@ -1612,38 +1942,20 @@ def integrate_rosw(y, t0, t1, h0, rtol, atol_scale, P, U, tab_i, tab_o, ta0, tda
             jac_age += 1
             nrej = 0
             rhs(t, y, f0, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd0, True)
-            _quad_step(quad, hs, dq, t, diag)
-            for k in range(NOUT):
-                d0[k] = diag[k]
+            _accept_point(quad, hs, dq, t, diag, d0)
             stats[2] += 1
-            # PI controller for an order-2 error estimate (Gustafsson; Hairer & Wanner II, IV.8)
-            fac = 0.9 * (max(err, 1e-10) ** (-0.7 / 3.0)) * (max(err_prev, 1e-10) ** (0.4 / 3.0))
-            fac = min(4.0, max(0.2, fac))
-            err_prev = max(err, 1e-4)
-            if hs < h:
-                pass                      # a step shortened to hit a record/interval end: keep h
-                                          # (growing it from a short step let h run away, to 1e70)
-            elif fac < 1.0 or fac > 1.25:  # small increases keep h
-                h = hs * fac
+            # PI controller for an order-2 error estimate; factors in [1, 1.25] keep h (and W's factors)
+            h, err_prev = _pi_next_step_held(h, hs, err, err_prev, 3.0, 4.0, 1.25)
         else:
-            stats[1] += 1
-            if not ok:
-                h = hs * 0.25
-            else:
-                h = hs * max(0.2, 0.9 * err ** (-1.0 / 3.0))
+            h, failed = _reject(stats, hs, ok, err, 3.0)
             nrej += 1
             if nrej >= 2 and jac_age > 0:
                 jac_age = JAC_EVERY       # repeated rejections: refresh the lagged Jacobian
-            if h < 1e-12:
-                stats[4] = 2.0
+            if failed:
                 jst[0] = JAC_EVERY
                 return nrec
     stats[3] = h
     jst[0] = jac_age
     jst[1] = h_lu
-    for k in range(NOUT):
-        diag_out[k] = diag[k]
-    for j in range(nb):
-        for k in range(NBD):
-            bd_out[j, k] = bd0[j, k]
+    _store_outputs(diag_out, bd_out, diag, bd0)
     return nrec
