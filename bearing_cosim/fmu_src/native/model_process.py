@@ -445,6 +445,7 @@ def serve(res: Path, fd: int, master_pid: int):
     model = None
     profile = None
     out_view = None
+    gen_out = None          # output variables of a slave without the bearing's output array
     last = 0
     import numpy as np
     while True:
@@ -478,6 +479,13 @@ def serve(res: Path, fd: int, master_pid: int):
                 if hasattr(slave, "_out"):
                     from bearing_core.session.cosim_spec import INT_OUTPUT_SPEC, OUTPUT_SPEC
                     slave._out_names = [n for n, *_ in OUTPUT_SPEC] + [n for n, *_ in INT_OUTPUT_SPEC]
+                else:
+                    # any other pythonfmu slave: its Real, Integer and Boolean outputs, read through their
+                    # getters after every step, form the output array
+                    gen_out = [v for v in model.vars.values() if v.causality.name == "output"
+                               and type(v).__name__ in ("Real", "Integer", "Boolean")]
+                    slave._out_names = [v.name for v in gen_out]
+                    slave._out = np.zeros(len(gen_out))
                 var_table(model, w)
                 flags |= F_SNAPSHOT
                 if os.environ.get("BEARING_FMU_PROFILE"):
@@ -587,6 +595,9 @@ def serve(res: Path, fd: int, master_pid: int):
         if cmd == C_STEP:
             # outputs already in place after the 16 bytes (count, logs offset) at resp_off
             out = model.slave._out
+            if gen_out is not None:
+                for i, v in enumerate(gen_out):
+                    out[i] = float(v.getter())
             n = len(out)
             if out_view is None or len(out_view) != n:
                 out_view = np.frombuffer(mm, dtype=np.float64, count=n, offset=resp_off + 16)
