@@ -4,7 +4,7 @@ hidden (a mount namespace with tmpfs over them: `unshare -m`, root only) in a C 
 Python version.
 
 The build takes minutes (kernels compiled for numba's generic target, the standard library and packages compiled
-to bytecode, 120 MiB zipped), more than the suite's budget: these tests run with BEARING_TEST_STANDALONE=1 (build
+to bytecode, 133 MiB zipped), more than the suite's budget: these tests run with BEARING_TEST_STANDALONE=1 (build
 here) or BEARING_TEST_STANDALONE_FMU=<file> (one built from the same sources by `build_fmu.py --standalone`)."""
 import json
 import os
