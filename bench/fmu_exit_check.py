@@ -8,7 +8,8 @@ and exits normally (the C exit handlers and library destructors run). Hosts:
   fmpy-numba  the same, with numba imported by the host before the FMU is loaded
   two         two instances of the FMU in one fmpy process
   c           tests/c_host/host.c (compiled here with gcc): a C master, no Python in the host
-Prints one JSON line per host: exit-status histogram and wall time, e.g. {"host": "c", "runs": 200, "exit": {"0": 200}}.
+Prints one JSON line per host: exit-status histogram, runs without results, model processes left without their
+master (orphans) and wall time, e.g. {"host": "c", "runs": 200, "exit": {"0": 200}, "orphans": 0, ...}.
 """
 import argparse
 import collections
@@ -81,8 +82,24 @@ def main():
                 if a.progress:
                     sys.stderr.write(json.dumps({"host": name, "exit": r.returncode, "results": ok_out}) + "\n")
                     sys.stderr.flush()
+            time.sleep(1.0)   # a model process whose master ended exits within 0.5 s
             print(json.dumps({"host": name, "runs": a.runs, "exit": dict(counts), "runs_without_results": bad_out,
-                              "wall_s": round(time.perf_counter() - t0, 1)}), flush=True)
+                              "orphans": len(orphans()), "wall_s": round(time.perf_counter() - t0, 1)}), flush=True)
+
+
+def orphans():
+    """Model processes of the FMU (resources/model_process.py) whose master has gone (parent pid 1)."""
+    out = []
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                cmd = (d / "cmdline").read_bytes().replace(b"\0", b" ")
+                ppid = int((d / "stat").read_text().rsplit(")", 1)[1].split()[1])
+            except (OSError, ValueError):
+                continue
+            if b"model_process.py" in cmd and ppid == 1:
+                out.append(int(d.name))
+    return out
 
 
 if __name__ == "__main__":
