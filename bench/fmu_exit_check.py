@@ -8,10 +8,11 @@ and exits normally (the C exit handlers and library destructors run). Hosts:
   fmpy-numba  the same, with numba imported by the host before the FMU is loaded
   two         two instances of the FMU in one fmpy process
   c           tests/c_host/host.c (compiled here with gcc): a C master, no Python in the host
-Prints one JSON line per host: exit-status histogram, wall time (wall_s) and beside it the CPU time of the child
-processes (children_cpu_s: user + system of the finished runs, os.times; the work runs in child processes), and
-the machine (bench/machine.py) under "machine", e.g. {"host": "c", "runs": 200, "exit": {"0": 200}, ...}.
-Quickest check: ``--runs 1 --hosts fmpy``.
+Prints one JSON line per host: exit-status histogram, runs without results, model processes left without their
+master (orphans), wall time (wall_s) and beside it the CPU time of the child processes (children_cpu_s: user +
+system of the finished runs, os.times; the work runs in child processes), and the machine (bench/machine.py) under
+"machine", e.g. {"host": "c", "runs": 200, "exit": {"0": 200}, "orphans": 0, ...}. Quickest check: ``--runs 1
+--hosts fmpy``.
 """
 import argparse
 import collections
@@ -91,9 +92,25 @@ def main():
             wall = time.perf_counter() - t0
             ch1 = os.times()
             cpu = (ch1.children_user - ch0.children_user) + (ch1.children_system - ch0.children_system)
+            time.sleep(1.0)   # a model process whose master ended exits within 0.5 s
             print(json.dumps({"host": name, "runs": a.runs, "exit": dict(counts), "runs_without_results": bad_out,
-                              "wall_s": round(wall, 1), "children_cpu_s": round(cpu, 1), "machine": mach}),
-                  flush=True)
+                              "orphans": len(orphans()), "wall_s": round(wall, 1), "children_cpu_s": round(cpu, 1),
+                              "machine": mach}), flush=True)
+
+
+def orphans():
+    """Model processes of the FMU (resources/model_process.py) whose master has gone (parent pid 1)."""
+    out = []
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                cmd = (d / "cmdline").read_bytes().replace(b"\0", b" ")
+                ppid = int((d / "stat").read_text().rsplit(")", 1)[1].split()[1])
+            except (OSError, ValueError):
+                continue
+            if b"model_process.py" in cmd and ppid == 1:
+                out.append(int(d.name))
+    return out
 
 
 if __name__ == "__main__":

@@ -288,8 +288,9 @@ def test_geometry_overrides(fmu, tmp_path):
 def test_fmpy_statuses(fmu, tmp_path):
     """Through fmpy (its exceptions carry the status): a failed initialisation (reversed axial load) is
     fmi2Error, not fatal, and getReal/doStep after it are fmi2Error; after a good initialisation a fixed
-    parameter set is fmi2Error and reads back unchanged; fmi2SerializeFMUstate (declared unsupported) is
-    fmi2Error and the instance keeps stepping (OK); every refusal's reason reaches the logger."""
+    parameter set is fmi2Error and reads back unchanged; a state serialized to bytes and deserialized (into a
+    new instance's state too) repeats the step bit for bit; bytes that are no state are fmi2Error and the
+    instance keeps stepping (OK); every refusal's reason reaches the logger."""
     code = r"""
 import json, sys
 from fmpy import extract, read_model_description
@@ -327,8 +328,16 @@ st("exit_ok", g.exitInitializationMode)
 st("set_fixed", lambda: g.setReal([vr["friction_coefficient"]], [0.3]))
 out["fixed_value"] = g.getReal([vr["friction_coefficient"]])[0]
 s = g.getFMUstate()
-st("serialize", lambda: g.serializeFMUstate(s))
+data = g.serializeFMUstate(s)
+out["nbytes"] = len(data)
 st("step_after_serialize", lambda: g.doStep(0.0, 1e-3))
+a = g.getReal([vr["cage_speed"]])[0]
+s2 = g.deSerializeFMUstate(data)
+g.setFMUstate(s2)
+st("step_from_bytes", lambda: g.doStep(0.0, 1e-3))
+out["same"] = g.getReal([vr["cage_speed"]])[0] == a
+st("deserialize_garbage", lambda: g.deSerializeFMUstate(b"not a state"))
+st("step_after_garbage", lambda: g.doStep(1e-3, 1e-3))
 g.terminate(); g.freeInstance()
 print("RESULT", json.dumps({"status": out, "logs": logs}))
 """
@@ -340,8 +349,9 @@ print("RESULT", json.dumps({"status": out, "logs": logs}))
     st, logs = res["status"], res["logs"]
     assert st["exit_failed"] == 3 and st["get_after_failed"] == 3 and st["step_after_failed"] == 3
     assert st["exit_ok"] == 0 and st["set_fixed"] == 3 and st["fixed_value"] == 0.1
-    assert st["serialize"] == 3 and st["step_after_serialize"] == 0
+    assert st["step_after_serialize"] == 0 and st["step_from_bytes"] == 0 and st["same"] is True
+    assert st["deserialize_garbage"] == 3 and st["step_after_garbage"] == 0 and st["nbytes"] > 1000
     errs = [m for s, c, m in logs if s == 3 and c == "logError"]
     assert any("reversed axial load" in m for m in errs), logs
     assert any("friction_coefficient is a fixed parameter" in m for m in errs), logs
-    assert any("fmi2Serialize" in m and "is not supported" in m for m in errs), logs
+    assert any("fmi2DeSerializeFMUstate: not a serialized state of this FMU" in m for m in errs), logs

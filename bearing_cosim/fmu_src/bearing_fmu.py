@@ -1,9 +1,8 @@
 """FMI 2.0 co-simulation slave of the angular-contact ball bearing (a pythonfmu Fmi2Slave). It only
 translates between FMI variables and bearing_core.session.cosim.CoSimSession; all physics lives in bearing_core.
 
-In the built FMU this file, bearing_core and pythonfmu are renamed to names carrying a hash of their
-content (build_fmu.py) and run by the FMU's own native FMI layer (fmu_src/native/), which also keeps the
-numba cache in a stable folder (fmu_src/native/bearing_fmi2_bridge.py).
+In the built FMU this file, bearing_core and pythonfmu lie in resources/code/ and run in the model process of
+each instance (native/model_process.py), driven by the FMU's own native FMI layer (native/bearing_fmi2.c).
 """
 from __future__ import annotations
 

@@ -119,33 +119,78 @@ def _writable_copy(src: Path, name: str) -> Path | None:
     return None
 
 
-def _use_shipped_kernels(cfg: dict) -> bool:
-    """The FMU's precompiled kernels fit this process (same Python minor version and numba version, and the
-    user did not choose a target): select their target before numba loads. Otherwise numba compiles (JIT)."""
+def _cpu_flags() -> set:
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("flags"):
+                return set(line.split(":", 1)[1].split())
+    except OSError:
+        pass
+    return set()
+
+
+def _use_shipped_kernels(cfg: dict):
+    """The name of the FMU's precompiled target that fits this process (same Python minor version and numba
+    version, the processor has the target's features, the user chose no target), selected before numba loads;
+    None: numba compiles for this processor (JIT)."""
     pre = cfg.get("precompiled")
     if not pre or "NUMBA_CPU_NAME" in os.environ or "NUMBA_CPU_FEATURES" in os.environ:
-        return False
+        return None
     from importlib.metadata import PackageNotFoundError, version
     try:
-        fits = version("numba") == pre["numba"] and f"{sys.version_info.major}.{sys.version_info.minor}" == pre["python"]
+        if version("numba") != pre["numba"] or f"{sys.version_info.major}.{sys.version_info.minor}" != pre["python"]:
+            return None
     except PackageNotFoundError:
-        return False
-    if fits:
-        os.environ["NUMBA_CPU_NAME"] = pre["target"]
-    return fits
+        return None
+    flags = _cpu_flags()
+    for t in pre["targets"]:
+        if set(t["needs"]) <= flags:
+            os.environ["NUMBA_CPU_NAME"] = t["name"]
+            os.environ["NUMBA_CPU_FEATURES"] = t["features"]
+            return t["name"]
+    return None
+
+
+class CompileLock:
+    """Instances of one FMU share the numba cache of its code copy. The first ones to initialise compile the
+    kernels; without coordination instances initialised at once from several master threads compile the same
+    kernels at once. This lock (flock on <code copy>/.compile.lock) is held during fmi2ExitInitializationMode
+    and during the first fmi2DoStep, where nearly all kernels are compiled or loaded, so that the next instance
+    loads them from the cache. Never held between two calls (a master may call the instances in any order);
+    without a writable code copy there is nothing to share and no lock."""
+
+    def __init__(self, root):
+        self.fd = None
+        self.path = None if root is None else Path(root) / ".compile.lock"
+        self.done = False
+
+    def acquire(self):
+        if self.path is None or self.done or self.fd is not None:
+            return
+        import fcntl
+        try:
+            self.fd = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o666)
+            fcntl.flock(self.fd, fcntl.LOCK_EX)
+        except OSError:
+            self.release()
+
+    def release(self):
+        if self.fd is not None:
+            os.close(self.fd)   # closing drops the flock
+            self.fd = None
 
 
 def load_slave_class(res: Path, cfg: dict):
-    shipped = _use_shipped_kernels(cfg)
-    root = _writable_copy(res / "code", f"code-{cfg['code_hash']}" + ("-" + cfg["precompiled"]["target"]
-                                                                      if shipped else ""))
+    target = _use_shipped_kernels(cfg)
+    root = _writable_copy(res / "code", f"code-{cfg['code_hash']}" + (f"-{target}" if target else ""))
+    lock = CompileLock(root)
     if root is None:
         root = res / "code"
         os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="bearing_fmu_numba_")
     sys.path.insert(0, str(root))
     import importlib
     mod = importlib.import_module(cfg["slave_module"])
-    return getattr(mod, cfg["class_name"])
+    return getattr(mod, cfg["class_name"]), lock
 
 
 class Profile:
@@ -443,6 +488,7 @@ def serve(res: Path, fd: int, master_pid: int):
     spin = float(os.environ.get("BEARING_FMU_SPIN_US", "200")) * 1e-6
     cfg = json.loads((res / "model.json").read_text(encoding="utf-8"))
     model = None
+    lock = CompileLock(None)
     profile = None
     out_view = None
     gen_out = None          # output variables of a slave without the bearing's output array
@@ -473,7 +519,7 @@ def serve(res: Path, fd: int, master_pid: int):
                 visible, logging_on = r.unpack("<ii")
                 if guid and guid != cfg["guid"]:
                     raise FmiError(f"fmi2Instantiate: GUID {guid} does not match this FMU's {cfg['guid']}")
-                cls = load_slave_class(res, cfg)
+                cls, lock = load_slave_class(res, cfg)
                 model = Model(cls, name, bool(visible), bool(logging_on))
                 slave = model.slave
                 if hasattr(slave, "_out"):
@@ -495,6 +541,8 @@ def serve(res: Path, fd: int, master_pid: int):
             else:
                 if n_in:
                     model.apply_inputs(in_vrs, in_vals)
+                if cmd in (C_EXIT, C_STEP):
+                    lock.acquire()
                 if cmd == C_STEP:
                     t, h, _ = r.unpack("<ddi")
                     try:
@@ -585,6 +633,9 @@ def serve(res: Path, fd: int, master_pid: int):
                 w.parts = [struct.pack("<I", 0)]
                 _respond(mm, words, resp_off, resp_cap, ERROR, 0, 0, 0.0, t0, logs, w, resp_addr, last)
                 return 3
+        if cmd in (C_EXIT, C_STEP):
+            lock.done = lock.done or (cmd == C_STEP and lock.fd is not None)
+            lock.release()
         model.drain_slave()
         status = max(status, model.worst)
         model.worst = OK
