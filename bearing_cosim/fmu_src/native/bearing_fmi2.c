@@ -39,13 +39,14 @@
 #include <sys/stat.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
+#include <math.h>
 #include <time.h>
 #include <unistd.h>
 #include <dlfcn.h>
 
 extern char **environ;
 
-#define PROTOCOL 1u
+#define PROTOCOL 2u
 #define SHM_MAGIC 0x58475242u   /* "BRGX" */
 #define MODEL_MAGIC 0x42524732u /* marks a live component */
 #define SHM_SIZE (64u << 20)    /* sparse: only touched pages use memory */
@@ -63,6 +64,8 @@ extern char **environ;
 #define O_RESPLEN 40
 #define O_TIME 48
 #define O_BUSY 56
+#define O_PID 64
+#define O_PROG 72  /* u32: byte offset of the model's live integration time (double), 0: none */
 #define F_SNAPSHOT 1u
 
 enum { C_HELLO = 1, C_DEBUG, C_SETUP, C_ENTER, C_EXIT, C_STEP, C_TERMINATE, C_RESET, C_FREE, C_GET, C_SET,
@@ -91,6 +94,9 @@ typedef struct {
     int dead;     /* the model process is gone: every call returns fmi2Error */
     int mode;
     double time, busy;
+    double step_expect; /* the model process's time in the last fmi2DoStep [s] */
+    double step_h;      /* the communication step of the fmi2DoStep being sent [s] */
+    double spin_score;  /* running share of steps whose answer came during a predicted spin */
     double init_timeout, step_timeout;
     Var *vars;
     int nvars;
@@ -226,19 +232,91 @@ static void describe_exit(int status, char *out, size_t n) {
     else snprintf(out, n, "the model process ended (wait status %d)", status);
 }
 
-/* Waits for the response to request c->seq; 0 when it came, else the process is failed (logged). */
-static int await(Comp *c, double timeout, const char *fname) {
+/* Waiting for the model process. A thread woken from a futex waits for the scheduler: tens of microseconds on
+ * a quiet machine, more on a virtual machine whose idle processor must first be woken. So the master spins
+ * while the answer is due, and sleeps otherwise:
+ *  - every call: a short spin (SPIN_SHORT) first;
+ *  - fmi2DoStep: the model process publishes the simulated time its integrator has reached (a double in the
+ *    shared header, O_PROG). From the progress over the elapsed wall time the master predicts the end of the
+ *    integration, sleeps on the futex (with a timeout) until SPIN_EARLY before it, then spins, at most
+ *    SPIN_LATE beyond the predicted end. Without progress (no integration) the last step's time serves as
+ *    the prediction. A step that takes longer than predicted is waited for on the futex: no core burns while
+ *    the model process works. */
+#define SPIN_SHORT 50e-6   /* [s] */
+#define SPIN_EARLY 150e-6  /* [s] */
+#define SPIN_LATE 250e-6   /* [s] */
+#define MAX_SPINS 3        /* predicted spins per call */
+
+/* Spins until the response or t_end. (No sched_yield between polls: on a busy machine a yielding thread
+ * waits behind every other runnable one, milliseconds, which is what the spin is to avoid.) */
+static int spin_until(volatile uint32_t *resp, uint32_t seq, double t_end) {
+    for (;;) {
+        for (int i = 0; i < 32; i++) {
+            if (__atomic_load_n(resp, __ATOMIC_ACQUIRE) == seq) return 1;
+            __builtin_ia32_pause();
+        }
+        if (now() >= t_end) return __atomic_load_n(resp, __ATOMIC_ACQUIRE) == seq;
+    }
+}
+
+/* The model's live integration time [s], NAN when it publishes none. */
+static double progress(Comp *c) {
+    uint32_t off;
+    memcpy(&off, c->shm + O_PROG, 4);
+    if (off < 128 || off + 8 > HDR || off % 8) return NAN;
+    uint64_t bits = __atomic_load_n((volatile uint64_t *)(c->shm + off), __ATOMIC_RELAXED);
+    double t;
+    memcpy(&t, &bits, 8);
+    return t;
+}
+
+/* Seconds until the answer to a step is expected: from the integration's progress since the request
+ * (prog0: the published time then, h: the step) over the wall time el since it, else from the last step. */
+static double step_remaining(Comp *c, double prog0, double h, double el) {
+    double p = progress(c);
+    if (isfinite(p) && isfinite(prog0) && h > 0) {
+        double frac = (p - prog0) / h;
+        if (frac >= 1.0 - 1e-9) return 0.0;          /* integrated: the answer is due */
+        if (frac > 0.02) return el * (1.0 - frac) / frac;
+    }
+    return c->step_expect > el ? c->step_expect - el : (el > 1e-3 ? el : 1e-3);
+}
+
+/* Waits for the response to request c->seq; 0 when it came, else the process is failed (logged). For a
+ * step, h > 0 and prog0 the model's published time at the request. */
+static int await(Comp *c, double timeout, const char *fname, double h, double prog0) {
     volatile uint32_t *resp = word(c, O_RESP);
     double t0 = now();
-    for (int i = 0; i < 2000; i++) { /* ~50 us spin: short calls answer within it */
-        if (__atomic_load_n(resp, __ATOMIC_ACQUIRE) == c->seq) return 0;
-        __builtin_ia32_pause();
-    }
+    if (spin_until(resp, c->seq, t0 + SPIN_SHORT)) return 0;
+    /* predicted spins only while they pay: on a machine with more runnable threads than cores the progress
+     * is erratic and a spinning master takes a core from the model process; then every 16th step probes */
+    int spins = h > 0 && (c->spin_score > 0.3 || (c->seq & 15u) == 0) ? MAX_SPINS : 0;
     for (;;) {
         uint32_t v = __atomic_load_n(resp, __ATOMIC_ACQUIRE);
         if (v == c->seq) return 0;
-        futex_wait(resp, v, 0.1);
-        if (__atomic_load_n(resp, __ATOMIC_ACQUIRE) == c->seq) return 0;
+        double nap = 0.1;
+        if (spins > 0) {
+            double t = now();
+            double rem = step_remaining(c, prog0, h, t - t0);
+            if (rem <= SPIN_EARLY) {
+                spins--;
+                int hit = spin_until(resp, c->seq, t + rem + SPIN_LATE);
+                c->spin_score = 0.9 * c->spin_score + (hit ? 0.1 : 0.0);
+                if (hit) return 0;
+                nap = 2 * SPIN_LATE;   /* late: re-predict after a nap (the model wakes the master when done) */
+            } else {
+                /* nap at most half the predicted time, then predict again from the progress made */
+                double n = rem - SPIN_EARLY < 0.5 * rem ? rem - SPIN_EARLY : 0.5 * rem;
+                if (n < nap) nap = n;
+            }
+            v = __atomic_load_n(resp, __ATOMIC_ACQUIRE);
+            if (v == c->seq) return 0;
+        }
+        futex_wait(resp, v, nap);
+        if (__atomic_load_n(resp, __ATOMIC_ACQUIRE) == c->seq) {
+            if (h > 0 && spins > 0) c->spin_score *= 0.9;   /* answered while the master slept: a late wake */
+            return 0;
+        }
         int status;
         pid_t r = waitpid(c->pid, &status, WNOHANG);
         if (r == c->pid || (r < 0 && errno == ECHILD)) {
@@ -289,9 +367,10 @@ static fmi2Status exchange(Comp *c, uint32_t cmd, unsigned char *end, double tim
     uint64_t len = (uint64_t)(end - (c->shm + HDR));
     memcpy(c->shm + O_REQLEN, &len, 8);
     memcpy(c->shm + O_CMD, &cmd, 4);
+    double prog0 = cmd == C_STEP ? progress(c) : NAN;
     __atomic_store_n(word(c, O_REQ), ++c->seq, __ATOMIC_RELEASE);
     futex_wake(word(c, O_REQ));
-    if (await(c, timeout, fname) != 0) return fmi2Error;
+    if (await(c, timeout, fname, cmd == C_STEP ? c->step_h : 0.0, prog0) != 0) return fmi2Error;
     int32_t st;
     uint32_t mode;
     uint64_t rlen;
@@ -300,6 +379,7 @@ static fmi2Status exchange(Comp *c, uint32_t cmd, unsigned char *end, double tim
     memcpy(&rlen, c->shm + O_RESPLEN, 8);
     memcpy(&c->time, c->shm + O_TIME, 8);
     memcpy(&c->busy, c->shm + O_BUSY, 8);
+    if (cmd == C_STEP) c->step_expect = c->busy;
     c->mode = (int)mode;
     if (cmd != C_STEP) {
         const unsigned char *r = resp_area(c);
@@ -528,6 +608,7 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
     c->env = env;
     c->name = strdup(instanceName ? instanceName : "");
     c->magic = MODEL_MAGIC;
+    c->spin_score = 1.0;
     c->init_timeout = env_seconds("BEARING_FMU_INIT_TIMEOUT", 900.0);
     c->step_timeout = env_seconds("BEARING_FMU_STEP_TIMEOUT", 600.0);
     char err[4600];
@@ -804,6 +885,7 @@ FMI2_EXPORT fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real t, fmi2Real h, fm
     p = wr_f64(p, t);
     p = wr_f64(p, h);
     p = wr_i32(p, noSetFMUStatePriorToCurrentPoint);
+    c->step_h = h;
     fmi2Status st = exchange(c, C_STEP, p, c->step_timeout, "fmi2DoStep", NULL, NULL);
     if (c->dead) return fmi2Error;
     const unsigned char *r = resp_area(c);

@@ -32,12 +32,13 @@ import time
 import traceback
 from pathlib import Path
 
-PROTOCOL = 1
+PROTOCOL = 2
 MAGIC = 0x58475242            # "BRGX"
 HDR = 4096                    # header bytes; requests at HDR, responses at HDR + (size - HDR) // 2
 # header fields (byte offsets)
 O_MAGIC, O_VERSION, O_REQ, O_RESP, O_CMD, O_STATUS, O_MODE, O_FLAGS = 0, 4, 8, 12, 16, 20, 24, 28
-O_REQLEN, O_RESPLEN, O_TIME, O_BUSY, O_PID = 32, 40, 48, 56, 64
+O_REQLEN, O_RESPLEN, O_TIME, O_BUSY, O_PID, O_PROG = 32, 40, 48, 56, 64, 72
+Q_OFF = 1024                  # the dynamic model's time integrals (with its live integration time) in the header
 
 (C_HELLO, C_DEBUG, C_SETUP, C_ENTER, C_EXIT, C_STEP, C_TERMINATE, C_RESET, C_FREE, C_GET, C_SET, C_GETSTATE,
  C_SETSTATE, C_FREESTATE, C_SERIALIZE, C_DESERIALIZE, C_UNSUPPORTED) = range(1, 18)
@@ -471,6 +472,29 @@ def var_table(model: Model, w: Writer):
         w.bytes(var.name.encode("utf-8"))
 
 
+def publish_progress(mm, model, box):
+    """Puts the dynamic model's time-integral array (DynamicModel.quad, updated in place by the numba
+    integrators at every accepted step, its entry 2 NOUT the integration's current time [s]) into the shared
+    header, so that the native layer sees how far a step has come and wakes up just before its end; O_PROG:
+    the byte offset of that time, 0 without a dynamic model (e.g. before fmi2ExitInitializationMode)."""
+    import numpy as np
+    m = getattr(getattr(model.slave, "_session", None), "model", None) if model is not None else None
+    q = getattr(m, "quad", None)
+    if q is box.get("view") and q is not None:
+        return
+    kernels = sys.modules.get("bearing_core.models.dynamics_kernels")
+    if (q is None or kernels is None or not isinstance(q, np.ndarray) or q.dtype != np.float64 or q.ndim != 1
+            or q.size != kernels.NQUAD or Q_OFF + 8 * q.size > HDR):
+        struct.pack_into("<I", mm, O_PROG, 0)
+        box["view"] = None
+        return
+    view = np.frombuffer(mm, dtype=np.float64, count=q.size, offset=Q_OFF)
+    view[:] = q
+    m.quad = view
+    box["view"] = view
+    struct.pack_into("<I", mm, O_PROG, Q_OFF + 8 * 2 * kernels.NOUT)
+
+
 def serve(res: Path, fd: int, master_pid: int):
     size = os.fstat(fd).st_size
     mm = mmap.mmap(fd, size)
@@ -493,6 +517,7 @@ def serve(res: Path, fd: int, master_pid: int):
     out_view = None
     gen_out = None          # output variables of a slave without the bearing's output array
     last = 0
+    prog = {}
     import numpy as np
     while True:
         # wait for the next request: a short spin, then sleep on the futex (checking that the master lives)
@@ -663,6 +688,7 @@ def serve(res: Path, fd: int, master_pid: int):
             _finish(mm, words, status, MODES.index(model.mode), flags, model.time, t0, off + 4 + len(logs) - resp_off,
                     resp_addr, last)
         else:
+            publish_progress(mm, model, prog)
             _respond(mm, words, resp_off, resp_cap, status, MODES.index(model.mode), flags, model.time, t0,
                      model.take_logs(), w, resp_addr, last)
         if cmd == C_FREE:
