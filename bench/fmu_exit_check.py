@@ -9,7 +9,7 @@ and exits normally (the C exit handlers and library destructors run). Hosts:
   two         two instances of the FMU in one fmpy process
   c           tests/c_host/host.c (compiled here with gcc): a C master, no Python in the host
 Prints one JSON line per host: exit-status histogram, runs without results, model processes left without their
-master (orphans), wall time (wall_s) and beside it the CPU time of the child processes (children_cpu_s: user +
+master (orphans), hangs (runs killed after --timeout), wall time (wall_s) and beside it the CPU time of the child processes (children_cpu_s: user +
 system of the finished runs, os.times; the work runs in child processes), and the machine (bench/machine.py) under
 "machine", e.g. {"host": "c", "runs": 200, "exit": {"0": 200}, "orphans": 0, ...}. Quickest check: ``--runs 1
 --hosts fmpy``.
@@ -38,6 +38,8 @@ def main():
     ap.add_argument("--fmu", default=str(ROOT / "dist" / "BearingFMU.fmu"))
     ap.add_argument("--hosts", default="fmpy,fmpy-numba,two,c")
     ap.add_argument("--progress", action="store_true", help="one line per run on stderr (partial counts)")
+    ap.add_argument("--timeout", type=float, default=300.0,
+                    help="a run not finished after this many seconds is killed and counted as a hang")
     a = ap.parse_args()
     mach = machine_info()
     w = 1000 * math.pi / 30
@@ -81,8 +83,17 @@ def main():
             ch0 = os.times()
             t0 = time.perf_counter()
             e = env if name != "c" else {k: v for k, v in env.items() if k not in ("PYTHONPATH", "LD_PRELOAD")}
+            hangs = 0
             for _ in range(a.runs):
-                r = subprocess.run(cmds[name], capture_output=True, text=True, env=e)
+                try:
+                    r = subprocess.run(cmds[name], capture_output=True, text=True, env=e, timeout=a.timeout)
+                except subprocess.TimeoutExpired as te:
+                    hangs += 1
+                    counts["hang"] += 1
+                    if a.progress:
+                        sys.stderr.write(json.dumps({"host": name, "hang": True}) + "\n")
+                    del te
+                    continue
                 counts[str(r.returncode)] += 1
                 ok_out = ("RESULT " in r.stdout) if name != "c" else (r.stdout.count("ROW 0 0") == 10)
                 bad_out += not ok_out
@@ -93,7 +104,7 @@ def main():
             ch1 = os.times()
             cpu = (ch1.children_user - ch0.children_user) + (ch1.children_system - ch0.children_system)
             time.sleep(1.0)   # a model process whose master ended exits within 0.5 s
-            print(json.dumps({"host": name, "runs": a.runs, "exit": dict(counts), "runs_without_results": bad_out,
+            print(json.dumps({"host": name, "runs": a.runs, "exit": dict(counts), "runs_without_results": bad_out + hangs, "hangs": hangs,
                               "orphans": len(orphans()), "wall_s": round(wall, 1), "children_cpu_s": round(cpu, 1),
                               "machine": mach}), flush=True)
 
