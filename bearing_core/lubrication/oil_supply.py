@@ -31,8 +31,9 @@ Methods and their cavity oil fraction X [-] (``cavity_oil_fraction``):
   12 balls of 11.9 mm on 53.5 mm, oil 900 kg/m^3) is 2.3 kW; the oil flow carries m_dot c_p = 9 W/K,
   so the oil would leave 250 K above its inlet, at ~640 K, far past the 473 K limit of the ester (and
   the rings could not stay near the inlet temperature): the runs could not have been 'successful'. Read
-  as percent, the drag is 0.23 kW and the oil rise 25 K -- consistent. tests/test_oil_supply.py repeats
-  this with the library. This uses only the published operating conditions and the statement of
+  as percent, the drag is 0.23 kW and the oil rise 25 K -- consistent. (At 758 cm^3/min the fraction
+  reading still puts the oil at ~530 K; only at the largest flow, 1894, would it stay just below the
+  limit, 469 K.) tests/test_oil_bath_skf.py repeats this with the library. This uses only the published operating conditions and the statement of
   successful running, not the measured heat the validation cases compare with.
   Validity: the NASA jet-lubricated angular-contact ball bearing tests of that period, e.g. the
   35-mm bore bearing at 48,000-72,000 rpm (2.5 million DN) with 303-1894 cm^3/min (Schuller, Pinel &
