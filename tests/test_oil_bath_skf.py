@@ -69,9 +69,34 @@ def test_bath_model_choice_and_its_error():
     assert skf.fraction == skf_bath_fraction(0.5 * g.D, g)[0] and "SKF" in skf.formula
     assert geo.fraction == bath_fraction(0.5 * g.D, 0.5 * g.inner_raceway_diameter, 0.5 * g.outer_raceway_diameter)
     assert cavity_oil_fraction(s, g, 500.0).fraction == skf.fraction          # speed-independent
+    assert cavity_oil_fraction(OilSupply("bath", 0.0, 330.0, oil_level=0.5 * g.D, bath_model="geometric"),
+                               g, 2000.0).fraction == geo.fraction       # the supply carries its bath model
     with pytest.raises(BearingInputError) as e:
         cavity_oil_fraction(s, g, 2000.0, bath_model="sump")
     assert e.value.parameter == "bath_model"
+    with pytest.raises(BearingInputError) as e:
+        OilSupply("bath", 0.0, 330.0, oil_level=0.01, bath_model="sump").validate()
+    assert e.value.parameter == "bath_model"
+
+
+def test_bearing_thermal_bath_models(capsys):
+    """`bearing thermal` with a bath: the oil content from SKF's drag term by default, the geometric share with
+    --bath-model geometric; --bath-model without a bath is refused, naming the flag."""
+    import json
+    from bearing_core.cli import main
+    g = load_preset("7218B")
+    base = ["thermal", "--bearing", "7218B", "--speed-rpm", "1500", "--fz", "3000", "--oil", "iso-vg68-mineral",
+            "--lubrication-method", "bath", "--oil-level-mm", "11", "--oil-inlet-c", "40", "--json"]
+    got = {}
+    for model in ("skf", "geometric"):
+        assert main(base + ["--bath-model", model]) == 0
+        got[model] = json.loads(capsys.readouterr().out)["oil_fraction"]
+    assert got["skf"] == pytest.approx(skf_bath_fraction(0.011, g)[0], rel=1e-12)
+    assert got["geometric"] == pytest.approx(
+        bath_fraction(0.011, 0.5 * g.inner_raceway_diameter, 0.5 * g.outer_raceway_diameter), rel=1e-12)
+    assert main(["thermal", "--bearing", "7218B", "--speed-rpm", "1500", "--fz", "3000", "--oil-flow-lpm", "1",
+                 "--bath-model", "skf"]) == 2
+    assert "--bath-model" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("flow_cm3_min", [303.0, 758.0])

@@ -93,16 +93,20 @@ class OilSupply:
 
     method: 'jet' | 'oil-air' | 'bath' | 'grease'; flow_rate [m^3/s] of oil through the bearing (jet and
     oil-air need > 0; bath optional; grease 0); T_in [K] oil supply temperature; oil_level [m] (bath only):
-    static level above the lowest point of the outer raceway."""
+    static level above the lowest point of the outer raceway; bath_model: 'skf' | 'geometric', the bath's
+    oil-content estimate (module docstring)."""
 
     method: str = "jet"
     flow_rate: float = 0.0
     T_in: float = 313.15
     oil_level: float | None = None
+    bath_model: str = "skf"
 
     def validate(self):
         if self.method not in METHODS:
             raise BearingInputError("lubrication method", self.method, "one of " + ", ".join(METHODS))
+        if self.bath_model not in BATH_MODELS:
+            raise BearingInputError("bath_model", self.bath_model, " | ".join(BATH_MODELS))
         check_range("oil flow_rate", self.flow_rate, 0.0, 0.1, unit="m^3/s")
         check_range("oil inlet temperature T_in", self.T_in, 233.15, 473.15, unit="K")
         if self.method in ("jet", "oil-air") and self.flow_rate <= 0.0:
@@ -203,11 +207,13 @@ def skf_bath_fraction(oil_level: float, geometry, cd: float = CD_BALL,
     return min(max(X, 0.0), 1.0), extrapolated, "; ".join(notes)
 
 
-def cavity_oil_fraction(supply: OilSupply, geometry, n_rpm: float, bath_model: str = "skf") -> CavityOil:
+def cavity_oil_fraction(supply: OilSupply, geometry, n_rpm: float, bath_model: str | None = None) -> CavityOil:
     """Effective oil fraction of the bearing cavity for the supply at shaft speed n_rpm [rpm] (module
     docstring). geometry: BearingGeometry (pitch and raceway diameters); bath_model: 'skf' | 'geometric'
-    (bath only, module docstring)."""
+    (bath only, module docstring; None: the supply's bath_model)."""
     supply.validate()
+    if bath_model is None:
+        bath_model = supply.bath_model
     if bath_model not in BATH_MODELS:
         raise BearingInputError("bath_model", bath_model, " | ".join(BATH_MODELS))
     m = supply.method
