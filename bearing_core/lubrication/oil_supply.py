@@ -2,7 +2,7 @@
 
 The ball drag, the cage / ring churning (bearing_core.lubrication.churning) and the dynamics' drag all act in an oil-air
 mixture of oil volume fraction X (linear mixing of density and viscosity). X is set here from how the oil
-is supplied, the input users know: ``OilSupply(method, flow_rate, T_in, oil_level)``.
+is supplied, the input users know: ``OilSupply(method, flow_rate, T_in, oil_level, bath_model)``.
 
 Methods and their cavity oil fraction X [-] (``cavity_oil_fraction``):
 
@@ -15,8 +15,8 @@ Methods and their cavity oil fraction X [-] (``cavity_oil_fraction``):
       X_cav = 1e5 W^0.37 / (n d_m^1.7)      [percent of the free volume]      (Parker)
       W oil flow [cm^3/min], n shaft speed [rpm], d_m pitch diameter [mm].
 
-  Neither the report nor the book could be read here. Searched (2026, the project's search tool over stored
-  web pages, documentation, code and issue threads): 'Parker 1984 NASA TP-2275 comparison of predicted and
+  Neither the report nor the book could be read here. Searched (stored copies of public web pages,
+  documentation, code and issue threads): 'Parker 1984 NASA TP-2275 comparison of predicted and
   experimental thermal performance', 'percent oil in bearing cavity X_cav = 10^5 W^0.37 / (n dm^1.7)',
   'SHABERTH fluid drag percent oil in cavity oil-air mixture', 'SHABERTH operation manual input percent
   of lubricant', 'Xcav oil percentage bearing cavity effective density', 'effective lubricant volume
@@ -33,8 +33,9 @@ Methods and their cavity oil fraction X [-] (``cavity_oil_fraction``):
   the rings could not stay near the inlet temperature): the runs could not have been 'successful'. Read
   as percent, the drag is 0.23 kW and the oil rise 25 K -- consistent. (At 758 cm^3/min the fraction
   reading still puts the oil at ~530 K; only at the largest flow, 1894, would it stay just below the
-  limit, 469 K.) tests/test_oil_bath_skf.py repeats this with the library. This uses only the published operating conditions and the statement of
-  successful running, not the measured heat the validation cases compare with.
+  limit, 469 K.) tests/test_oil_bath_skf.py repeats this with the library. This uses only the published
+  operating conditions and the statement of successful running, not the measured heat the validation
+  cases compare with.
   Validity: the NASA jet-lubricated angular-contact ball bearing tests of that period, e.g. the
   35-mm bore bearing at 48,000-72,000 rpm (2.5 million DN) with 303-1894 cm^3/min (Schuller, Pinel &
   Signer, NASA TP-1732, 1980, summary) and the 120-mm bore bearing to 25,000 rpm (3 million DN; Bamberger,
