@@ -125,6 +125,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="oil supply (bearing_core.lubrication.oil_supply); default jet when --oil-flow-lpm > 0")
     th.add_argument("--oil-level-mm", type=_finite("--oil-level-mm"), default=None,
                     help="bath: static oil level above the lowest point of the outer raceway [mm]")
+    th.add_argument("--bath-model", choices=("skf", "geometric"), default=None,
+                    help="bath: oil content from SKF's (2004) drag term (skf, default) or the submerged share of "
+                         "the cavity (geometric)")
     th.add_argument("--ambient-c", type=_finite("--ambient-c"), default=35.0, help="ambient temperature [degC]")
     th.add_argument("--oil-inlet-c", type=_finite("--oil-inlet-c"), default=None,
                     help="oil supply temperature [degC] (default: ambient)")
@@ -661,8 +664,11 @@ def cmd_thermal(a) -> int:
     flow = a.oil_flow_lpm / 60000.0
     method = a.lubrication_method or ("jet" if flow > 0 else None)
     supply = None
+    if a.bath_model is not None and method != "bath":
+        raise BearingInputError("--bath-model", a.bath_model, "only with --lubrication-method bath")
     if method is not None:
-        supply = OilSupply(method, flow, T_in, None if a.oil_level_mm is None else a.oil_level_mm * 1e-3).validate()
+        supply = OilSupply(method, flow, T_in, None if a.oil_level_mm is None else a.oil_level_mm * 1e-3,
+                           bath_model=a.bath_model or "skf").validate()
     elif a.oil_level_mm is not None:
         raise BearingInputError("--oil-level-mm", a.oil_level_mm, "only with --lubrication-method bath")
     X = a.oil_fraction if a.oil_fraction is not None else (0.0 if supply is not None else 0.05)

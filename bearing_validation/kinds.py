@@ -670,3 +670,39 @@ def jet_bearing_thermal(inputs):
     out["heat_speed_exponent"] = (math.log(h[-1] / h[0]) / math.log(n[-1] / n[0])
                                   if out["no_runaway"] else float("nan"))
     return out
+
+
+@kind
+def skf_bath_drag(inputs):
+    """Drag torque [N m] of a ball bearing in an oil bath, ours against SKF's (2004) drag term: our drag is the
+    ball drag plus cage and inner-ring churning (churning.churning_losses, cd 0.5, orbit and cage at the
+    kinematic speed w (1 - gamma)/2 with the outer ring fixed) in the oil-air mixture of the GEOMETRIC bath
+    fraction (oil_supply.bath_fraction: submerged share of the cavity annulus, not the SKF-equivalent one);
+    SKF's is friction_models.skf_drag_torque with V_M(H/dm). Returns both torques and their ratio for every
+    oil level x speed."""
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.lubrication.churning import churning_losses
+    from bearing_core.lubrication.friction_models import bearing_envelope_mm, skf_drag_torque
+    from bearing_core.lubrication.oil_supply import bath_fraction
+    g = load_preset(inputs["bearing"])
+    d_mm, D_mm, how = bearing_envelope_mm(g)
+    gam = g.D * math.cos(g.alpha0) / g.dm
+    T = inputs["oil_temperature_C"] + 273.15
+    out = {"H_over_D_ball": [], "speed_rpm": [], "oil_fraction": [], "M_ours_Nm": [], "M_skf_Nm": [],
+           "ratio_to_skf": [], "envelope": how}
+    for h in inputs["oil_level_over_ball_diameter"]:
+        H = h * g.D
+        X = bath_fraction(H, 0.5 * g.inner_raceway_diameter, 0.5 * g.outer_raceway_diameter)
+        for rpm in inputs["speeds_rpm"]:
+            w = rpm * RPM
+            wc = 0.5 * w * (1.0 - gam)
+            c = churning_losses(g, inputs["oil"], T, w, wc, wc, cd=0.5, oil_fraction=X)
+            M = (c["Q_ch_b"] + c["Q_ch_c"] + c["Q_ch_s"]) / w
+            M_skf = skf_drag_torque(d_mm, D_mm, rpm, H * 1e3)
+            out["H_over_D_ball"].append(h)
+            out["speed_rpm"].append(rpm)
+            out["oil_fraction"].append(X)
+            out["M_ours_Nm"].append(M)
+            out["M_skf_Nm"].append(M_skf)
+            out["ratio_to_skf"].append(M / M_skf)
+    return out

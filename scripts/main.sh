@@ -10,11 +10,14 @@ mkdir -p "$OUT"
 echo "[1/5] building the FMU (dist/BearingFMU.fmu)"
 .venv/bin/python build_fmu.py --dest dist
 echo "[2/5] FMU via fmpy, OIL-LUBRICATED 7218B (ISO VG 32 at 40 degC, lubricated race traction, oil-lubricated pocket"
-echo "      and land): seed 000 profile (1000 rpm to 0.5 s, 10,000 rpm/s to 10,000 rpm, held to 2 s), Fx = 1000 N, Fz = 3000 N;"
+echo "      and land), oil supply: JET, 2.0 L/min (3.333e-5 m^3/s) at 40 degC -- the cavity oil content follows from the"
+echo "      flow and the running speed (Parker's correlation, output oil_fraction_used): seed 000 profile (1000 rpm to"
+echo "      0.5 s, 10,000 rpm/s to 10,000 rpm, held to 2 s), Fx = 1000 N, Fz = 3000 N;"
 echo "      friction torque next to the SKF (2004) and Palmgren estimates, heat by source: $OUT/fmu_friction.png"
 echo "      (the first run compiles the numba kernels into the FMU cache, ~10 s)"
 .venv/bin/bearing simulate --fmu dist/BearingFMU.fmu --profile seed000 --fx 1000 --fz 3000 --lubrication oil \
-    --oil iso-vg32-mineral --oil-temperature-c 40 --out "$OUT"
+    --oil iso-vg32-mineral --oil-temperature-c 40 --param lubrication_method=jet --param oil_flow_rate=3.333e-5 \
+    --param oil_inlet_temperature=313.15 --out "$OUT"
 echo "[3/5] FMU via fmpy, seed 000's SOLID-LUBRICATED case: Kalker traction mu = 0.1, dry Coulomb cage mu = 0.1, same profile"
 .venv/bin/bearing simulate --fmu dist/BearingFMU.fmu --profile seed000 --fx 1000 --fz 3000 --lubrication solid \
     --traction kalker --mu 0.1 --mu-cage 0.1 --out "$OUT/seed000_solid"

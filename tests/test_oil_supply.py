@@ -92,3 +92,19 @@ def test_cosim_takes_the_supply_and_follows_the_speed():
         with pytest.raises(BearingInputError) as e:
             CoSimSession(CoSimParameters(bearing="7218B", oil_flow_rate=flow, **kw)).initialize(0.0, inp)
         assert e.value.parameter == param
+
+
+def test_cosim_output_oil_fraction_used():
+    """The session (FMU) output oil_fraction_used is the oil content the model uses: the jet supply's at the
+    running speed, the explicit oil_fraction when given."""
+    from bearing_core.session.cosim import CoSimParameters, CoSimSession
+    rpm = math.pi / 30.0
+    inp = {"shaft_speed": 3000 * rpm, "Fz": 3000.0}
+    s = CoSimSession(CoSimParameters(bearing="7218B", oil_flow_rate=1e-5, lubrication_method="jet"))
+    s.initialize(0.0, inp)
+    o = s.outputs
+    assert o["oil_fraction_used"] == s.model.oil_fraction_used() == pytest.approx(
+        parker_fraction(1e-5, 3000.0, s.model.g.dm)[0], rel=1e-9)
+    s2 = CoSimSession(CoSimParameters(bearing="7218B", oil_fraction=0.02))
+    s2.initialize(0.0, inp)
+    assert s2.outputs["oil_fraction_used"] == 0.02

@@ -81,3 +81,26 @@ def test_runaway_names_node_and_cause():
     assert e.value.node == "ball"
     assert "node 'ball'" in e.value.cause and "(drag 100 %)" in e.value.cause and "oil" in e.value.cause
     assert "cause:" in str(e.value)
+
+
+def test_ring_to_housing_and_shaft_paths_through_the_fits():
+    """The outer and inner ring nodes reject to ambient through the fit contact, the housing wall (cylindrical
+    conduction) or the shaft (axial conduction) and the convection, in series; fit_contact_resistance None
+    gives back seed 001's convection-only paths."""
+    import math
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.heat.thermal import ThermalData, ThermalNetwork
+    g = load_preset("7218B")
+    td = ThermalData(L_shaft=0.1)
+    net = ThermalNetwork(g, data=td)
+    seed = ThermalNetwork(g, data=ThermalData(L_shaft=0.1, fit_contact_resistance=None))
+    r, k = net.dims, 46.6
+    R_o = (6e-4 / (math.pi * r["D_o"] * g.width) + math.log(r["D_h"] / r["D_o"]) / (2 * math.pi * k * r["L_h"])
+           + 1.0 / seed.g_amb[1])
+    R_i = 6e-4 / (math.pi * r["D_s"] * g.width) + 0.5 * r["L_h"] / (k * math.pi * r["D_s"] ** 2 / 4) + 1.0 / seed.g_amb[2]
+    assert net.g_amb[1] == pytest.approx(1.0 / R_o, rel=1e-12)
+    assert net.g_amb[2] == pytest.approx(1.0 / R_i, rel=1e-12)
+    assert net.g_amb[1] < seed.g_amb[1] and net.g_amb[2] < seed.g_amb[2]
+    assert net.g_amb[3] == seed.g_amb[3]
+    with pytest.raises(Exception):
+        ThermalNetwork(g, data=ThermalData(fit_contact_resistance=-1.0))

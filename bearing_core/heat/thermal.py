@@ -50,6 +50,16 @@ Resistances (seed 001 Eqs. 26-29), with the corrections we had to make:
   shaft speed (set_speed, called by the dynamics at every thermal step).
 * Heat transfer coefficients to air: solid-air and oil-air default 20 W/(m^2 K) (forced/natural convection of air, Incropera Table 1.1:
   gases 2-25 natural, 25-250 forced). All are ThermalData fields.
+* Ring-to-housing and ring-to-shaft paths (fit_contact_resistance not None, default): the outer-ring node
+  rejects to ambient through three resistances in series -- the contact of the housing fit,
+  R''_c / (pi D_o B), the cylindrical housing wall, ln(D_h / D_o) / (2 pi k L_h) (Incropera & DeWitt 6th
+  ed. Eq. 3.28), and the convection from the housing surfaces, 1 / (h_h_atm A_hatm); the inner-ring node
+  through the shaft fit, R''_c / (pi D_s B), axial conduction along the solid shaft from the seat to its
+  exposed surfaces over L_h / 2, (L_h / 2) / (k pi D_s^2 / 4) (Incropera Eq. 3.6, one-dimensional), and
+  the convection 1 / (h_s_atm A_satm). R''_c = 6e-4 m^2 K/W, the lower end of Incropera Table 3.1 for
+  stainless-steel interfaces at 0.1-10 MPa contact pressure (6-25e-4 in vacuum; air in the gaps of a fit
+  lowers it), B the bearing width. The heat capacities of housing and shaft stay in the ring nodes (seed
+  001's lumped nodes); fit_contact_resistance None gives back seed 001's convection-only Eq. 29.
 * Oil flow (not in seed 001 Eqs. 22-25, standard for circulating / jet lubrication): the oil passing
   through removes m_dot c_p (T_oil - T_in) (the lubricant heat-removal balance of Harris & Kotzalas,
   Rolling Bearing Analysis 5th ed. Vol. 1 (friction heat removed by the circulating oil), and SKF's
@@ -262,7 +272,9 @@ class ThermalData:
     contact / pocket heat to the ball (contact_split None: Blok's partition); shaft_speed [rad/s] for the
     speed-dependent convection and moving-source contact resistances (set_speed updates it);
     oil_fraction: cavity oil fraction (None: oil_fill) -- > 0 or a flow means wetted surfaces;
-    contact_model: 'moving-source' | 'seed001' (module docstring)."""
+    contact_model: 'moving-source' | 'seed001' (module docstring); fit_contact_resistance [m^2 K/W]:
+    R''_c of the shaft and housing fits in the ring-to-shaft / ring-to-housing paths (None: seed 001's
+    convection-only paths to ambient; module docstring)."""
 
     T_amb: float = 308.15           # seed 001: T_atm = 35 degC
     T_in: float = 308.15
@@ -291,6 +303,7 @@ class ThermalData:
     shaft_speed: float = 0.0
     oil_fraction: float | None = None
     contact_model: str = "moving-source"
+    fit_contact_resistance: float | None = 6.0e-4
 
     def validate(self):
         check_range("T_amb", self.T_amb, 200.0, 500.0, unit="K")
@@ -316,6 +329,8 @@ class ThermalData:
         if self.contact_model not in CONTACT_MODELS:
             raise BearingInputError("contact_model", self.contact_model, "one of " + ", ".join(CONTACT_MODELS))
         check_range("pocket_split", self.pocket_split, 0.0, 1.0)
+        if self.fit_contact_resistance is not None:
+            check_range("fit_contact_resistance", self.fit_contact_resistance, 0.0, 1.0, unit="m^2 K/W")
 
     def resolved(self, g) -> dict:
         """All dimensions [m] with the defaults derived from BearingGeometry g (estimates):
@@ -422,11 +437,19 @@ class ThermalNetwork:
         A_oilatm = A_boil + A_hoil + A_soil
         self.areas = dict(A_boil=A_boil, A_hoil=A_hoil, A_soil=A_soil, A_hatm=A_hatm, A_satm=A_satm,
                           A_oilatm=A_oilatm)
-        self.conductances = dict(G_hatm=d.h_h_atm * A_hatm, G_satm=d.h_s_atm * A_satm,
-                                 G_oilatm=d.h_oil_atm * A_oilatm)
+        G_hatm, G_satm = d.h_h_atm * A_hatm, d.h_s_atm * A_satm
+        if d.fit_contact_resistance is not None and G_hatm > 0.0:      # ring -> fit -> housing wall -> air
+            R_fit_o = d.fit_contact_resistance / (math.pi * r["D_o"] * g.width)
+            R_wall = math.log(r["D_h"] / r["D_o"]) / (2.0 * math.pi * k_ring * r["L_h"])
+            G_hatm = 1.0 / (R_fit_o + R_wall + 1.0 / G_hatm)
+        if d.fit_contact_resistance is not None and G_satm > 0.0:      # ring -> fit -> shaft -> air
+            R_fit_i = d.fit_contact_resistance / (math.pi * r["D_s"] * g.width)
+            R_shaft = 0.5 * r["L_h"] / (k_ring * 0.25 * math.pi * r["D_s"] ** 2)
+            G_satm = 1.0 / (R_fit_i + R_shaft + 1.0 / G_satm)
+        self.conductances = dict(G_hatm=G_hatm, G_satm=G_satm, G_oilatm=d.h_oil_atm * A_oilatm)
         self.shaft_speed = None
         self.set_speed(d.shaft_speed)
-        self.g_amb = np.array([0.0, d.h_h_atm * A_hatm, d.h_s_atm * A_satm, d.h_oil_atm * A_oilatm])
+        self.g_amb = np.array([0.0, G_hatm, G_satm, d.h_oil_atm * A_oilatm])
         self.m_dot = rho_oil * d.flow_rate
         self.g_flow = np.array([0.0, 0.0, 0.0, self.m_dot * cp_oil])
         self.g_out = self.g_amb + self.g_flow

@@ -490,6 +490,7 @@ class CoSimSession:
             ext[4], ext[5] = T["heat_to_ambient"], T["heat_to_oil_flow"]
             self._ext_isothermal = m.thermal is None
         ext[6] = 1.0 if self.thermal_runaway else 0.0
+        ext[7] = m.oil_fraction_used()
         if q0 is None:
             q1 = q0 = diag
             h = 0.0

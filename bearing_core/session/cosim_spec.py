@@ -85,6 +85,11 @@ OUTPUT_SPEC = tuple((n, u, d + (", averaged over the communication step" if n in
     ("instantaneous_" + n, _spec[n][0], _spec[n][1] + ", instantaneous value at the communication point")
     for n in STEP_AVERAGED_NAMES)
 del _spec
+OUTPUT_SPEC += (
+    ("oil_fraction_used", "1", "oil volume fraction of the cavity's oil-air mixture that drag and churning use: "
+                               "oil_fraction if > 0, else the oil supply's cavity oil content at the running speed "
+                               "(bearing_core.lubrication.oil_supply)"),
+)
 OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUT_SPEC)
 
 # Integer outputs (FMI Integer variables)

@@ -24,10 +24,10 @@ EXTRA_NAMES = ("cage_shaft_ratio", "cage_shaft_ratio_theory", "skid_ratio", "fil
                "film_parameter_min", "cage_slip_ratio", "skid_state",
                # copied from the ext argument (thermal network or isothermal oil, runaway flag)
                "temperature_ball", "temperature_outer_ring", "temperature_inner_ring", "temperature_oil",
-               "heat_to_ambient", "heat_to_oil_flow", "thermal_runaway")
-N_EXT = 7
+               "heat_to_ambient", "heat_to_oil_flow", "thermal_runaway", "oil_fraction_used")
+N_EXT = 8
 """Entries of the ext argument: T ball, outer ring, inner ring, oil [K], heat to ambient, to the oil flow [W],
-thermal runaway flag (0 / 1)."""
+thermal runaway flag (0 / 1), cavity oil fraction used [-]."""
 # positions in the ch argument of the channels the derived quantities need
 CH_SHAFT, CH_CAGE, CH_CAGE_EQ26, CH_CAGE_PR_OUTER, CH_OUTER = range(5)
 
