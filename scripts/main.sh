@@ -14,7 +14,8 @@ echo "      and land), oil supply: JET, 2.0 L/min (3.333e-5 m^3/s) at 40 degC --
 echo "      flow and the running speed (Parker's correlation, output oil_fraction_used): seed 000 profile (1000 rpm to"
 echo "      0.5 s, 10,000 rpm/s to 10,000 rpm, held to 2 s), Fx = 1000 N, Fz = 3000 N;"
 echo "      friction torque next to the SKF (2004) and Palmgren estimates, heat by source: $OUT/fmu_friction.png"
-echo "      (the first run compiles the numba kernels into the FMU cache, ~10 s)"
+echo "      (the first run of this FMU compiles the numba kernels for this processor into its cache, about a minute
+      on 2 cores; later runs load them. The standalone FMU ships them: python build_fmu.py --standalone)"
 .venv/bin/bearing simulate --fmu dist/BearingFMU.fmu --profile seed000 --fx 1000 --fz 3000 --lubrication oil \
     --oil iso-vg32-mineral --oil-temperature-c 40 --param lubrication_method=jet --param oil_flow_rate=3.333e-5 \
     --param oil_inlet_temperature=313.15 --out "$OUT"
