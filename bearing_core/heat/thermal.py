@@ -80,6 +80,7 @@ Kotzalas Vol. 2 thermal chapter; Takabi & Khonsari, Tribol. Int. 60 (2013) 93 (s
     Q_ch_b  ball churning (drag)      ball                                                Eq. 22
     Q_ch_s  inner-ring churning       inner                                               Eq. 24
     drag    the dynamics' ball drag   ball (same physical loss as Q_ch_b: give one of them)
+    Q_oil_work  work of the rotating parts on the supply oil (oil_supply.supply_oil_work)   oil
 
 Oil properties (c_p, density) are taken at the oil inlet temperature and the network is linear (the
 thermal properties do not follow the node temperatures); the viscosity at the node temperatures is the
@@ -98,7 +99,7 @@ from ..errors import BearingInputError, check_range
 NODES = ("ball", "outer", "inner", "oil")
 N_NODES = 4
 I_BALL, I_OUTER, I_INNER, I_OIL = range(4)
-SOURCES = ("Q_br_i", "Q_br_o", "Q_bp", "Q_cg", "Q_ch_c", "Q_ch_b", "Q_ch_s", "drag")
+SOURCES = ("Q_br_i", "Q_br_o", "Q_bp", "Q_cg", "Q_ch_c", "Q_ch_b", "Q_ch_s", "drag", "Q_oil_work")
 
 # thermal conductivity [W/(m K)] and specific heat [J/(kg K)] of the solid materials (names of
 # bearing_core.bearing.materials). AISI 52100: 46.6 and 475 (ASM / MatWeb data sheet for AISI 52100); hot-pressed
@@ -541,7 +542,7 @@ class ThermalNetwork:
                 q[I_OIL] += (1.0 - d.pocket_split) * v
             elif key == "Q_cg":
                 q[cg_node] += v
-            elif key == "Q_ch_c":
+            elif key in ("Q_ch_c", "Q_oil_work"):
                 q[I_OIL] += v
             elif key in ("Q_ch_b", "drag"):
                 q[I_BALL] += v

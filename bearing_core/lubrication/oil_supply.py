@@ -66,6 +66,29 @@ Methods and their cavity oil fraction X [-] (``cavity_oil_fraction``):
   grease lubrication in rolling bearings', Tribology Transactions 52 (2009) 470). X = 0 (air); no oil flow.
 
 ``oil_fraction`` given explicitly (CLI ``--oil-fraction``, FMU ``oil_fraction`` > 0) overrides all of this.
+
+Work of the supply oil (``supply_oil_work``): the oil that goes through the bearing enters without swirl
+and leaves the rotating parts with their tangential speed, so the rotating parts give it angular momentum.
+By the angular-momentum balance of a steady through-flow (Euler's turbomachine equation, L. Euler 1754;
+S. L. Dixon, C. A. Hall, Fluid Mechanics and Thermodynamics of Turbomachinery, 7th ed. (2014), Ch. 1,
+'Euler work equation': torque = m_dot (r2 c_u2 - r1 c_u1), power = torque x the body's angular speed),
+with the jet aimed at the inner ring (between the inner ring and the cage, ASSUMED: the arrangement of the
+NASA jet-lubricated tests as we recall it, not read) the oil first takes the inner ring's speed at its
+land radius r_i, then leaves the rotating set at the cage's outer surface r_c with the cage's speed:
+
+    P_oil = m_dot [w^2 r_i^2 + w_c (w_c r_c^2 - w r_i^2)]        [W]
+
+the inner ring's work w (m_dot w r_i^2), and the cage's, w_c times the change of the oil's angular
+momentum across it (negative: faster oil drives the cage, which then needs less drive from the balls).
+The power is drawn from the shaft (through the ring, and through the balls for the cage); half of the
+exit kinetic energy m_dot (w_c r_c)^2 / 2 leaves with the oil and is dissipated downstream in the same
+oil, the rest in the bearing, so all of it heats the oil. Upper and lower bounds of the same balance:
+oil that leaves with the inner ring's speed (m_dot w^2 r_i^2) or is accelerated by the cage alone (m_dot
+w_c^2 r_c^2). In the dynamics it would add to the drive torque of the inner ring, whose speed is prescribed, and give
+the cage a small torque; it is taken as a heat source of the thermal network (thermal.SOURCES
+'Q_oil_work'), not as a load, so the dynamics' friction torque output does not include it. Bath and grease: 0 (no through-flow to accelerate;
+a circulating bath's flow enters the bath, not the rotating set). The mass of the carrier air of
+oil-air lubrication is not counted.
 """
 from __future__ import annotations
 
@@ -233,3 +256,23 @@ def cavity_oil_fraction(supply: OilSupply, geometry, n_rpm: float, bath_model: s
                           0.5 * geometry.outer_raceway_diameter)
         return CavityOil(X, m, "submerged share of the cavity annulus below the oil level (geometric)")
     return CavityOil(0.0, m, "channelled grease: no free oil in the cavity (Lugt 2009)")
+
+
+def supply_oil_work(supply: OilSupply, rho_oil: float, omega: float, omega_cage: float, r_ring: float,
+                    r_cage: float) -> float:
+    """Power [W] the rotating parts spend on the supply oil (module docstring 'Work of the supply oil'):
+    m_dot [w^2 r_i^2 + w_c (w_c r_c^2 - w r_i^2)], m_dot = rho_oil [kg/m^3] x the supply's flow [m^3/s];
+    omega, omega_cage [rad/s] inner-ring and cage speeds relative to the outer ring; r_ring [m] radius of
+    the inner-ring land the jet hits; r_cage [m] outer radius of the cage. 0 for bath and grease. Never
+    negative (a cage faster than the ring is not a physical steady state; clipped at 0)."""
+    supply.validate()
+    check_range("rho_oil", rho_oil, 500.0, 2000.0, unit="kg/m^3")
+    check_range("omega", omega, -1e5, 1e5, unit="rad/s")
+    check_range("omega_cage", omega_cage, -1e5, 1e5, unit="rad/s")
+    check_range("r_ring", r_ring, 0.0, 5.0, lo_incl=False, unit="m")
+    check_range("r_cage", r_cage, 0.0, 5.0, lo_incl=False, unit="m")
+    if supply.method not in ("jet", "oil-air"):
+        return 0.0
+    m_dot = rho_oil * supply.flow_rate
+    w, wc = abs(omega), abs(omega_cage)
+    return max(m_dot * (w * w * r_ring * r_ring + wc * (wc * r_cage * r_cage - w * r_ring * r_ring)), 0.0)

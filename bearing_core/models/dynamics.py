@@ -290,14 +290,29 @@ class DynamicModel(DynamicSetup):
     # ---- thermal network on the slow time scale (seed 001 Eqs. 21-29) -------------------------------
     def heat_sources(self, rec) -> dict:
         """Mean loss powers [W] of records (n x NOUT) keyed by the thermal network's sources: race traction
-        with half the contact damping each, pocket, land, churning of cage and inner ring, ball drag."""
+        with half the contact damping each, pocket, land, churning of cage and inner ring, ball drag, and the
+        work on the supply oil (not a load of the dynamics: _oil_work)."""
         m = rec.mean(axis=0)
         I = K.OUT_INDEX
         dmp = 0.5 * m[I["P_damping"]]
         return {"Q_br_i": max(m[I["P_race_inner"]] + dmp, 0.0), "Q_br_o": max(m[I["P_race_outer"]] + dmp, 0.0),
                 "Q_bp": max(m[I["P_pocket"]], 0.0), "Q_cg": max(m[I["P_land"]], 0.0),
                 "Q_ch_c": max(m[I["P_churn_cage"]], 0.0), "Q_ch_s": max(m[I["P_churn_ring"]], 0.0),
-                "Q_ch_b": 0.0, "drag": max(m[I["P_drag"]], 0.0)}
+                "Q_ch_b": 0.0, "drag": max(m[I["P_drag"]], 0.0), "Q_oil_work": self._oil_work(m[I["cage_speed"]])}
+
+    def _oil_work(self, cage_speed):
+        """Work [W] of the rotating parts on the supply oil (oil_supply.supply_oil_work) at the held shaft
+        speed and the cage speed [rad/s]: the jet hits the inner-ring land (d_m - 0.7 D) / 2 and leaves at the
+        cage's outer surface d_m / 2 + 0.35 D (the surfaces of churning.ChurningGeometry); oil at its inlet
+        temperature. 0 without a supply."""
+        sup = self.opt.oil_supply
+        if sup is None:
+            return 0.0
+        from ..lubrication.lubricants import get_oil
+        from ..lubrication.oil_supply import supply_oil_work
+        g, wo = self.g, self.U[K.U_WO]
+        return supply_oil_work(sup, get_oil(self.oil_name).density(sup.T_in), self.U[K.U_W1] - wo,
+                               cage_speed - wo, 0.5 * g.dm - 0.35 * g.D, 0.5 * g.dm + 0.35 * g.D)
 
     def _thermal_step(self, rec, dt):
         self.thermal.set_speed(self.U[K.U_W1] - self.U[K.U_WO])
