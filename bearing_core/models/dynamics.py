@@ -353,7 +353,8 @@ class DynamicModel(DynamicSetup):
         by window [s] at fixed temperatures; mean losses of that window -> steady state of the thermal
         network -> new temperatures) until no node moves by more than tol [K]. Returns temperatures [K],
         losses by source, heat generated and rejected (ambient + oil flow) [W], the iterations and the
-        balance (rejected / generated - 1) at the final temperatures."""
+        balance (rejected / generated - 1) at the final temperatures. The drive power and friction torque
+        include the work on the supply oil (heat_sources 'Q_oil_work'; its torque as power / speed)."""
         if self.thermal is None:
             raise BearingInputError("thermal", False, "True (DynamicsOptions(thermal=True))")
         check_range("window", window, 1e-3, 10.0, unit="s")
@@ -382,11 +383,14 @@ class DynamicModel(DynamicSetup):
         Q = self.heat_sources(rec)
         gen = sum(Q.values())
         rej = self.thermal.heat_to_ambient() + self.thermal.heat_to_oil_flow()
+        w_rel = float(self.U[K.U_W1] - self.U[K.U_WO])
         I = K.OUT_INDEX
         return {"temperatures_K": self.thermal.temperatures(), "losses_W": Q, "heat_generated_W": gen,
                 "heat_rejected_W": rej, "balance": rej / gen - 1.0 if gen > 0 else 0.0, "iterations": it,
-                "drive_power_W": float(rec[:, I["P_drive"]].mean()),
-                "friction_torque_Nm": float(rec[:, I["friction_torque"]].mean()),
+                # the shaft also supplies the work on the supply oil, which the dynamics' channels do not carry
+                "drive_power_W": float(rec[:, I["P_drive"]].mean()) + Q["Q_oil_work"],
+                "friction_torque_Nm": float(rec[:, I["friction_torque"]].mean())
+                + (Q["Q_oil_work"] / abs(w_rel) if w_rel != 0.0 else 0.0),
                 "cage_speed_rad_s": float(rec[:, I["cage_speed"]].mean())}
 
     def thermal_state(self):
