@@ -84,12 +84,12 @@ The power is drawn from the shaft (through the ring, and through the balls for t
 exit kinetic energy m_dot (w_c r_c)^2 / 2 leaves with the oil and is dissipated downstream in the same
 oil, the rest in the bearing, so all of it heats the oil. Upper and lower bounds of the same balance:
 oil that leaves with the inner ring's speed (m_dot w^2 r_i^2) or is accelerated by the cage alone (m_dot
-w_c^2 r_c^2). In the dynamics it would add to the drive torque of the inner ring, whose speed is prescribed, and give
-the cage a small torque; it is taken as a heat source of the thermal network (thermal.SOURCES
-'Q_oil_work'), not as a load, so the dynamics' records (friction torque, P_drive) do not include it;
-DynamicModel.thermal_equilibrium adds it to its drive power and friction torque. Bath and grease: 0 (no through-flow to accelerate;
-a circulating bath's flow enters the bath, not the rotating set). The mass of the carrier air of
-oil-air lubrication is not counted.
+w_c^2 r_c^2). In the dynamics it would add to the drive torque of the inner ring, whose speed is
+prescribed, and give the cage a small torque; it is taken as a heat source of the thermal network
+(thermal.SOURCES 'Q_oil_work'), not as a load, so the dynamics' records (friction torque, P_drive) do not
+include it; DynamicModel.thermal_equilibrium adds it to its drive power and friction torque. Bath and
+grease: 0 (no through-flow to accelerate; a circulating bath's flow enters the bath, not the rotating
+set). The mass of the carrier air of oil-air lubrication is not counted.
 """
 from __future__ import annotations
 
