@@ -59,7 +59,7 @@ def test_contents_and_no_build_path(standalone):
     cfg = json.loads((res / "model.json").read_text())
     assert [t["name"] for t in cfg["precompiled"]["targets"]] == ["x86-64-v3", "generic"]
     assert cfg["precompiled"]["kernels"] > 10
-    assert list(res.glob("code/bearing_core/__pycache__/*.nbc"))
+    assert list(res.glob("code/bearing_core/**/__pycache__/*.nbc"))
     assert not (res / "build_python.txt").exists()
     site = next(res.glob("python/lib/python3.*/site-packages"))
     for pkg in ("numpy", "scipy", "numba", "llvmlite"):
