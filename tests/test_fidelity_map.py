@@ -177,8 +177,9 @@ def test_build_map_on_dask_tiny_grid_resumes_from_cache(tmp_path):
     from distributed import Client, LocalCluster
     from bearing_core.maps.build_map import build_map, write_map
     grid = {"speed_rpm": [2000.0, 3000.0], "fx_N": [0.0, 800.0], "fz_N": [2000.0, 3000.0]}
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0",
-                      host="127.0.0.1") as lc, Client(lc) as cl:
+    # a worker in this process (the kernels loaded once); the same tasks as on worker processes
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0") as lc, \
+            Client(lc) as cl:
         ds, df = build_map(grid, {"bearing": "7218B"}, "tribological", cache_dir=tmp_path / "cache", client=cl,
                            progress=False)
         assert df.attrs["computed"] == 8 and (df["status"] == "ok").all(), df["error"].tolist()
