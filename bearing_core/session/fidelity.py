@@ -177,6 +177,13 @@ class MapLevel:
                 self._src.append(("param", params.oil_temperature - 273.15))
             else:
                 self._src.append(("input", MAP_AXES[a]))
+        # per axis, as Python numbers (the per-step query): source kind (0 parameter, 1 speed, 2 radial load Fx,
+        # 3 input), source, lo, hi, tolerance of the range test (round-off of unit conversions)
+        self._q = []
+        for a, (kind, src), v in zip(names, self._src, self.axes):
+            lo, hi = float(v[0]), float(v[-1])
+            k = 0 if kind == "param" else (1 if a == "speed_rpm" else (2 if a == "fx_N" else 3))
+            self._q.append((k, src, lo, hi, 1e-9 * max(1.0, abs(lo), abs(hi))))
         T = params.oil_temperature
         if "oil_temperature_C" in names:
             d = names.index("oil_temperature_C")
@@ -246,19 +253,18 @@ class MapLevel:
                 raise BearingInputError(name, u[name], f"0 {unit} at fidelity 'map' (the map {self.path} has no "
                                         f"{axis or name} axis)")
         x = self._x
-        for d, (a, (kind, src)) in enumerate(zip(self.axis_names, self._src)):
-            if kind == "param":
-                x[d] = src
-            elif a == "speed_rpm":
-                x[d] = u["shaft_speed"] / RPM
-            elif a == "fx_N":
-                x[d] = fx
+        for d, (kind, src, lo, hi, tol) in enumerate(self._q):
+            if kind == 0:
+                v = src
+            elif kind == 1:
+                v = u["shaft_speed"] / RPM
+            elif kind == 2:
+                v = fx
             else:
-                x[d] = u[src]
-        for d, (a, v) in enumerate(zip(self.axis_names, self.axes)):
-            if not v[0] - 1e-9 * max(1.0, abs(v[0])) <= x[d] <= v[-1] + 1e-9 * max(1.0, abs(v[-1])):
-                raise self.range_error(d, x[d])
-            x[d] = min(max(x[d], v[0]), v[-1])
+                v = u[src]
+            if not lo - tol <= v <= hi + tol:
+                raise self.range_error(d, v)
+            x[d] = lo if v < lo else (hi if v > hi else v)
         return x, cs, sn
 
     def range_error(self, d, xd) -> BearingInputError:
@@ -300,7 +306,8 @@ class SteadySession:
     it). The state is the time and the lagged cage speed."""
 
     def __init__(self, params, level, values: np.ndarray):
-        from .cosim import CSR_MIN_SPEED, OUTPUT_INDEX
+        from .cosim import CSR_MIN_SPEED, OUTPUT_INDEX, Outputs, StepRejected
+        self._api = (Outputs, StepRejected)
         from ..models.skid import SKID_MIN_SPEED, SKID_TOL
         self.p = params
         self.level = level
@@ -330,9 +337,12 @@ class SteadySession:
         self._temps = np.array([T, T, T, T, 0.0, 0.0, 0.0])
         self._consts = (CSR_MIN_SPEED, SKID_TOL, SKID_MIN_SPEED)
         self._in_key = self._in_x = None
+        self._zero = {n: 0.0 for n in INPUT_NAMES}
 
     def _validated(self, inputs: dict):
-        """(x, cos, sin) of the inputs; checked again only when they changed (a NaN never compares equal)."""
+        """(x, cos, sin, shaft speed) of the inputs; checked again only when they changed (a NaN never compares
+        equal). Each input must be a known name and a finite number; the map's ranges bound the rest
+        (level.query)."""
         key = self._in_key
         try:
             same = key is not None and key == inputs
@@ -340,10 +350,17 @@ class SteadySession:
             same = False
         if same:
             return self._in_x
-        from .cosim import CoSimSession
-        u = CoSimSession._inputs(inputs)
-        if not u["Fz"] > 0.0:
-            raise BearingInputError("Fz", u["Fz"], "Fz > 0 N (the axial load that seats the bearing)")
+        u = dict(self._zero)
+        for k, v in inputs.items():
+            if k not in u:
+                raise BearingInputError("input", k, ", ".join(INPUT_NAMES))
+            try:
+                v = float(v)
+            except (TypeError, ValueError):
+                raise BearingInputError(k, v, "a finite number")
+            if not math.isfinite(v):
+                raise BearingInputError(k, v, "a finite number")
+            u[k] = v
         x, cs, sn = self.level.query(u)
         self._in_key, self._in_x = dict(inputs), (x.copy(), cs, sn, u["shaft_speed"])
         return self._in_x
@@ -379,7 +396,7 @@ class SteadySession:
         self.t = float(t0)
 
     def step(self, t: float, h: float, inputs: dict):
-        from .cosim import Outputs, StepRejected
+        Outputs, StepRejected = self._api
         if not (math.isfinite(h) and h > 0.0):
             raise StepRejected(f"communication step h = {h!r} is invalid; allowed: h > 0")
         if abs(t - self.t) > 1e-9 * max(1.0, abs(t)):
