@@ -2,22 +2,29 @@
 
 A *steady level* gives the bearing's steady outputs at the held inputs (speed, loads, oil temperature) and the
 time constant with which the cage speed follows them; SteadySession turns it into a session with the inputs,
-outputs, units and statuses of the dynamic one (bearing_core.session.cosim.CoSimSession delegates to it):
+outputs, units and statuses of the dynamic one (bearing_core.session.cosim.CoSimSession delegates to it). A level
+is a class constructed from the CoSimParameters (raising BearingInputError for parameters it cannot take) with:
 
-    level.steady_into(x, ss) -> validity flags     x: the level's query point (level.query(u) from the inputs),
-                                                   ss: its steady values, one per name of level.names
-    level.query(u) -> (x, cos, sin)                the query point and the radial-load direction of the inputs
-                                                   (raises BearingInputError naming an input outside its range)
+    names                    the names of its steady values: session output names (a missing one holds 0),
+                             'cage_speed_eq26' (seed 000 Eq. 26 cage speed [rad/s]) and 'cage_time_constant' [s]
+    i_tau                    the index of 'cage_time_constant' in names
+    rotate                   True: the level is read at the radial load hypot(Fx, Fy) along x and the x-y outputs
+                             (ROTATED) are turned by the load's direction (an axisymmetric bearing)
+    query(u) -> (x, cos, sin)      its query point of the inputs u (dict of INPUT_NAMES, SI), and the radial
+                             load's direction; raises BearingInputError naming an input outside its range
+    steady_into(x, ss) -> flags    the steady values at x into ss (one per name); flags: FLAG_* bits of where
+                             the level is weak (a warning is logged on entry)
+    point_text(x), describe()      words for messages
 
 Levels (FIDELITY_LEVELS): 'map', an operating map of the dynamic model's steady windows built by
 ``bearing build-map`` and read here (MapLevel). A steady level is added with one entry in FIDELITY_LEVELS.
 
 What a steady level gives (docs/fidelity.md): every step-averaged output is the steady value at the step's
 held inputs (its 'instantaneous_' twin the same); the cage speed follows its steady value through a first-order
-lag with the map's time constant (the dynamic model's own relaxation of the cage speed at that operating point),
-and the derived ratios and the skid state follow the lagged cage speed; the per-ball instantaneous outputs
-(ball0_*) and the ring acceleration ir_ax hold 0. Temperatures: the isothermal oil temperature (the thermal
-network is not run at these levels). SI units: rad/s, N, N m, m, rad, W, Pa, K.
+lag with the level's time constant (the map's: the dynamic model's own relaxation of the cage speed at that
+operating point), and the derived ratios and the skid state follow the lagged cage speed; the per-ball
+instantaneous outputs (ball0_*) and the ring acceleration ir_ax hold 0. Temperatures: the isothermal oil
+temperature (the thermal network is not run at these levels). SI units: rad/s, N, N m, m, rad, W, Pa, K.
 """
 from __future__ import annotations
 
@@ -292,6 +299,10 @@ class MapLevel:
             raise self.range_error(d, x[d])
         return fl
 
+    def point_text(self, x) -> str:
+        """The map coordinates x in words, e.g. 'speed_rpm 9500, fx_N 1000, fz_N 3000'."""
+        return ", ".join(f"{a} {float(v):.5g}" for a, v in zip(self.axis_names, x))
+
     def describe(self) -> str:
         return f"operating map {self.path} ({self.attrs.get('level', '?')} level, {self.attrs.get('bearing', '?')})"
 
@@ -374,7 +385,7 @@ class SteadySession:
                                      c1, c2, self._ib, self._new)
         if not math.isfinite(wc):
             bad = [n for n, v in zip(ALL_NAMES, self._new) if not math.isfinite(v)]
-            raise BearingInputError("inputs", {"shaft_speed": w, "map point": x.tolist()},
+            raise BearingInputError("inputs", self.level.point_text(x),
                                     "an operating point where the map has values",
                                     f"{self.level.describe()} has no value for {bad[:4]} there (a failed grid point)")
         if fl and fl != self._flags:
@@ -383,7 +394,7 @@ class SteadySession:
                 what.append(f"gross skidding (cage slip ratio > {GROSS_SKID_SLIP:g} at a neighbouring grid point)")
             if fl & FLAG_CAGE_UNSTEADY:
                 what.append("an unsteady cage (cage instability or whirl at a neighbouring grid point)")
-            self.warnings.append(f"t = {self.t + h:.6g} s: the operating point (map coordinates {x.tolist()}) entered "
+            self.warnings.append(f"t = {self.t + h:.6g} s: the operating point ({self.level.point_text(x)}) entered "
                                  f"a region of {' and '.join(what)}, where fidelity '{self.level.name}' is least "
                                  "accurate (docs/fidelity.md); use fidelity 'dynamic' for this operation")
         self._flags = fl
