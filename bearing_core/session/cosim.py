@@ -186,8 +186,10 @@ class CoSimSession:
         if params.fidelity not in FIDELITIES:
             raise BearingInputError("fidelity", params.fidelity, " | ".join(FIDELITIES))
         if params.fidelity != "dynamic":
-            from .fidelity import SteadySession
-            self.steady = SteadySession(params, FIDELITY_LEVELS[params.fidelity](params), self.values)
+            from .fidelity import ALL_NAMES as FIDELITY_NAMES, SteadySession
+            assert ALL_OUTPUT_NAMES == FIDELITY_NAMES
+            self.steady = SteadySession(params, FIDELITY_LEVELS[params.fidelity](params), self.values, Outputs,
+                                        StepRejected, CSR_MIN_SPEED)
             self.warnings = self.steady.warnings
         self.thermal_runaway = False
         # work arrays of one communication point (allocated once: no per-step allocations)

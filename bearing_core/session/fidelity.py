@@ -316,10 +316,14 @@ class SteadySession:
     """A co-simulation session on a steady level: the API and output array of CoSimSession (which delegates to
     it). The state is the time and the lagged cage speed."""
 
-    def __init__(self, params, level, values: np.ndarray):
-        from .cosim import CSR_MIN_SPEED, OUTPUT_INDEX, Outputs, StepRejected
-        self._api = (Outputs, StepRejected)
+    def __init__(self, params, level, values: np.ndarray, outputs_cls, step_rejected, csr_min_speed: float):
+        """values: the session's output array (ALL_NAMES order); outputs_cls, step_rejected: the session's Outputs
+        view and StepRejected error (bearing_core.session.cosim, which constructs this); csr_min_speed [rad/s]: below
+        it the cage/shaft ratios are 0."""
         from ..models.skid import SKID_MIN_SPEED, SKID_TOL
+        OUTPUT_INDEX = {n: i for i, n in enumerate(ALL_NAMES)}
+        CSR_MIN_SPEED = csr_min_speed
+        self._api = (outputs_cls, step_rejected)
         self.p = params
         self.level = level
         self.values = values           # the session's output array (updated in place)
