@@ -204,7 +204,8 @@ def test_build_map_on_dask_tiny_grid_resumes_from_cache(tmp_path):
 
 def test_fmu_at_fidelity_map_through_fmpy(smap, tmp_path):
     """The FMU built with an embedded map (bearing build-fmu --map) at fidelity 'map' (set by its Enumeration):
-    the session's values, an out-of-range input refused with the reason in the log, and the next step good."""
+    the session's values, an out-of-range input refused with the reason in the log, the next step good, and the
+    warning of a region where the map does not hold in the log."""
     from bearing_cosim.fmu_build import build
     from test_fmu import drive
     path = build(tmp_path / "dist", map_file=smap)
@@ -225,6 +226,8 @@ def test_fmu_at_fidelity_map_through_fmpy(smap, tmp_path):
         assert rows[4]["values"][k] == pytest.approx(s.outputs[nm], rel=1e-12), nm
     assert rows[5]["status"] != 0 and "shaft_speed" in res["log"] and "never extrapolates" in res["log"]
     assert rows[6]["status"] == 0
+    # the synthetic map skids grossly at Fz 1000 N, a corner of this operating point's cell: a logged warning
+    assert "gross skidding" in res["log"]
 
 
 SHIPPED = {"oil": ROOT / "maps" / "7218B_oil.nc"}
