@@ -36,7 +36,8 @@ import numpy as np
 
 from ..errors import BearingInputError
 from .cosim_spec import INPUT_NAMES, INT_OUTPUT_NAMES, OUTPUT_NAMES
-from . import map_kernels as MK
+# map_kernels (numba) is imported where a level is built, so that the names here (FIDELITIES) load without numba
+# (the FMU's slave class reads them when it is constructed)
 
 ALL_NAMES = OUTPUT_NAMES + INT_OUTPUT_NAMES
 RPM = math.pi / 30.0    # rad/s per rpm
@@ -198,8 +199,10 @@ class MapLevel:
             if not lo - 1e-9 <= T <= hi + 1e-9:
                 raise BearingInputError("oil_temperature", T, f"{lo:.6g} K <= value <= {hi:.6g} K (the map's range, "
                                         f"{self.path}; fidelity 'map' never extrapolates)")
-        MK.interp_multilinear(self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags,
-                              np.array([v[0] for v in self.axes]), self._idx, self._w, np.zeros(len(MAP_OUTPUTS)))
+        from . import map_kernels as MK
+        self._interp = MK.interp_multilinear
+        self._interp(self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags,
+                     np.array([v[0] for v in self.axes]), self._idx, self._w, np.zeros(len(MAP_OUTPUTS)))
 
     def _check_parameters(self, p):
         try:
@@ -293,8 +296,8 @@ class MapLevel:
     def steady_into(self, x, ss) -> int:
         """Steady values at the map coordinates x into ss (one per name of self.names); returns the validity
         flags of the interpolation cell. Raises BearingInputError if x lies outside the grid."""
-        d, fl = MK.interp_multilinear(self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled,
-                                      self.flags, x, self._idx, self._w, ss)
+        d, fl = self._interp(self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags, x,
+                             self._idx, self._w, ss)
         if d >= 0:
             raise self.range_error(d, x[d])
         return fl
@@ -321,6 +324,8 @@ class SteadySession:
         view and StepRejected error (bearing_core.session.cosim, which constructs this); csr_min_speed [rad/s]: below
         it the cage/shaft ratios are 0."""
         from ..models.skid import SKID_MIN_SPEED, SKID_TOL
+        from . import map_kernels as MK
+        self._outputs_kernel = MK.steady_level_outputs
         OUTPUT_INDEX = {n: i for i, n in enumerate(ALL_NAMES)}
         CSR_MIN_SPEED = csr_min_speed
         self._api = (outputs_cls, step_rejected)
@@ -385,7 +390,7 @@ class SteadySession:
         fl = self.level.steady_into(x, self._ss)
         tau = float(self._ss[self.level.i_tau])
         c0, c1, c2 = self._consts
-        wc = MK.steady_level_outputs(self._ss, self._src, self._rot, cs, sn, self.wc, h, tau, w, self._temps, c0,
+        wc = self._outputs_kernel(self._ss, self._src, self._rot, cs, sn, self.wc, h, tau, w, self._temps, c0,
                                      c1, c2, self._ib, self._new)
         if not math.isfinite(wc):
             bad = [n for n, v in zip(ALL_NAMES, self._new) if not math.isfinite(v)]
