@@ -12,6 +12,10 @@ the step). Outputs are the instantaneous values at the end of the step, except t
 the energy dissipated; their instantaneous values are the outputs 'instantaneous_<name>'. Every
 problem is reported as a StepRejected (recoverable: the state is left as before the step) or
 BearingInputError (configuration); numbers that are not finite never leave this module. SI units: rad/s, N, N m, m, rad, W, Pa.
+
+CoSimParameters.fidelity chooses the model: 'dynamic' (default, the tribo-dynamic model above) or a steady level
+of bearing_core.session.fidelity ('map': an operating map of bearing build-map, map_file), to which the session
+then delegates; the same inputs, outputs, units and statuses (docs/fidelity.md).
 """
 from __future__ import annotations
 
