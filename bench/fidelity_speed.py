@@ -59,8 +59,13 @@ def session_speed(map_file, params, t_end, fx=1000.0, fz=3000.0):
     return out
 
 
-def fmu_speed(fmu, params, t_end, n_out, fx=1000.0, fz=3000.0):
+def fmu_speed(fmu, params, t_end, n_out, fx=1000.0, fz=3000.0, profile=None):
+    """profile: a file for the model process's own time per doStep (BEARING_FMU_PROFILE of the native layer)."""
     from fmpy import extract, read_model_description
+    if profile:
+        os.environ["BEARING_FMU_PROFILE"] = str(profile)
+    else:
+        os.environ.pop("BEARING_FMU_PROFILE", None)
     from fmpy.fmi2 import FMU2Slave
     md = read_model_description(fmu)
     vr = {v.name: v.valueReference for v in md.modelVariables}
@@ -100,8 +105,13 @@ def fmu_speed(fmu, params, t_end, n_out, fx=1000.0, fz=3000.0):
     sim = (n - skip) * H
     f.terminate()
     f.freeInstance()
-    return {"init_wall_s": init_s, "wall_per_sim_s": wall / sim, "doStep_per_sim_s": t_step / sim,
-            "get_set_per_sim_s": t_io / sim, "outputs_read": n_out}
+    out = {"init_wall_s": init_s, "wall_per_sim_s": wall / sim, "doStep_per_sim_s": t_step / sim,
+           "get_set_per_sim_s": t_io / sim, "outputs_read": n_out}
+    if profile and Path(profile).is_file():
+        busy = np.array(json.loads(Path(profile).read_text())["busy"][skip:])
+        out["model_process_per_sim_s"] = float(busy.sum() / sim)
+        out["model_process_median_step_us"] = float(np.median(busy) * 1e6)
+    return out
 
 
 def main(argv=None):
@@ -127,11 +137,15 @@ def main(argv=None):
         fmu = str(build(Path(tempfile.mkdtemp(prefix="fidelity_speed_")), map_file=a.map))
     os.environ.setdefault("BEARING_FMU_CACHE", str(Path(tempfile.gettempdir()) / "fidelity_speed_fmu_cache"))
     fmu_speed(fmu, params, 0.3, a.outputs)            # warm-up: the code copy and its compiled kernels
-    res["fmu"] = fmu_speed(fmu, params, a.t_end, a.outputs)
+    res["fmu"] = fmu_speed(fmu, params, a.t_end, a.outputs,
+                           profile=Path(tempfile.mkdtemp(prefix="fidelity_speed_")) / "profile.json")
     r = res["fmu"]
     print(f"FMU through fmpy, fidelity map: {r['wall_per_sim_s']:.4f} s per simulated s (doStep "
           f"{r['doStep_per_sim_s']:.4f}, setReal + getReal of {r['outputs_read']} outputs "
           f"{r['get_set_per_sim_s']:.4f}); initialisation {r['init_wall_s']:.2f} s")
+    if "model_process_per_sim_s" in r:
+        print(f"  of which in the model process: {r['model_process_per_sim_s']:.4f} s per simulated s (median "
+              f"{r['model_process_median_step_us']:.1f} us per step); the rest is the process exchange")
     if a.json:
         Path(a.json).parent.mkdir(parents=True, exist_ok=True)
         Path(a.json).write_text(json.dumps(res, indent=1))
