@@ -264,3 +264,24 @@ def test_shipped_map_against_the_dynamic_model_off_the_grid():
             0.005 * math.hypot(fx, fz)
         for a in ("alpha_i_mean", "alpha_o_mean"):
             assert abs(math.degrees(o[a] - r[a])) <= 0.5, a
+
+
+def test_oil_temperature_axis_is_read_at_the_parameter(tmp_path):
+    """A map over oil temperature is read at the session's oil_temperature (linear between its grid values);
+    a temperature outside its range is refused naming the parameter and the range."""
+    import xarray as xr
+    ax = dict(AXES, oil_temperature_C=[30.0, 50.0])
+    n, fx, fz, T = np.meshgrid(*[np.array(v) for v in ax.values()], indexing="ij")
+    data = {nm: (list(ax), np.asarray(field(nm, n, fx, fz), dtype=float) * (1.0 + 0.01 * (T - 30.0)))
+            for nm in MAP_OUTPUTS}
+    ds = xr.Dataset(data, coords={k: np.array(v) for k, v in ax.items()})
+    ds.attrs.update(parameters=json.dumps(PARAMS))
+    path = str(tmp_path / "oil_T.nc")
+    ds.to_netcdf(path, engine="scipy")
+    s = session(path, oil_temperature=318.15)           # 45 degC
+    s.initialize(0.0, inputs(2500, 700.0, 2200.0))
+    assert s.outputs["friction_torque"] == pytest.approx(expected("friction_torque", 2500, 700.0, 2200.0) * 1.15,
+                                                         rel=1e-12)
+    assert s.outputs["temperature_oil"] == 318.15
+    with pytest.raises(BearingInputError, match=r"oil_temperature = 340.*303.15 K <= value <= 323.15 K"):
+        session(path, oil_temperature=340.0)
