@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from bearing_core.errors import BearingInputError
-from bearing_core.session.cosim import CoSimParameters, CoSimSession, StepRejected, OUTPUT_INDEX
+from bearing_core.session.cosim import CoSimParameters, CoSimSession, StepRejected
 from bearing_core.session.fidelity import MAP_OUTPUTS, SPEED_SCALED, GROSS_SKID_SLIP
 
 HERE = Path(__file__).resolve().parent
