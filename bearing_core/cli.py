@@ -148,6 +148,7 @@ def build_parser() -> argparse.ArgumentParser:
     we.add_argument("--json", action="store_true")
     we.set_defaults(func=cmd_wear)
 
+    _add_build_map_parser(sub)
     pr = sub.add_parser("presets", help="list the bearing presets with their sources")
     pr.add_argument("--json", action="store_true")
     pr.set_defaults(func=cmd_presets)
@@ -427,6 +428,94 @@ def _add_sweep_parser(sub):
     sw.add_argument("--no-progress", action="store_true", help="no progress bar")
     sw.set_defaults(func=cmd_sweep)
     return sw
+
+
+BUILD_MAP_EPILOG = """\
+An operating map for the co-simulation's fidelity 'map' (docs/fidelity.md): the bearing's steady outputs (torque,
+heat by source, cage speed, reactions, displacement, stiffness, contact angles and stresses, film parameter, skid
+class, the cage speed's time constant) on a grid of speed_rpm, fx_N, fz_N (required) and optionally fy_N, my_Nm,
+oil_temperature_C, written as NetCDF3 with provenance (bearing, oil, level, code version, grid).
+
+levels (--level): dynamic (the dynamic model held at each point until steady, means of the last window; seconds
+  per point), tribological (the quasi-static tribological model: free balls, centred cage; fast, no cage losses).
+execution: as bearing sweep (Dask local cluster or --scheduler ADDRESS, --workers, cache in --cache for resume,
+  progress bar).
+example (7218B, oil-lubricated):
+  bearing build-map --bearing 7218B --grid speed_rpm=500,1000,2000,4000,7000,12000 --grid fx_N=0,1500,3000 \\
+      --grid fz_N=500,2000,5000,8000 --out maps/7218B_oil.nc
+"""
+
+
+def _add_build_map_parser(sub):
+    bm = sub.add_parser("build-map", help="operating map of steady outputs over speed and loads for the 'map' "
+                        "fidelity level (NetCDF, on Dask)", formatter_class=argparse.RawDescriptionHelpFormatter,
+                        epilog=BUILD_MAP_EPILOG)
+    bm.add_argument("--bearing", default="7218B", help="preset name or bearing JSON file")
+    bm.add_argument("--grid", action="append", default=[], metavar="VAR=SPEC",
+                    help="axis: speed_rpm, fx_N, fz_N (required), fy_N, my_Nm, oil_temperature_C; START:STOP:NUM or "
+                         "A,B,C (repeatable)")
+    bm.add_argument("--set", action="append", default=[], metavar="VAR=VALUE",
+                    help="fixed sweep variable (traction, mu, mu_cage, oil, oil_fraction, oil_temperature_C, ...)")
+    bm.add_argument("--traction", choices=("lubricated", "coulomb", "kalker"), default=None,
+                    help="ball-race traction (lubricated: oil-lubricated; kalker / coulomb: solid-lubricated)")
+    bm.add_argument("--level", choices=("dynamic", "tribological"), default="dynamic", help="steady level")
+    bm.add_argument("--out", required=True, help="map file to write (.nc)")
+    bm.add_argument("--window-s", type=_finite("--window-s"), default=0.04, help="dynamic: window length [s]")
+    bm.add_argument("--max-time-s", type=_finite("--max-time-s"), default=1.0, help="dynamic: longest run [s]")
+    bm.add_argument("--steady-tol", type=_finite("--steady-tol"), default=2e-3,
+                    help="dynamic: relative change of the window-mean cage speed counted as steady [-]")
+    bm.add_argument("--torque-tol", type=_finite("--torque-tol"), default=0.02,
+                    help="dynamic: relative change of the window-mean friction torque counted as steady [-]")
+    bm.add_argument("--integrator", choices=("adaptive", "implicit", "auto", "rk4"), default="auto")
+    bm.add_argument("--scheduler", default=None, metavar="ADDRESS", help="existing dask scheduler (tcp://host:port)")
+    bm.add_argument("--workers", type=int, default=None, help="local cluster size (default: CPUs)")
+    bm.add_argument("--batch-size", type=int, default=None, help="points per Dask task (default: automatic)")
+    bm.add_argument("--cache", default=None, help="cache folder (default: <out>_cache next to the map)")
+    bm.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
+    bm.add_argument("--no-progress", action="store_true", help="no progress bar")
+    bm.set_defaults(func=cmd_build_map)
+    return bm
+
+
+def cmd_build_map(a) -> int:
+    import time
+    from .maps.build_map import build_map, map_summary, write_map
+    from .maps.sweep import parse_assignment, parse_values
+    from .errors import BearingInputError
+    grid, base = {}, {"bearing": a.bearing}
+    for s in a.grid:
+        k, v = parse_assignment(s)
+        if k in grid:
+            raise BearingInputError("--grid", k, "each variable once")
+        grid[k] = parse_values(k, v)
+    for s in a.set:
+        k, v = parse_assignment(s)
+        vals = parse_values(k, v)
+        if len(vals) != 1:
+            raise BearingInputError(f"--set {k}", v, "one value")
+        base[k] = vals[0]
+    if a.traction:
+        base["traction"] = a.traction
+    if a.workers is not None and not 1 <= a.workers <= 512:
+        raise _BadArg(f"--workers = {a.workers} is invalid; allowed: 1 <= workers <= 512")
+    out = Path(a.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    cache = None if a.no_cache else (Path(a.cache) if a.cache else out.with_name(out.stem + "_cache"))
+    opts = dict(window_s=a.window_s, max_time_s=a.max_time_s, steady_tol=a.steady_tol, torque_tol=a.torque_tol,
+                integrator=a.integrator)
+    t0 = time.perf_counter()
+    ds, df = build_map(grid, base, a.level, opts, command="bearing build-map " + " ".join(sys.argv[2:]),
+                       cache_dir=cache, scheduler=a.scheduler, workers=a.workers, progress=not a.no_progress,
+                       batch_size=a.batch_size)
+    write_map(ds, out)
+    wall = time.perf_counter() - t0
+    n = int(df.attrs.get("computed", len(df)))
+    print(f"wrote {out}: {map_summary(ds)}")
+    print(f"{len(df)} points ({n} computed, {len(df) - n} from the cache) in {wall:.1f} s wall"
+          + (f", {60.0 * n / wall:.1f} computed points per minute" if n else ""))
+    for _, r in df[df["status"] != "ok"].head(5).iterrows():
+        print(f"  point {r['point_index']} failed: {r['error']}")
+    return 0
 
 
 def sweep_spec_from_args(a):

@@ -72,6 +72,9 @@ def build_parser():
     b.add_argument("--standalone", action="store_true",
                    help="bundle the runtime (this Python's libpython, a pruned standard library, numpy, scipy, "
                         "numba, llvmlite) and the precompiled kernels: the FMU needs no installed Python")
+    b.add_argument("--map", default=None, metavar="FILE",
+                   help="embed this operating map (bearing build-map) in resources/: the FMU uses it at fidelity "
+                        "'map' when the parameter map_file is empty")
     b.set_defaults(func=cmd_build_fmu)
     v = sub.add_parser("validate-fmu", help="check an FMU with fmpy's validate_fmu; prints every problem, exit "
                                             "status 1 if there is any")
@@ -119,7 +122,9 @@ def fmu_parameters(fmu: str, pairs) -> dict:
 
 def cmd_build_fmu(a) -> int:
     from .fmu_build import build
-    fmu = build(a.dest, reference=a.with_reference, precompile=a.precompile, standalone=a.standalone)
+    if a.map is not None and not Path(a.map).is_file():
+        raise core_cli._BadArg(f"--map = {a.map!r} is not a file")
+    fmu = build(a.dest, reference=a.with_reference, precompile=a.precompile, standalone=a.standalone, map_file=a.map)
     print(f"built {fmu} ({fmu.stat().st_size / 1024:.0f} KiB)")
     return 0
 

@@ -167,15 +167,18 @@ def _precompile(code: Path):
 
 
 def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, reference: bool = False,
-           precompile: bool = False, standalone: bool = False) -> Path:
+           precompile: bool = False, standalone: bool = False, resources: dict | None = None) -> Path:
     """slave_sources: {module name: source text}; main_module holds class_name. standalone: bundle the runtime
-    (resources/python/) and the precompiled kernels."""
+    (resources/python/) and the precompiled kernels. resources: {file name: bytes} put into resources/ (part of
+    the content hash, hence of the GUID)."""
     precompile = precompile or standalone
     dest = Path(dest)
     dest.mkdir(parents=True, exist_ok=True)
     files = _code_files(slave_sources)
+    resources = dict(resources or {})
     code_hash = _content_hash(files + [(f"native/{f.name}", f.read_bytes()) for f in sorted(NATIVE.glob("*"))
-                                       if f.suffix in (".py", ".sh")])
+                                       if f.suffix in (".py", ".sh")]
+                              + [(f"resources/{k}", v) for k, v in sorted(resources.items())])
     with tempfile.TemporaryDirectory(prefix="bearing_fmu_build_") as td:
         stage = Path(td)
         res = stage / "resources"
@@ -185,6 +188,8 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, r
             (code / name).write_bytes(data)
         for f in ("model_process.py", "launch.sh"):
             shutil.copyfile(NATIVE / f, res / f)
+        for k, v in resources.items():     # beside the slave module: the model process runs a copy of code/
+            (code / k).write_bytes(v)
         (res / "native").mkdir()
         for f in ("bearing_fmi2.c", "fmi2_min.h"):
             shutil.copyfile(NATIVE / f, res / "native" / f)
@@ -498,12 +503,24 @@ definition. SI units; display units rpm, degC, deg, mm.</p>
 
 
 def build(dest: Path | str = "dist", reference: bool = False, precompile: bool = False,
-          standalone: bool = False) -> Path:
+          standalone: bool = False, map_file: Path | str | None = None) -> Path:
     """Build dest/BearingFMU.fmu; ``reference`` also runs the cross-check experiment on it (fmpy, a few seconds
     to a minute with an empty numba cache) and ships <id>_in.csv, _ref.opt, _ref.csv and a plot in
-    documentation/ (copies of the CSV/opt files next to the FMU)."""
+    documentation/ (copies of the CSV/opt files next to the FMU). map_file: an operating map (bearing build-map)
+    embedded as resources/code/operating_map.nc, used at fidelity 'map' when the parameter map_file is empty; checked
+    here (bearing_core.session.fidelity.read_map)."""
+    res = {}
+    if map_file is not None:
+        from bearing_core.session.fidelity import MAP_OUTPUTS, read_map
+        from bearing_core.errors import BearingInputError
+        m = read_map(map_file)      # raises naming the file if it is not a map
+        missing = [v for v in MAP_OUTPUTS if v not in m["vars"]]
+        if missing:
+            raise BearingInputError("--map", str(map_file), "an operating map of bearing build-map",
+                                    f"missing {', '.join(missing)}")
+        res["operating_map.nc"] = Path(map_file).read_bytes()
     return _build("BearingFMU", {"bearing_fmu": (FMU_SRC / "bearing_fmu.py").read_text()}, "bearing_fmu",
-                  Path(dest), reference, precompile, standalone)
+                  Path(dest), reference, precompile, standalone, resources=res)
 
 
 def build_variant(class_name: str, start_values: dict, dest: Path | str = "dist") -> Path:
@@ -539,8 +556,11 @@ def main(argv=None):
     ap.add_argument("--standalone", action="store_true",
                     help="bundle the runtime (this Python's libpython, a pruned standard library, numpy, scipy, "
                          "numba, llvmlite) and the precompiled kernels: the FMU needs no installed Python")
+    ap.add_argument("--map", default=None, metavar="FILE",
+                    help="embed this operating map (bearing build-map): used at fidelity 'map' when map_file is empty")
     a = ap.parse_args(argv)
-    fmu = build(a.dest, reference=a.with_reference, precompile=a.precompile, standalone=a.standalone)
+    fmu = build(a.dest, reference=a.with_reference, precompile=a.precompile, standalone=a.standalone,
+                map_file=a.map)
     print(f"built {fmu} ({fmu.stat().st_size / 1024:.0f} KiB)")
     return 0
 

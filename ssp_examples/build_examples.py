@@ -2,11 +2,13 @@
 
     python ssp_examples/build_examples.py [--dest ssp_examples/build]
 
--> build/fmus/BearingFMU.fmu (= dist/BearingFMU.fmu, via build_fmu.build; the SSDs choose bearing preset and
+-> build/fmus/BearingFMU.fmu (= dist/BearingFMU.fmu, with the 7218B oil map maps/7218B_oil.nc embedded for
+fidelity 'map' when this checkout has it; the SSDs choose bearing preset and
 coupling through its Enumeration parameters, so every master that sets Integer values can run them), the helper FMUs
 (JeffcottRotor, SpeedRamp, InductionMotor, ShaftInertia, FanLoad; pythonfmu slaves in <example>/fmus/) built on the
 bearing FMU's own FMI layer (each instance's model in a process of its own, so no master hosts their Python), and
-build/rotor_bearings.ssp, build/drivetrain.ssp (by each example's make_ssp.py). Nothing here is committed.
+build/rotor_bearings.ssp, build/drivetrain.ssp (by each example's make_ssp.py) and build/drivetrain_map.ssp (the
+drivetrain for 60 s at fidelity 'map', with the map). Nothing here is committed.
 """
 from __future__ import annotations
 
@@ -32,13 +34,16 @@ def slave_class(source: str) -> str:
     return names[0]
 
 
+SHIPPED_MAP = ROOT / "maps" / "7218B_oil.nc"
+"""The operating map the bearing FMU embeds (fidelity 'map', docs/fidelity.md), when this checkout has it."""
+
+
 def build_fmus(dest: Path) -> Path:
-    import build_fmu
     from bearing_cosim import fmu_build
 
     fmus = Path(dest) / "fmus"
     fmus.mkdir(parents=True, exist_ok=True)
-    build_fmu.build(fmus)
+    fmu_build.build(fmus, map_file=SHIPPED_MAP if SHIPPED_MAP.is_file() else None)
     for example, scripts in HELPERS.items():
         for s in scripts:
             src = (HERE / example / "fmus" / s).read_text()
@@ -57,6 +62,8 @@ def make_ssps(dest: Path, fmus: Path) -> list:
         sys.modules[spec.name] = mod
         spec.loader.exec_module(mod)
         out.append(mod.make(Path(dest) / f"{example}.ssp", fmu_dir=fmus))
+        if example == "drivetrain" and SHIPPED_MAP.is_file():
+            out.append(mod.make(Path(dest) / "drivetrain_map.ssp", mod.MAP_CYCLE, fmu_dir=fmus))
     return out
 
 

@@ -12,6 +12,10 @@ the step). Outputs are the instantaneous values at the end of the step, except t
 the energy dissipated; their instantaneous values are the outputs 'instantaneous_<name>'. Every
 problem is reported as a StepRejected (recoverable: the state is left as before the step) or
 BearingInputError (configuration); numbers that are not finite never leave this module. SI units: rad/s, N, N m, m, rad, W, Pa.
+
+CoSimParameters.fidelity chooses the model: 'dynamic' (default, the tribo-dynamic model above) or a steady level
+of bearing_core.session.fidelity ('map': an operating map of bearing build-map, map_file), to which the session
+then delegates; the same inputs, outputs, units and statuses (docs/fidelity.md).
 """
 from __future__ import annotations
 
@@ -163,6 +167,10 @@ class CoSimParameters:
     shaft_bore: float = 0.0                # m, bore of a hollow shaft (0: solid)
     bore_diameter: float = 0.0             # m, bearing bore d (0: from the bearing definition)
     outside_diameter: float = 0.0          # m, bearing outside diameter (0: from the bearing definition)
+    # fidelity level (bearing_core.session.fidelity, docs/fidelity.md): dynamic (the full model) | map (an operating
+    # map of steady outputs, map_file from bearing build-map)
+    fidelity: str = "dynamic"
+    map_file: str = ""
 
 
 class CoSimSession:
@@ -175,6 +183,18 @@ class CoSimSession:
         # outputs at the last communication point, in the order of ALL_OUTPUT_NAMES (updated in place: the
         # FMU reads its output variables from this array)
         self.values = np.zeros(len(ALL_OUTPUT_NAMES))
+        # a steady fidelity level (bearing_core.session.fidelity) runs the session instead of the dynamic model
+        self.steady = None
+        self.warnings = []     # messages for the FMU log (steady levels: entry into a region where they are weak)
+        from .fidelity import FIDELITIES, FIDELITY_LEVELS
+        if params.fidelity not in FIDELITIES:
+            raise BearingInputError("fidelity", params.fidelity, " | ".join(FIDELITIES))
+        if params.fidelity != "dynamic":
+            from .fidelity import ALL_NAMES as FIDELITY_NAMES, SteadySession
+            assert ALL_OUTPUT_NAMES == FIDELITY_NAMES
+            self.steady = SteadySession(params, FIDELITY_LEVELS[params.fidelity](params), self.values, Outputs,
+                                        StepRejected, CSR_MIN_SPEED)
+            self.warnings = self.steady.warnings
         self.thermal_runaway = False
         # work arrays of one communication point (allocated once: no per-step allocations)
         self._new = np.zeros(len(ALL_OUTPUT_NAMES))
@@ -366,7 +386,12 @@ class CoSimSession:
                                     "bearings (ISO 76)")
 
     def initialize(self, t0: float, inputs: dict):
-        """Build the model and start it from the quasi-static state at the given inputs."""
+        """Build the model and start it from the quasi-static state at the given inputs (a steady level: its
+        steady state at the inputs)."""
+        if self.steady is not None:
+            self.steady.initialize(t0, inputs)
+            self.t = self.steady.t
+            return
         u = self._inputs(inputs)
         g = self._geometry()
         self._check_seated(u, g)
@@ -427,6 +452,10 @@ class CoSimSession:
 
     def step(self, t: float, h: float, inputs: dict) -> Outputs:
         """Advance from t to t + h with the inputs held; returns the outputs at t + h."""
+        if self.steady is not None:
+            out = self.steady.step(t, h, inputs)
+            self.t = self.steady.t
+            return out
         m = self.model
         if m is None:
             raise StepRejected("step before initialize")
@@ -511,12 +540,18 @@ class CoSimSession:
 
     # ---- state for rollback (FMI get/set FMU state) --------------------------------------------
     def get_state(self):
+        if self.steady is not None:
+            return ("steady", self.steady.get_state())
         m = self.model
         return None if m is None else (m.y.copy(), m.t, m.U.copy(), m.stats.copy(), self.values.copy(),
                                        m.thermal_state(), m.quad.copy(), m.integrator_state())
 
     def set_state(self, state):
         if state is None:
+            return
+        if self.steady is not None:
+            self.steady.set_state(state[1])
+            self.t = self.steady.t
             return
         y, t, U, stats, outs, th, quad, ws = state
         self.model.set_thermal_state(th)

@@ -58,6 +58,7 @@ ENUMERATIONS = {
     "integrator": ("auto", "adaptive", "implicit", "rk4"),
     "lubrication": ("auto", "oil", "solid", "dry"),
     "lubrication_method": ("jet", "oil-air", "bath", "grease"),
+    "fidelity": None,  # the session's levels (fidelity_items), resolved when the slave is created
 }
 ENUM_NAME = {"bearing": "bearing_preset"}
 
@@ -68,6 +69,25 @@ def bearing_preset_items() -> tuple:
     return tuple(list_presets())
 
 
+def fidelity_items() -> tuple:
+    """The fidelity levels of the session (bearing_core.session.fidelity.FIDELITIES): 'dynamic' first."""
+    from bearing_core.session.fidelity import FIDELITIES
+    return tuple(FIDELITIES)
+
+
+EMBEDDED_MAP = "operating_map.nc"
+"""File name of the operating map the FMU embeds (bearing build-fmu --map FILE: resources/code/, beside this
+module), used at fidelity 'map' when map_file is empty."""
+
+
+def embedded_map() -> str:
+    """Path of the FMU's embedded operating map ('' if it has none): beside this module (the model process runs
+    a copy of resources/code/)."""
+    import os
+    p = os.path.join(os.path.dirname(os.path.abspath(__file__)), EMBEDDED_MAP)
+    return p if os.path.isfile(p) else ""
+
+
 _ENUM_DESC = {
     "traction_model": ("traction over the contact ellipse with the lubricant's traction curve",
                        "Coulomb friction (friction_coefficient)", "Kalker's FASTSIM (dry rolling contact)"),
@@ -75,6 +95,8 @@ _ENUM_DESC = {
     "outer_mounting": ("outer ring fixed", "outer ring on a radial housing spring (housing_stiffness)"),
     "integrator": ("per 5 ms (or communication step) the cheaper of an adaptive RK4 and implicit", "Dormand-Prince 5(4)", "Rosenbrock-W",
                    "fixed-step RK4 (1e-5 s)"),
+    "fidelity": ("the full tribo-dynamic model", "operating map of steady outputs (map_file or the embedded map) with "
+                 "a first-order lag of the cage speed"),
 }
 # Geometry of the bearing as parameters (0: keep the value of the bearing definition); applied by
 # bearing_core.session.cosim over the loaded bearing. name, type, unit, description, (min, max)
@@ -138,6 +160,12 @@ _PARAMS = (
      (0.0, 2.0)),
     ("outside_diameter", float, 0.0, "m", "bearing outside diameter for fits and ring growth (0: from the bearing "
      "definition)", (0.0, 3.0)),
+    # fidelity level (docs/fidelity.md)
+    ("fidelity", str, "dynamic", None, "model fidelity: dynamic (the full tribo-dynamic model) | map (operating map "
+     "of steady outputs from bearing build-map, interpolated, with a first-order lag of the cage speed; real-time "
+     "capable; same inputs and outputs, per-ball outputs ball0_* and ir_ax hold 0)", None),
+    ("map_file", str, "", None, "operating map (NetCDF from bearing build-map) for fidelity map; empty: the map "
+     "embedded in the FMU (bearing build-fmu --map FILE)", None),
 )
 
 
@@ -173,7 +201,8 @@ class BearingFMU(Fmi2Slave):
                 self._ranges[name] = rng
         for name, typ, start, unit, desc, rng in _PARAMS:
             if name in ENUMERATIONS:
-                items = ENUMERATIONS[name] if ENUMERATIONS[name] is not None else bearing_preset_items()
+                items = ENUMERATIONS[name] if ENUMERATIONS[name] is not None else (
+                    fidelity_items() if name == "fidelity" else bearing_preset_items())
                 self._register_enum(name, items, desc)
         for name, typ, unit, desc, rng in _GEOMETRY_PARAMS:
             setattr(self, name, typ(0))
@@ -300,11 +329,24 @@ class BearingFMU(Fmi2Slave):
         from bearing_core.session.cosim import CoSimParameters, CoSimSession
         self._resolve_choices()
         params = CoSimParameters(**{name: getattr(self, name) for name, *_ in _PARAMS + _GEOMETRY_PARAMS})
+        if params.fidelity == "map" and not params.map_file:
+            params.map_file = embedded_map()
+            if not params.map_file:
+                from bearing_core.errors import BearingInputError
+                raise BearingInputError("map_file", "", "an operating-map file (bearing build-map) for fidelity "
+                                        "'map'", "this FMU embeds no map (bearing build-fmu --map FILE)")
         self._session = None
         session = CoSimSession(params)
         session.initialize(self._t0, self._inputs())   # raises with the reason (BearingInputError ...)
         self._session = session
         self._publish()
+        self._log_warnings()
+
+    def _log_warnings(self):
+        """The session's warnings (a steady level entering a region where it is weak) into the FMU log."""
+        w = self._session.warnings if self._session is not None else None
+        while w:
+            self.log(w.pop(0), Fmi2Status.warning)
 
     def setup_experiment(self, start_time, stop_time=None, tolerance=None):
         self._t0 = float(start_time)
@@ -329,6 +371,8 @@ class BearingFMU(Fmi2Slave):
             self.log(f"step at t = {current_time:.9g} s failed: {type(e).__name__}: {e}", Fmi2Status.error)
             return False
         self._publish()
+        if self._session.warnings:
+            self._log_warnings()
         return True
 
     def terminate(self):

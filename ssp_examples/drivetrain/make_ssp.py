@@ -40,6 +40,12 @@ class DrivetrainDesign:
     speed0: float = 0.0                   # rad/s: start from rest
     stop_time: float = 3.0                # s
     step: float = 1e-3                    # s
+    fidelity: str = "dynamic"             # the bearings' fidelity level (docs/fidelity.md); map: the FMU's embedded map
+
+
+MAP_CYCLE = DrivetrainDesign(fidelity="map", speed0=60.0, stop_time=60.0)
+"""The drive at fidelity 'map' for 60 s: run-up from 573 rpm (the 7218B maps start at 500 rpm) to the fan's
+operating speed and a minute of running; the bearing FMU must embed a map (bearing build-fmu --map)."""
 
 
 def make(dest, design: DrivetrainDesign | None = None, fmu_dir=None) -> Path:
@@ -75,7 +81,10 @@ def make(dest, design: DrivetrainDesign | None = None, fmu_dir=None) -> Path:
                                 ("bearing", d.bearing, None),
                                 ("coupling_choice", enumeration_value(bfmu, "coupling_choice", "load"), None),
                                 ("coupling", "load", None),
-                                ("shaft_speed", d.speed0, "rad/s"), ("Fx", fx, "N"), ("Fz", fz, "N")]))
+                                ("shaft_speed", d.speed0, "rad/s"), ("Fx", fx, "N"), ("Fz", fz, "N")]
+                               + ([] if d.fidelity == "dynamic" else
+                                  [("fidelity_choice", enumeration_value(bfmu, "fidelity_choice", d.fidelity), None),
+                                   ("fidelity", d.fidelity, None)])))
         conns += [("shaft", "shaft_speed", f"bearing_{b}", "shaft_speed"),
                   (f"bearing_{b}", "friction_torque", "shaft", f"friction_torque_{b}")]
     desc = (f"Induction motor, shaft inertia {d.inertia:g} kg.m2 and fan load on two {d.bearing} bearings "
@@ -90,8 +99,10 @@ def make(dest, design: DrivetrainDesign | None = None, fmu_dir=None) -> Path:
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=str(HERE.parent / "build" / "drivetrain.ssp"))
+    ap.add_argument("--map-cycle", action="store_true",
+                    help="the 60 s drive at fidelity 'map' (MAP_CYCLE) instead of the 3 s run-up from rest")
     a = ap.parse_args(argv)
-    print(f"wrote {make(a.out)}")
+    print(f"wrote {make(a.out, MAP_CYCLE if a.map_cycle else None)}")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,441 @@
+"""Fidelity levels of the co-simulation session (CoSimParameters.fidelity) other than the full dynamics.
+
+A *steady level* gives the bearing's steady outputs at the held inputs (speed, loads, oil temperature) and the
+time constant with which the cage speed follows them; SteadySession turns it into a session with the inputs,
+outputs, units and statuses of the dynamic one (bearing_core.session.cosim.CoSimSession delegates to it). A level
+is a class constructed from the CoSimParameters (raising BearingInputError for parameters it cannot take) with:
+
+    names                    the names of its steady values: session output names (a missing one holds 0),
+                             'cage_speed_eq26' (seed 000 Eq. 26 cage speed [rad/s]) and 'cage_time_constant' [s]
+    i_tau                    the index of 'cage_time_constant' in names
+    rotate                   True: the level is read at the radial load hypot(Fx, Fy) along x and the x-y outputs
+                             (ROTATED) are turned by the load's direction (an axisymmetric bearing)
+    query(u) -> (x, cos, sin)      its query point of the inputs u (dict of INPUT_NAMES, SI), and the radial
+                             load's direction; raises BearingInputError naming an input outside its range
+    steady_into(x, ss) -> flags    the steady values at x into ss (one per name); flags: FLAG_* bits of where
+                             the level is weak (a warning is logged on entry)
+    point_text(x), describe()      words for messages
+
+Levels (FIDELITY_LEVELS): 'map', an operating map of the dynamic model's steady windows built by
+``bearing build-map`` and read here (MapLevel). A steady level is added with one entry in FIDELITY_LEVELS.
+
+What a steady level gives (docs/fidelity.md): every step-averaged output is the steady value at the step's
+held inputs (its 'instantaneous_' twin the same); the cage speed follows its steady value through a first-order
+lag with the level's time constant (the map's: the dynamic model's own relaxation of the cage speed at that
+operating point), and the derived ratios and the skid state follow the lagged cage speed; the per-ball
+instantaneous outputs (ball0_*) and the ring acceleration ir_ax hold 0. Temperatures: the isothermal oil
+temperature (the thermal network is not run at these levels). SI units: rad/s, N, N m, m, rad, W, Pa, K.
+"""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import BearingInputError
+from .cosim_spec import INPUT_NAMES, INT_OUTPUT_NAMES, OUTPUT_NAMES
+# map_kernels (numba) is imported where a level is built, so that the names here (FIDELITIES) load without numba
+# (the FMU's slave class reads them when it is constructed)
+
+ALL_NAMES = OUTPUT_NAMES + INT_OUTPUT_NAMES
+RPM = math.pi / 30.0    # rad/s per rpm
+
+# ---- the operating map's contract (written by bearing_core.maps.build_map) -------------------------------
+MAP_AXES = {"speed_rpm": "shaft_speed", "fx_N": "Fx", "fz_N": "Fz", "fy_N": "Fy", "my_Nm": "My",
+            "oil_temperature_C": "oil_temperature"}
+"""Grid axes a map may have (map name: the session input or parameter it is read at); speed_rpm, fx_N and fz_N
+are required; axes in the file's order."""
+REQUIRED_AXES = ("speed_rpm", "fx_N", "fz_N")
+SPEED_SCALED = ("cage_speed", "cage_speed_eq26", "cage_speed_pure_rolling_outer", "cage_speed_pure_rolling_inner",
+                "drive_power", "heat_flux_total", "heat_flux_race_inner", "heat_flux_race_outer", "heat_flux_pocket",
+                "heat_flux_land", "heat_flux_drag", "heat_flux_damping", "heat_flux_churn_cage",
+                "heat_flux_churn_ring", "heat_flux_race_slide", "heat_flux_race_spin", "heat_flux_race_diffslip")
+"""Map outputs interpolated per unit speed (value / speed_rpm): speeds and powers, nearly proportional to the
+shaft speed at a load (power = torque x speed), so that the interpolation error comes only from the slowly
+varying ratio."""
+MAP_OUTPUTS = ("reaction_Fx", "reaction_Fy", "reaction_Fz", "reaction_Mx", "reaction_My", "friction_torque",
+               "friction_torque_outer", "ir_x", "ir_y", "ir_z", "ir_tx", "ir_ty", "max_contact_pressure",
+               "alpha_i_mean", "alpha_o_mean", "Q_i_max", "Q_o_max", "film_min_inner", "film_min_outer",
+               "film_parameter_min") + SPEED_SCALED + ("cage_time_constant", "cage_speed_cv", "steady")
+"""Variables a map holds (besides its axes): the session outputs of the steady state at each grid point (window
+means of the dynamic model), 'cage_speed_eq26' the seed 000 Eq. 26 cage speed [rad/s], 'cage_time_constant' [s]
+the relaxation time of the cage speed, 'cage_speed_cv' the cage speed's standard deviation over the last window
+relative to its mean, 'steady' 1 if the steadiness criterion was met, else 0. Further variables (stiffness_*,
+skid_class) are for the user and not read here."""
+ROTATED = (("reaction_Fx", "reaction_Fy"), ("reaction_Mx", "reaction_My"), ("ir_x", "ir_y"), ("ir_tx", "ir_ty"))
+"""x-y vectors turned with the radial load (maps without fy_N and my_Nm axes: a load (Fx, Fy) is read at the radial
+load hypot(Fx, Fy) along x and these outputs are turned by its direction; the bearing is axisymmetric)."""
+# validity flags of a grid point (MapLevel.flags): where the map does not hold (docs/fidelity.md)
+FLAG_GROSS_SKID = 1
+FLAG_CAGE_UNSTEADY = 2
+GROSS_SKID_SLIP = 0.3
+"""Cage slip ratio 1 - cage speed / pure-rolling cage speed (outer-raceway control) above which a grid point is
+marked gross skidding: there the cage speed changes fastest with load and speed and the steady window is
+least representative (an engineering threshold, not a published constant)."""
+CAGE_CV_UNSTEADY = 0.01
+"""Relative standard deviation of the cage speed over the last window above which the cage is counted as not
+steady (cage whirl, instability): the window mean then stands for a motion, not a state."""
+MAP_PARAMETERS = ("bearing", "traction_model", "lubrication", "friction_coefficient", "cage_friction_coefficient",
+                  "lubricant", "oil", "oil_fraction", "churning", "oil_temperature")
+"""CoSimParameters a map was built for (its attribute 'parameters'); a session at fidelity 'map' must have the
+same values (oil_temperature: unless the map has an oil_temperature_C axis)."""
+FIXED_PARAMETERS = {"coupling": "load", "outer_mounting": "fixed", "fixed_tilt": False, "thermal": False,
+                    "ring_growth": False, "shaft_interference": 0.0, "housing_interference": 0.0,
+                    "free_contact_angle": 0.0, "pocket_clearance": 0.0, "land_clearance": 0.0, "ball_diameter": 0.0,
+                    "pitch_diameter": 0.0, "number_of_balls": 0, "inner_groove_conformity": 0.0,
+                    "outer_groove_conformity": 0.0, "oil_flow_rate": 0.0}
+"""Parameters whose value a map level requires: the map is of a load-driven bearing, outer ring fixed, inner
+ring free to tilt, isothermal, with the bearing definition's geometry."""
+
+
+def read_map(path) -> dict:
+    """An operating map from a NetCDF file (scipy.io.netcdf_file: NetCDF3, no xarray): {'axes': [(name,
+    values)], 'vars': {name: array (grid shape)}, 'attrs': {name: str}}."""
+    from scipy.io import netcdf_file
+    p = Path(path)
+    if not p.is_file():
+        raise BearingInputError("map_file", str(path), "an existing operating-map file (bearing build-map)")
+    try:
+        f = netcdf_file(str(p), "r", mmap=False)
+    except Exception as e:
+        raise BearingInputError("map_file", str(path), "a NetCDF3 operating map (bearing build-map)",
+                                f"{type(e).__name__}: {e}")
+    try:
+        attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f._attributes.items()}
+        vars_ = {k: np.array(v.data, dtype=float) for k, v in f.variables.items() if v.data.dtype.kind in "fiu"}
+        dims = {k: v.dimensions for k, v in f.variables.items()}
+    finally:
+        f.close()
+    shape_dims = dims.get("cage_speed")
+    if shape_dims is None:
+        raise BearingInputError("map_file", str(path), "an operating map (bearing build-map)", "no cage_speed variable")
+    axes = [(d, vars_[d]) for d in shape_dims]
+    return {"axes": axes, "vars": {k: v for k, v in vars_.items() if dims[k] == shape_dims}, "attrs": attrs,
+            "path": str(p)}
+
+
+class MapLevel:
+    """The 'map' level: an operating map (bearing build-map) interpolated multilinearly (map_kernels), never
+    extrapolated: an input outside the map's grid is refused naming the input and the range."""
+
+    name = "map"
+
+    def __init__(self, params):
+        path = params.map_file
+        if not path:
+            raise BearingInputError("map_file", path, "an operating-map file (bearing build-map) for fidelity "
+                                    "'map' (the FMU uses the map it embeds when map_file is empty)")
+        m = read_map(path)
+        self.path = m["path"]
+        self.attrs = m["attrs"]
+        names = [a for a, _ in m["axes"]]
+        for a in names:
+            if a not in MAP_AXES:
+                raise BearingInputError("map_file", path, "a map over " + ", ".join(MAP_AXES), f"unknown axis {a}")
+        for a in REQUIRED_AXES:
+            if a not in names:
+                raise BearingInputError("map_file", path, "a map with the axes " + ", ".join(REQUIRED_AXES),
+                                        f"no {a} axis")
+        missing = [v for v in MAP_OUTPUTS if v not in m["vars"]]
+        if missing:
+            raise BearingInputError("map_file", path, "an operating map with " + ", ".join(MAP_OUTPUTS),
+                                    f"missing {', '.join(missing)}")
+        self.axis_names = tuple(names)
+        self.axes = [np.asarray(v, dtype=float) for _, v in m["axes"]]
+        for a, v in zip(names, self.axes):
+            if v.size > 1 and not np.all(np.diff(v) > 0):
+                raise BearingInputError("map_file", path, "increasing axis values", f"axis {a}: {v.tolist()}")
+        self._check_parameters(params)
+        self.names = MAP_OUTPUTS
+        shape = tuple(v.size for v in self.axes)
+        npts = int(np.prod(shape))
+        vals = np.empty((npts, len(MAP_OUTPUTS)))
+        for k, nm in enumerate(MAP_OUTPUTS):
+            v = np.asarray(m["vars"][nm], dtype=float).reshape(shape)
+            if nm in SPEED_SCALED:    # per unit speed [per rpm]
+                v = v / self.axes[0].reshape((-1,) + (1,) * (len(shape) - 1))
+            vals[:, k] = v.ravel()
+        self.values = np.ascontiguousarray(vals)
+        self.speed_scaled = np.array([1 if nm in SPEED_SCALED else 0 for nm in MAP_OUTPUTS], dtype=np.int64)
+        # validity flags of the grid points
+        cage = m["vars"]["cage_speed"].ravel()
+        pure = m["vars"]["cage_speed_pure_rolling_outer"].ravel()
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slip = np.where(pure > 0, 1.0 - cage / pure, 0.0)
+        unsteady = (m["vars"]["steady"].ravel() < 0.5) | (m["vars"]["cage_speed_cv"].ravel() > CAGE_CV_UNSTEADY)
+        self.flags = (np.where(slip > GROSS_SKID_SLIP, FLAG_GROSS_SKID, 0)
+                      | np.where(unsteady, FLAG_CAGE_UNSTEADY, 0)).astype(np.int64)
+        self.axes_flat = np.concatenate(self.axes)
+        self.ptr = np.cumsum([0] + [v.size for v in self.axes]).astype(np.int64)
+        st = np.ones(len(shape), dtype=np.int64)
+        for d in range(len(shape) - 2, -1, -1):
+            st[d] = st[d + 1] * shape[d + 1]
+        self.strides = st
+        self._idx = np.zeros(len(shape), dtype=np.int64)
+        self._w = np.zeros(len(shape))
+        self._x = np.zeros(len(shape))
+        self.rotate = "fy_N" not in names and "my_Nm" not in names
+        self.i_tau = MAP_OUTPUTS.index("cage_time_constant")
+        # fixed coordinates (the oil temperature parameter) and the input read at each axis
+        self._src = []
+        for a in names:
+            if a == "oil_temperature_C":
+                self._src.append(("param", params.oil_temperature - 273.15))
+            else:
+                self._src.append(("input", MAP_AXES[a]))
+        # per axis, as Python numbers (the per-step query): source kind (0 parameter, 1 speed, 2 radial load Fx,
+        # 3 input), source, lo, hi, tolerance of the range test (round-off of unit conversions)
+        self._q = []
+        for a, (kind, src), v in zip(names, self._src, self.axes):
+            lo, hi = float(v[0]), float(v[-1])
+            k = 0 if kind == "param" else (1 if a == "speed_rpm" else (2 if a == "fx_N" else 3))
+            self._q.append((k, src, lo, hi, 1e-9 * max(1.0, abs(lo), abs(hi))))
+        T = params.oil_temperature
+        if "oil_temperature_C" in names:
+            d = names.index("oil_temperature_C")
+            lo, hi = self.axes[d][0] + 273.15, self.axes[d][-1] + 273.15
+            if not lo - 1e-9 <= T <= hi + 1e-9:
+                raise BearingInputError("oil_temperature", T, f"{lo:.6g} K <= value <= {hi:.6g} K (the map's range, "
+                                        f"{self.path}; fidelity 'map' never extrapolates)")
+        from . import map_kernels as MK
+        self._interp = MK.interp_multilinear
+        self._interp(self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags,
+                     np.array([v[0] for v in self.axes]), self._idx, self._w, np.zeros(len(MAP_OUTPUTS)))
+
+    def _check_parameters(self, p):
+        try:
+            built = json.loads(self.attrs.get("parameters", "{}"))
+        except json.JSONDecodeError:
+            built = {}
+        for k in MAP_PARAMETERS:
+            if k not in built:
+                raise BearingInputError("map_file", self.path, "a map with its build parameters",
+                                        f"attribute 'parameters' has no {k}")
+            if k == "oil_temperature" and "oil_temperature_C" in self.axis_names:
+                continue
+            v, b = getattr(p, k), built[k]
+            if isinstance(b, (int, float)) and not isinstance(b, bool):
+                same = isinstance(v, (int, float)) and abs(float(v) - float(b)) <= 1e-9 * max(1.0, abs(float(b)))
+            else:
+                same = str(v).lower() == str(b).lower() or (k == "lubrication" and v == "auto" and
+                                                            b == built.get("lubrication_auto", b))
+            if not same:
+                raise BearingInputError(k, v, f"{b!r}, the value the operating map {self.path} was built for",
+                                        "fidelity 'map' reads the map only for the parameters it was built with")
+        for k, want in FIXED_PARAMETERS.items():
+            v = getattr(p, k)
+            if v != want:
+                what = ("displacement coupling: the map gives the steady state of a load-driven bearing, not the "
+                        "forces of a prescribed ring pose; use fidelity 'dynamic'" if k == "coupling" else
+                        "the map is of an isothermal bearing with its definition's geometry, outer ring fixed and "
+                        "inner ring free to tilt")
+                raise BearingInputError(k, v, f"{want!r} at fidelity 'map'", what)
+
+    def ranges(self) -> list:
+        """(input, lo, hi, unit) of each axis read from an input, in input units."""
+        out = []
+        for a, (kind, src), v in zip(self.axis_names, self._src, self.axes):
+            if kind != "input":
+                continue
+            f = RPM if a == "speed_rpm" else 1.0
+            out.append((src, v[0] * f, v[-1] * f, {"speed_rpm": "rad/s", "my_Nm": "N.m"}.get(a, "N")))
+        return out
+
+    def query(self, u: dict):
+        """(x, cos, sin): the map coordinates of the inputs u and the radial-load direction. Raises
+        BearingInputError naming the input outside the map's range, or an input the map does not vary."""
+        if u["outer_ring_speed"] != 0.0:
+            raise BearingInputError("outer_ring_speed", u["outer_ring_speed"], "0 rad/s at fidelity 'map' (the map "
+                                    "is of the bearing with the outer ring fixed)")
+        cs, sn = 1.0, 0.0
+        fx = u["Fx"]
+        if self.rotate:
+            fr = math.hypot(u["Fx"], u["Fy"])
+            if fr > 0.0:
+                cs, sn = u["Fx"] / fr, u["Fy"] / fr
+            fx = fr
+        for name, axis, unit in (("Fy", "fy_N", "N"), ("Mx", None, "N.m"), ("My", "my_Nm", "N.m")):
+            if (axis is not None and axis in self.axis_names) or (name == "Fy" and self.rotate):
+                continue
+            if u[name] != 0.0:
+                raise BearingInputError(name, u[name], f"0 {unit} at fidelity 'map' (the map {self.path} has no "
+                                        f"{axis or name} axis)")
+        x = self._x
+        for d, (kind, src, lo, hi, tol) in enumerate(self._q):
+            if kind == 0:
+                v = src
+            elif kind == 1:
+                v = u["shaft_speed"] / RPM
+            elif kind == 2:
+                v = fx
+            else:
+                v = u[src]
+            if not lo - tol <= v <= hi + tol:
+                raise self.range_error(d, v)
+            x[d] = lo if v < lo else (hi if v > hi else v)
+        return x, cs, sn
+
+    def range_error(self, d, xd) -> BearingInputError:
+        a = self.axis_names[d]
+        lo, hi = self.axes[d][0], self.axes[d][-1]
+        kind, src = self._src[d]
+        if a == "speed_rpm":
+            return BearingInputError("shaft_speed", xd * RPM, f"{lo * RPM:.6g} rad/s <= value <= {hi * RPM:.6g} rad/s "
+                                     f"({lo:.6g}-{hi:.6g} rpm), the range of the operating map {self.path}",
+                                     "fidelity 'map' never extrapolates")
+        if a == "fx_N" and self.rotate:
+            return BearingInputError("radial load hypot(Fx, Fy)", xd, f"{lo:.6g} N <= value <= {hi:.6g} N, the range "
+                                     f"of the operating map {self.path}", "fidelity 'map' never extrapolates")
+        unit = {"my_Nm": "N.m", "oil_temperature_C": "degC"}.get(a, "N")
+        name = src if kind == "input" else "oil_temperature"
+        return BearingInputError(name, xd, f"{lo:.6g} {unit} <= value <= {hi:.6g} {unit}, the range of the "
+                                 f"operating map {self.path}", "fidelity 'map' never extrapolates")
+
+    def steady_into(self, x, ss) -> int:
+        """Steady values at the map coordinates x into ss (one per name of self.names); returns the validity
+        flags of the interpolation cell. Raises BearingInputError if x lies outside the grid."""
+        d, fl = self._interp(self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags, x,
+                             self._idx, self._w, ss)
+        if d >= 0:
+            raise self.range_error(d, x[d])
+        return fl
+
+    def point_text(self, x) -> str:
+        """The map coordinates x in words, e.g. 'speed_rpm 9500, fx_N 1000, fz_N 3000'."""
+        return ", ".join(f"{a} {float(v):.5g}" for a, v in zip(self.axis_names, x))
+
+    def describe(self) -> str:
+        return f"operating map {self.path} ({self.attrs.get('level', '?')} level, {self.attrs.get('bearing', '?')})"
+
+
+FIDELITY_LEVELS = {"map": MapLevel}
+"""Steady levels by name (CoSimParameters.fidelity); 'dynamic' is the full model (CoSimSession itself)."""
+FIDELITIES = ("dynamic",) + tuple(FIDELITY_LEVELS)
+
+
+class SteadySession:
+    """A co-simulation session on a steady level: the API and output array of CoSimSession (which delegates to
+    it). The state is the time and the lagged cage speed."""
+
+    def __init__(self, params, level, values: np.ndarray, outputs_cls, step_rejected, csr_min_speed: float):
+        """values: the session's output array (ALL_NAMES order); outputs_cls, step_rejected: the session's Outputs
+        view and StepRejected error (bearing_core.session.cosim, which constructs this); csr_min_speed [rad/s]: below
+        it the cage/shaft ratios are 0."""
+        from ..models.skid import SKID_MIN_SPEED, SKID_TOL
+        from . import map_kernels as MK
+        self._outputs_kernel = MK.steady_level_outputs
+        OUTPUT_INDEX = {n: i for i, n in enumerate(ALL_NAMES)}
+        CSR_MIN_SPEED = csr_min_speed
+        self._api = (outputs_cls, step_rejected)
+        self.p = params
+        self.level = level
+        self.values = values           # the session's output array (updated in place)
+        self.t = 0.0
+        self.wc = 0.0
+        self.warnings = []             # messages for the FMU log (entry into a region where the level is weak)
+        self._flags = 0
+        self._ss = np.zeros(len(level.names))
+        self._new = np.zeros(len(ALL_NAMES))
+        names = level.names
+        src = np.full(len(ALL_NAMES), -1, dtype=np.int64)
+        for i, n in enumerate(ALL_NAMES):
+            base = n[len("instantaneous_"):] if n.startswith("instantaneous_") else n
+            if base in names:
+                src[i] = names.index(base)
+        self._src = src
+        self._rot = np.array([[OUTPUT_INDEX[a], OUTPUT_INDEX[b]] for a, b in ROTATED] if level.rotate else
+                             np.zeros((0, 2)), dtype=np.int64).reshape(-1, 2)
+        ib = [OUTPUT_INDEX[n] for n in ("cage_speed", "cage_shaft_ratio", "cage_shaft_ratio_theory", "skid_ratio",
+                                        "cage_slip_ratio", "skid_state")]
+        ib += [names.index("cage_speed_eq26"), OUTPUT_INDEX["cage_speed_pure_rolling_outer"]]
+        ib += [OUTPUT_INDEX[n] for n in ("temperature_ball", "temperature_outer_ring", "temperature_inner_ring",
+                                         "temperature_oil", "heat_to_ambient", "heat_to_oil_flow", "thermal_runaway")]
+        self._ib = np.array(ib, dtype=np.int64)
+        T = float(params.oil_temperature)
+        self._temps = np.array([T, T, T, T, 0.0, 0.0, 0.0])
+        self._consts = (CSR_MIN_SPEED, SKID_TOL, SKID_MIN_SPEED)
+        self._in_key = self._in_x = None
+        self._zero = {n: 0.0 for n in INPUT_NAMES}
+
+    def _validated(self, inputs: dict):
+        """(x, cos, sin, shaft speed) of the inputs; checked again only when they changed (a NaN never compares
+        equal). Each input must be a known name and a finite number; the map's ranges bound the rest
+        (level.query)."""
+        key = self._in_key
+        try:
+            same = key is not None and key == inputs
+        except (TypeError, ValueError):
+            same = False
+        if same:
+            return self._in_x
+        u = dict(self._zero)
+        for k, v in inputs.items():
+            if k not in u:
+                raise BearingInputError("input", k, ", ".join(INPUT_NAMES))
+            try:
+                v = float(v)
+            except (TypeError, ValueError):
+                raise BearingInputError(k, v, "a finite number")
+            if not math.isfinite(v):
+                raise BearingInputError(k, v, "a finite number")
+            u[k] = v
+        x, cs, sn = self.level.query(u)
+        self._in_key, self._in_x = dict(inputs), (x.copy(), cs, sn, u["shaft_speed"])
+        return self._in_x
+
+    def _evaluate(self, q, h):
+        x, cs, sn, w = q
+        fl = self.level.steady_into(x, self._ss)
+        tau = float(self._ss[self.level.i_tau])
+        c0, c1, c2 = self._consts
+        wc = self._outputs_kernel(self._ss, self._src, self._rot, cs, sn, self.wc, h, tau, w, self._temps, c0,
+                                     c1, c2, self._ib, self._new)
+        if not math.isfinite(wc):
+            bad = [n for n, v in zip(ALL_NAMES, self._new) if not math.isfinite(v)]
+            raise BearingInputError("inputs", self.level.point_text(x),
+                                    "an operating point where the map has values",
+                                    f"{self.level.describe()} has no value for {bad[:4]} there (a failed grid point)")
+        if fl and fl != self._flags:
+            what = []
+            if fl & FLAG_GROSS_SKID:
+                what.append(f"gross skidding (cage slip ratio > {GROSS_SKID_SLIP:g} at a neighbouring grid point)")
+            if fl & FLAG_CAGE_UNSTEADY:
+                what.append("an unsteady cage (cage instability or whirl at a neighbouring grid point)")
+            self.warnings.append(f"t = {self.t + h:.6g} s: the operating point ({self.level.point_text(x)}) entered "
+                                 f"a region of {' and '.join(what)}, where fidelity '{self.level.name}' is least "
+                                 "accurate (docs/fidelity.md); use fidelity 'dynamic' for this operation")
+        self._flags = fl
+        return wc
+
+    def initialize(self, t0: float, inputs: dict):
+        q = self._validated(inputs)
+        self.wc = self._evaluate(q, 0.0)
+        np.copyto(self.values, self._new)
+        self.t = float(t0)
+
+    def step(self, t: float, h: float, inputs: dict):
+        Outputs, StepRejected = self._api
+        if not (math.isfinite(h) and h > 0.0):
+            raise StepRejected(f"communication step h = {h!r} is invalid; allowed: h > 0")
+        if abs(t - self.t) > 1e-9 * max(1.0, abs(t)):
+            raise StepRejected(f"step starts at t = {t!r} but the bearing is at t = {self.t!r}")
+        try:
+            q = self._validated(inputs)
+            wc = self._evaluate(q, h)
+        except BearingInputError as e:
+            raise StepRejected(str(e))
+        self.wc = wc
+        np.copyto(self.values, self._new)
+        self.t = t + h
+        return Outputs(self.values.copy())
+
+    def get_state(self):
+        return (self.t, self.wc, self.values.copy(), self._flags)
+
+    def set_state(self, state):
+        if state is None:
+            return
+        self.t, self.wc, v, self._flags = state
+        self.values[:] = v

@@ -1,0 +1,132 @@
+"""Numba kernels of the steady fidelity levels (bearing_core.session.fidelity): multilinear interpolation of an
+operating map on its rectilinear grid, and the outputs of one communication point from the steady values with
+the first-order lag of the cage speed.
+
+Every index is an argument (maps built in Python from the output names), so the compiled, cached code does not
+depend on the order of the outputs or of the map's variables.
+"""
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+_exact = njit(cache=True, error_model="numpy")
+
+
+@_exact
+def interp_multilinear(axes, ptr, strides, values, speed_scaled, flags, x, idx, w, out):
+    """Multilinear interpolation of all outputs of a map at the point x (one coordinate per axis).
+
+    axes: the axes' coordinates concatenated (increasing along each axis), axis d in axes[ptr[d]:ptr[d + 1]];
+    strides: flat-index stride of each axis in values (C order); values (n_points x n_out); speed_scaled
+    (n_out, 0 / 1): the stored value is the output divided by x[0] (outputs proportional to the speed, which
+    interpolate better per unit speed) and is multiplied back; flags (n_points, int): per-point validity bits,
+    OR-ed over the corners of the cell that carry weight; idx, w: work arrays (n_axes). An axis with one
+    value takes x[d] as given (the caller checks it). Writes out (n_out) and returns (-1, flags) or, if
+    x[d] lies outside axis d, (d, 0): never extrapolates."""
+    nd = x.shape[0]
+    for d in range(nd):
+        a0 = ptr[d]
+        n = ptr[d + 1] - a0
+        xd = x[d]
+        if n == 1:
+            idx[d] = 0
+            w[d] = 0.0
+            continue
+        if not (xd >= axes[a0] and xd <= axes[a0 + n - 1]):
+            return d, 0
+        lo = 0
+        hi = n - 1
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            if axes[a0 + mid] <= xd:
+                lo = mid
+            else:
+                hi = mid
+        idx[d] = lo
+        w[d] = (xd - axes[a0 + lo]) / (axes[a0 + lo + 1] - axes[a0 + lo])
+    nout = out.shape[0]
+    for k in range(nout):
+        out[k] = 0.0
+    fl = 0
+    for c in range(1 << nd):
+        wt = 1.0
+        off = 0
+        for d in range(nd):
+            if (c >> d) & 1:
+                wt *= w[d]
+                off += (idx[d] + 1) * strides[d]
+            else:
+                wt *= 1.0 - w[d]
+                off += idx[d] * strides[d]
+            if wt == 0.0:
+                break
+        if wt == 0.0:
+            continue
+        fl |= flags[off]
+        for k in range(nout):
+            out[k] += wt * values[off, k]
+    for k in range(nout):
+        if speed_scaled[k] != 0:
+            out[k] *= x[0]
+    return -1, fl
+
+
+@_exact
+def steady_level_outputs(ss, src, rot, cs, sn, wc0, h, tau, shaft, temps, csr_min, skid_tol, skid_min, ib, out):
+    """Outputs of a communication point of a steady level into out (session output layout) from the steady
+    values ss (the level's outputs at the held inputs); returns the cage speed at the end of the step.
+
+    src[i] >= 0: output i is ss[src[i]]; -1: it holds 0 (outputs a steady level does not give). rot: pairs
+    (i, j) of outputs forming an x-y vector turned by the angle (cs, sn) = (cos, sin) of the radial load
+    direction (the map holds the bearing under a radial load along x; the bearing is axisymmetric). Cage
+    speed: first-order lag towards its steady value over the step h [s] with time constant tau [s], exact
+    for inputs held over the step: wc = wss + (wc0 - wss) exp(-h / tau) (h <= 0: the steady value). The
+    quantities derived from the cage speed follow its lagged value as in session_kernels.assemble_outputs:
+    cage/shaft ratios (0 below csr_min [rad/s]), skid ratio, cage slip ratio and skid state (tolerance
+    skid_tol, 0/0 below skid_min [rad/s]). temps: T ball, outer, inner, oil [K], heat to ambient and to the
+    oil flow [W], runaway flag. ib: output indices of cage_speed, cage_shaft_ratio, cage_shaft_ratio_theory,
+    skid_ratio, cage_slip_ratio, skid_state, the Eq. 26 cage speed in ss, cage_speed_pure_rolling_outer,
+    then the outputs of the 7 entries of temps."""
+    n = out.shape[0]
+    for i in range(n):
+        out[i] = ss[src[i]] if src[i] >= 0 else 0.0
+    for r in range(rot.shape[0]):
+        i = rot[r, 0]
+        j = rot[r, 1]
+        a = out[i]
+        b = out[j]
+        out[i] = cs * a - sn * b
+        out[j] = sn * a + cs * b
+    wss = out[ib[0]]
+    wc = wss
+    if h > 0.0 and tau > 0.0:
+        wc = wss + (wc0 - wss) * math.exp(-h / tau)
+    out[ib[0]] = wc
+    csr = 0.0
+    csr_t = 0.0
+    if abs(shaft) >= csr_min:
+        csr = wc / shaft
+        csr_t = ss[ib[6]] / shaft
+    out[ib[1]] = csr
+    out[ib[2]] = csr_t
+    out[ib[3]] = 1.0 - csr / csr_t if csr_t > 0.0 else 0.0
+    w_outer = out[ib[7]]
+    s = 0.0
+    state = 0.0
+    if abs(w_outer) >= skid_min:
+        s = (w_outer - wc) / w_outer
+        if s > skid_tol:
+            state = 1.0
+        elif s < -skid_tol:
+            state = -1.0
+    out[ib[4]] = s
+    out[ib[5]] = state
+    for k in range(temps.shape[0]):
+        out[ib[8 + k]] = temps[k]
+    ok = True
+    for i in range(n):
+        if not math.isfinite(out[i]):
+            ok = False
+    return wc if ok else math.nan
