@@ -85,7 +85,8 @@ FIXED_PARAMETERS = {"coupling": "load", "outer_mounting": "fixed", "fixed_tilt":
                     "ring_growth": False, "shaft_interference": 0.0, "housing_interference": 0.0,
                     "free_contact_angle": 0.0, "pocket_clearance": 0.0, "land_clearance": 0.0, "ball_diameter": 0.0,
                     "pitch_diameter": 0.0, "number_of_balls": 0, "inner_groove_conformity": 0.0,
-                    "outer_groove_conformity": 0.0, "oil_flow_rate": 0.0}
+                    "outer_groove_conformity": 0.0, "oil_flow_rate": 0.0, "lubrication_method": "jet",
+                    "oil_level": 0.0}
 """Parameters whose value a map level requires: the map is of a load-driven bearing, outer ring fixed, inner
 ring free to tilt, isothermal, with the bearing definition's geometry."""
 
@@ -227,10 +228,15 @@ class MapLevel:
         for k, want in FIXED_PARAMETERS.items():
             v = getattr(p, k)
             if v != want:
-                what = ("displacement coupling: the map gives the steady state of a load-driven bearing, not the "
-                        "forces of a prescribed ring pose; use fidelity 'dynamic'" if k == "coupling" else
-                        "the map is of an isothermal bearing with its definition's geometry, outer ring fixed and "
-                        "inner ring free to tilt")
+                if k == "coupling":
+                    what = ("displacement coupling: the map gives the steady state of a load-driven bearing, not the "
+                            "forces of a prescribed ring pose; use fidelity 'dynamic'")
+                elif k in ("oil_flow_rate", "lubrication_method", "oil_level"):
+                    what = ("the map's cavity oil content is its oil_fraction parameter, not an oil supply's (whose "
+                            "oil content follows the speed); use fidelity 'dynamic' for an oil supply")
+                else:
+                    what = ("the map is of an isothermal bearing with its definition's geometry, outer ring fixed "
+                            "and inner ring free to tilt")
                 raise BearingInputError(k, v, f"{want!r} at fidelity 'map'", what)
 
     def ranges(self) -> list:
@@ -358,6 +364,9 @@ class SteadySession:
         self._consts = (CSR_MIN_SPEED, SKID_TOL, SKID_MIN_SPEED)
         self._in_key = self._in_x = None
         self._zero = {n: 0.0 for n in INPUT_NAMES}
+        # the cavity oil fraction: the oil_fraction parameter (steady levels take no oil supply)
+        self._i_oil = OUTPUT_INDEX.get("oil_fraction_used", -1)
+        self._oil = float(params.oil_fraction)
 
     def _validated(self, inputs: dict):
         """(x, cos, sin, shaft speed) of the inputs; checked again only when they changed (a NaN never compares
@@ -407,6 +416,8 @@ class SteadySession:
                                  f"a region of {' and '.join(what)}, where fidelity '{self.level.name}' is least "
                                  "accurate (docs/fidelity.md); use fidelity 'dynamic' for this operation")
         self._flags = fl
+        if self._i_oil >= 0:
+            self._new[self._i_oil] = self._oil
         return wc
 
     def initialize(self, t0: float, inputs: dict):
