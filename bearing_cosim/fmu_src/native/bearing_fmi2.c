@@ -97,6 +97,7 @@ typedef struct {
     double step_expect; /* the model process's time in the last fmi2DoStep [s] */
     double step_h;      /* the communication step of the fmi2DoStep being sent [s] */
     double spin_score;  /* running share of steps whose answer came during a predicted spin */
+    double short_score; /* the same for the spin through a short step */
     double init_timeout, step_timeout;
     Var *vars;
     int nvars;
@@ -235,7 +236,8 @@ static void describe_exit(int status, char *out, size_t n) {
 /* Waiting for the model process. A thread woken from a futex waits for the scheduler: tens of microseconds on
  * a quiet machine, more on a virtual machine whose idle processor must first be woken. So the master spins
  * while the answer is due, and sleeps otherwise:
- *  - every call: a short spin (SPIN_SHORT) first;
+ *  - every call: a short spin (SPIN_SHORT) first; for a step the model process answered within SPIN_SHORT_STEP
+ *    last time, 2 x that time + 100 us;
  *  - fmi2DoStep: the model process publishes the simulated time its integrator has reached (a double in the
  *    shared header, O_PROG). From the progress over the elapsed wall time the master predicts the end of the
  *    integration, sleeps on the futex (with a timeout) until SPIN_EARLY before it, then spins, at most
@@ -246,6 +248,7 @@ static void describe_exit(int status, char *out, size_t n) {
 #define SPIN_EARLY 150e-6  /* [s] */
 #define SPIN_LATE 250e-6   /* [s] */
 #define MAX_SPINS 3        /* predicted spins per call */
+#define SPIN_SHORT_STEP 300e-6 /* a step the model process answered within this is spun through: 2 x its time + 100 us [s] */
 
 /* Spins until the response or t_end. (No sched_yield between polls: on a busy machine a yielding thread
  * waits behind every other runnable one, milliseconds, which is what the spin is to avoid.) */
@@ -287,7 +290,17 @@ static double step_remaining(Comp *c, double prog0, double h, double el) {
 static int await(Comp *c, double timeout, const char *fname, double h, double prog0) {
     volatile uint32_t *resp = word(c, O_RESP);
     double t0 = now();
-    if (spin_until(resp, c->seq, t0 + SPIN_SHORT)) return 0;
+    /* A short step (a steady fidelity level, a tiny communication step) is answered in tens of microseconds:
+     * the master spins through it. Sleeping there would cost two wake-ups per step: the master's and, because
+     * waking a sleeping thread costs the waker tens of microseconds too (an inter-processor interrupt, a VM
+     * exit on a virtual machine), the model process's delay in seeing the next request. */
+    double spin = SPIN_SHORT;
+    int long_spin = h > 0 && c->step_expect > 0 && c->step_expect < SPIN_SHORT_STEP &&
+                    (c->short_score > 0.3 || (c->seq & 15u) == 0);
+    if (long_spin) spin = 2.0 * c->step_expect + 100e-6;
+    int hit = spin_until(resp, c->seq, t0 + spin);
+    if (long_spin) c->short_score = 0.9 * c->short_score + (hit ? 0.1 : 0.0);
+    if (hit) return 0;
     /* predicted spins only while they pay: on a machine with more runnable threads than cores the progress
      * is erratic and a spinning master takes a core from the model process; then every 16th step probes */
     int spins = h > 0 && (c->spin_score > 0.3 || (c->seq & 15u) == 0) ? MAX_SPINS : 0;
@@ -609,6 +622,7 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
     c->name = strdup(instanceName ? instanceName : "");
     c->magic = MODEL_MAGIC;
     c->spin_score = 1.0;
+    c->short_score = 1.0;
     c->init_timeout = env_seconds("BEARING_FMU_INIT_TIMEOUT", 900.0);
     c->step_timeout = env_seconds("BEARING_FMU_STEP_TIMEOUT", 600.0);
     char err[4600];
