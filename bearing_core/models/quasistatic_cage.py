@@ -1,0 +1,474 @@
+"""Quasi-static cage model: the steady state of the whole bearing, cage included, on the dynamics' own forces.
+
+The dynamics' right-hand side (dynamics_kernels.rhs: Hertz contact, the traction law of the options --
+rheology-based EHL traction or Kalker/FASTSIM --, the ball-pocket contact -- lubricated films on both walls
+(lubrication.pocket_film) or dry Coulomb --, the guiding land -- oil-flooded short journal bearing with
+Petroff drag, or dry penalty contact with Coulomb friction --, ball drag and churning) is evaluated at a
+candidate steady state and its accelerations are driven to zero. In the candidate state every ball orbits
+with the cage: ball j sits in pocket j (cage angle 0, pocket azimuth 2 pi j / Z) at an offset set by the
+unknown q_j, the cage turns at wc about its centre (xc, yc), which stands still, the inner ring stands at its
+pose and turns at omega. Steady equations (Gupta, Advanced Dynamics of Rolling Elements 1984, Ch. 3 and 5,
+all rates zero in the frame orbiting with each ball; the same equations as quasistatic_tribo, with the orbit
+tied to the cage):
+
+  ball j (unknowns r, z, Omega_r, Omega_t, Omega_z, q):
+      F_r + m r th_d^2 = 0,  F_z = 0,  M_r + J th_d Omega_t = 0,  M_t - J th_d Omega_r = 0,  M_z = 0,
+      F_t = 0  (race tractions + drag + pocket force: the pocket takes what the traction does not balance)
+  inner ring (unknowns dx, dy, dz, tx, ty; load coupling):  F_ext + sum_j F_ball->ring = 0
+  cage (unknowns wc and the centre coordinates gx, gy):
+      sum_j (pocket force moments + pocket film shear) + land torque + churning = 0   (torque about z)
+      sum_j pocket forces + land force = 0                                           (forces in x, y)
+
+The pocket-force coordinate q [N] (quasistatic_cage_kernels.pocket_offset) moves the ball linearly across
+its pocket clearance for |q| <= 1 N and beyond that presses it into the wall with the penalty force |q| - 1
+N; the cage centre's coordinates (gx, gy) [N] do the same in the land clearance (cage_centre). These are the
+unknowns that make the cage-held problem regular: with the pocket force itself as the unknown the ball's
+place in the gap is undefined, with the place as the unknown the dry contact has no slope in the gap; the
+coordinate q has a slope everywhere the contact carries load (and in the oil regime the pocket films give it
+one in the gap too). A ball in the loaded zone that leads its pocket (q > 0) drives the cage; one that
+trails it is pushed by the cage against its traction and drag. The ball's orbital speed is the one that
+keeps its azimuth about the (eccentric) cage centre turning at wc.
+
+Solution: 6 Z + 8 unknowns, the bearing's arrow structure (balls are coupled only through ring and cage),
+a finite-difference Jacobian of 14 right-hand-side calls, pseudo-transient continuation (Kelley & Keyes,
+SIAM J. Numer. Anal. 35 (1998) 508) with step caps, all in numba (quasistatic_cage_kernels). Start: a
+previous solution (warm start), else the free-ball tribological solution (quasistatic_tribo) with the cage
+at the balls' mean orbital speed, else the Jones-Harris solution; if neither converges, continuation in
+speed from 1000 rpm. A point that does not converge raises ConvergenceError naming speed, loads and oil
+temperature.
+
+Sensitivity: at the solution, the derivatives of the outputs with respect to the inputs (shaft speed, the
+five loads or the ring pose, the oil temperature) from the implicit function theorem, dx/dp = -J^-1 dR/dp
+on the converged Jacobian, and one directional difference of the outputs per input. Time constant of the
+cage speed's first-order lag: tau = (I_c + Z m r_p^2) / (-dT/dwc), T the net torque on cage and balls about
+the axis with every other equation in equilibrium (the balls' spin, contact and pocket forces follow the
+cage speed much faster: traction relaxation ~3e5 1/s): -dT/dwc = -(dm/2) / (J^-1)[wc, cage torque row].
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from . import dynamics_kernels as K
+from . import quasistatic_cage_kernels as CK
+from .dynamics_setup import DynamicSetup, DynamicsOptions
+from .quasistatic import quasistatic_model
+from .quasistatic_tribo import TriboQuasiStaticModel
+from ..bearing.geometry import BearingGeometry
+from ..errors import BearingInputError, ConvergenceError, check_range
+
+NL, NG = CK.NL, CK.NG
+INPUT_NAMES = ("omega", "Fx", "Fy", "Fz", "Mx", "My", "T_oil")
+DISP_INPUT_NAMES = ("omega", "dx", "dy", "dz", "tx", "ty", "T_oil")
+# scalar outputs of a solution (and of its sensitivity)
+OUTPUT_NAMES = ("cage_speed", "friction_torque", "P_drive", "heat", "P_race_inner", "P_race_outer", "P_pocket",
+                "P_land", "P_drag", "P_churn_cage", "P_churn_ring", "Fx", "Fy", "Fz", "Mx", "My",
+                "dx", "dy", "dz", "tx", "ty", "alpha_i_mean", "alpha_o_mean", "Q_i_max", "Q_o_max", "p_max",
+                "cage_x", "cage_y")
+_DIAG = ("cage_speed", "friction_torque", "P_drive", None, "P_race_inner", "P_race_outer", "P_pocket", "P_land",
+         "P_drag", "P_churn_cage", "P_churn_ring", "Fx", "Fy", "Fz", "Mx", "My",
+         "ir_x", "ir_y", "ir_z", "ir_tx", "ir_ty", "alpha_i_mean", "alpha_o_mean", "Q_i_max", "Q_o_max", "p_max",
+         "cage_x", "cage_y")
+_HEAT = ("P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_churn_cage", "P_churn_ring")
+
+
+def output_vector(diag: np.ndarray) -> np.ndarray:
+    """The scalar outputs (OUTPUT_NAMES) from the dynamics' output channels diag; 'heat' is the sum of the
+    loss channels [W] (races, pocket, land, drag, churning)."""
+    I = K.OUT_INDEX
+    out = np.empty(len(OUTPUT_NAMES))
+    for k, n in enumerate(_DIAG):
+        out[k] = sum(diag[I[h]] for h in _HEAT) if n is None else diag[I[n]]
+    return out
+
+
+@dataclass
+class QuasiStaticCageResult:
+    """Steady state of the quasi-static cage model (SI: m, rad, N, N m, rad/s, W). Per-ball arrays have
+    length Z; ``y`` is the matching dynamics state (a start for DynamicModel)."""
+
+    geometry: BearingGeometry
+    omega: float                   # inner-ring speed [rad/s]
+    loads: np.ndarray              # (Fx, Fy, Fz, Mx, My) applied [N, N m] (displacement coupling: the reaction's negative)
+    displacement: np.ndarray       # inner-ring pose (dx, dy, dz, tx, ty) [m, rad]
+    T_oil: float                   # oil temperature [K]
+    coupling: str
+    cage_speed: float              # [rad/s]
+    cage_centre: np.ndarray        # (xc, yc) [m]
+    friction_torque: float         # torque the shaft supplies [N m]
+    heat: dict                     # loss powers by source [W] and their sum 'total'
+    P_drive: float                 # drive power [W]
+    reaction: np.ndarray           # (Fx, Fy, Fz, Mx, My) of the balls on the inner ring [N, N m]
+    alpha_i: np.ndarray            # contact angles [rad]
+    alpha_o: np.ndarray
+    Q_i: np.ndarray                # contact loads [N]
+    Q_o: np.ndarray
+    p_i: np.ndarray                # largest Hertz pressures [Pa]
+    p_o: np.ndarray
+    pocket_force: np.ndarray       # ball-pocket normal force [N]
+    pocket_q: np.ndarray           # pocket-force coordinate q [N] (> 0: the ball leads its pocket)
+    orbit_speed: np.ndarray        # orbital speed of each ball [rad/s]
+    omega_ball: np.ndarray         # (Z, 3) angular velocity (Omega_r, Omega_t, Omega_z) [rad/s]
+    film: dict                     # Hamrock-Dowson films (DynamicSetup.film) and the smallest film parameter
+    outputs: np.ndarray            # the scalar outputs, in the order of OUTPUT_NAMES
+    residual: float                # max |residual| [N]
+    iterations: int                # right-hand-side evaluations of the solve
+    tau_cage: float                # time constant of the cage speed's first-order lag [s]
+    sensitivity: np.ndarray = field(repr=False, default=None)   # d outputs / d inputs (len OUTPUT_NAMES x 7)
+    input_names: tuple = INPUT_NAMES
+    x: tuple = field(repr=False, default=None)   # (xl, xg) unknowns (warm start)
+    y: np.ndarray = field(repr=False, default=None)
+    diag: np.ndarray = field(repr=False, default=None)
+
+    def output(self, name: str) -> float:
+        return float(self.outputs[OUTPUT_NAMES.index(name)])
+
+    def inputs(self) -> np.ndarray:
+        """The input vector (INPUT_NAMES, or DISP_INPUT_NAMES with displacement coupling) of this solution."""
+        ring = self.loads if self.coupling == "load" else self.displacement
+        return np.concatenate([[self.omega], ring, [self.T_oil]])
+
+    def predict(self, omega: float, ring, T_oil: float | None = None) -> np.ndarray:
+        """First-order update of the outputs (OUTPUT_NAMES) at new inputs: omega [rad/s], ring = loads (Fx,
+        Fy, Fz, Mx, My) [N, N m] or the ring pose (displacement coupling), T_oil [K] (None: this one)."""
+        p = np.concatenate([[omega], np.asarray(ring, dtype=float).reshape(5),
+                            [self.T_oil if T_oil is None else T_oil]])
+        return self.outputs + self.sensitivity @ (p - self.inputs())
+
+    def input_tolerance(self, rel: float = 2e-3, keys=("cage_speed", "friction_torque", "heat")) -> np.ndarray:
+        """Per input, the change that moves any of the outputs ``keys`` by rel of its value on the linear
+        update (inf where they do not depend on it): re-solve when an input has moved beyond a fraction of
+        this since the last solve; within it, predict()."""
+        tol = np.full(len(INPUT_NAMES), np.inf)
+        for k in keys:
+            i = OUTPUT_NAMES.index(k)
+            scale = rel * max(abs(self.outputs[i]), 1e-9)
+            s = np.abs(self.sensitivity[i])
+            with np.errstate(divide="ignore"):
+                tol = np.minimum(tol, np.where(s > 0, scale / s, np.inf))
+        return tol
+
+
+class QuasiStaticCageModel:
+    """Quasi-static cage model of one bearing with the options of the dynamics (a DynamicsOptions:
+    traction, lubrication regime, cage and land parameters, drag, churning, coupling, fixed_tilt; integrator
+    settings are not used). Outer ring fixed."""
+
+    #: residual tolerance relative to the load scale (largest of |F|, |M| / (dm/2), 1 N)
+    tol = 1e-6
+    #: residual evaluations of one solve attempt
+    budget = 1500
+
+    def __init__(self, geometry: BearingGeometry, options: DynamicsOptions | None = None):
+        opt = DynamicsOptions() if options is None else options
+        if opt.outer_mount != "fixed":
+            raise BearingInputError("outer_mount", opt.outer_mount, "fixed (quasi-static cage model)")
+        geometry.require_two_point("quasi-static cage model")
+        if geometry.cage.guidance == "ball":
+            raise BearingInputError("cage.guidance", "ball", "outer | inner (land-guided cage)")
+        self.g = geometry
+        self.opt = replace(opt, reduced="full", thermal=False)
+        self.opt.validate()
+        self._setups = {}
+
+    # ---- parameters -------------------------------------------------------------------------------
+    def _setup(self, omega: float, T_oil: float):
+        """DynamicSetup at oil temperature T_oil [K] (and shaft speed omega with ring growth), memoised per
+        (T_oil, speed if ring growth)."""
+        key = (round(T_oil, 9), round(omega, 6) if self.opt.ring_growth else 0.0)
+        s = self._setups.get(key)
+        if s is None:
+            if len(self._setups) > 8:
+                self._setups.clear()
+            s = DynamicSetup(self.g, replace(self.opt, oil_temperature=T_oil))
+            s.U[K.U_W0] = s.U[K.U_W1] = omega
+            s.update_operating_geometry(omega)
+            s.P = s._params(False)
+            s.apply_temperatures(T_oil, T_oil)
+            self._setups[key] = s
+        return s
+
+    def _kernel_args(self, s):
+        return (s._tab_i, s._tab_o, s._ta0, s._tda, s._tp, *s._quad)
+
+    # ---- solve ------------------------------------------------------------------------------------------
+    def solve(self, omega: float, loads=None, displacement=None, T_oil: float | None = None,
+              start: QuasiStaticCageResult | None = None, sensitivity: bool = True) -> QuasiStaticCageResult:
+        """Steady state at inner-ring speed omega [rad/s] (>= 10) under loads (Fx, Fy, Fz, Mx, My) [N, N m]
+        (load coupling) or at the ring pose displacement (dx, dy, dz, tx, ty) [m, rad] (displacement
+        coupling), oil temperature T_oil [K] (None: options.oil_temperature). start: a previous solution to
+        start from (warm start). sensitivity: also the derivatives and the cage time constant. Raises
+        ConvergenceError naming the operating point if no start converges."""
+        omega = check_range("omega", omega, 10.0, 2.0e4, unit="rad/s")
+        T_oil = self.opt.oil_temperature if T_oil is None else check_range("T_oil", T_oil, 233.15, 473.15, unit="K")
+        disp = self.opt.coupling == "displacement"
+        if disp:
+            if displacement is None:
+                raise BearingInputError("displacement", None, "5 values (dx, dy, dz, tx, ty) with displacement coupling")
+            ring = np.asarray(displacement, dtype=float).reshape(-1)
+            name = "displacement"
+        else:
+            if loads is None:
+                raise BearingInputError("loads", None, "5 values (Fx, Fy, Fz, Mx, My) with load coupling")
+            ring = np.asarray(loads, dtype=float).reshape(-1)
+            name = "loads"
+        if ring.size != 5 or not np.all(np.isfinite(ring)):
+            raise BearingInputError(name, ring.tolist(), "5 finite values")
+        if start is not None and not isinstance(start, QuasiStaticCageResult):
+            raise BearingInputError("start", type(start).__name__, "None or a QuasiStaticCageResult")
+        errors = []
+        starts = ([("warm", start)] if start is not None else []) + [("tribological", None), ("jones-harris", None)]
+        for kind, st in starts:
+            try:
+                x0 = self._start(kind, st, omega, ring, T_oil)
+            except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
+                errors.append(f"{kind} start: {e}")
+                continue
+            res = self._solve_from(omega, ring, T_oil, x0, sensitivity, cold=(kind != "warm"))
+            if isinstance(res, QuasiStaticCageResult):
+                return res
+            errors.append(f"{kind} start: {res}")
+        # continuation in speed from 1000 rpm (or omega, if lower)
+        w0 = min(omega, 1000.0 * math.pi / 30.0)
+        if w0 < omega:
+            speeds = list(np.geomspace(w0, omega, 6))
+            prev = None
+            for w in speeds:
+                try:
+                    x0 = self._start("warm" if prev is not None else "jones-harris", prev, w, ring, T_oil)
+                except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
+                    errors.append(f"speed continuation at {w * 30 / math.pi:.0f} rpm: {e}")
+                    break
+                res = self._solve_from(w, ring, T_oil, x0, sensitivity and w == speeds[-1], cold=prev is None)
+                if not isinstance(res, QuasiStaticCageResult):
+                    errors.append(f"speed continuation at {w * 30 / math.pi:.0f} rpm: {res}")
+                    break
+                prev = res
+            else:
+                return prev
+        raise ConvergenceError(
+            f"quasi-static cage model: no steady state found at {omega * 30 / math.pi:.0f} rpm, {name} "
+            f"{np.array2string(ring, precision=6)}, oil {T_oil - 273.15:.1f} degC ({'; '.join(errors)})")
+
+    def _start(self, kind, st, omega, ring, T_oil):
+        """Unknowns (xl, xg) to start from: a previous solution (speeds scaled to omega), the free-ball
+        tribological solution or the Jones-Harris one (cage at the mean orbital speed, centred, balls at their
+        pocket centres)."""
+        g = self.g
+        Z = g.Z
+        xl = np.zeros((Z, NL))
+        xg = np.zeros(NG)
+        if kind == "warm":
+            ratio = omega / st.omega
+            xl[:] = st.x[0]
+            xg[:] = st.x[1]
+            xl[:, 2:5] *= ratio
+            xg[CK.G_WC] *= ratio
+            if self.opt.coupling == "displacement":
+                xg[:5] = ring
+            return xl, xg
+        loads = ring if self.opt.coupling == "load" else self._loads_of_pose(ring, omega)
+        if kind == "tribological":
+            o = replace(self.opt, coupling="load", oil_temperature=T_oil)
+            tq = TriboQuasiStaticModel(g, o).solve(omega, loads)
+            b = K.NSTATE_FIXED + K.NSB * np.arange(Z)
+            xl[:, 0] = tq.y[b + 1]
+            xl[:, 1] = tq.y[b + 2]
+            xl[:, 2:5] = tq.omega_ball
+            xg[:5] = tq.u
+            xg[CK.G_WC] = tq.cage_speed
+        else:
+            qsm = quasistatic_model(g, "outer", fixed_tilt=self.opt.fixed_tilt)
+            jh = qsm.solve(omega, loads, stiffness=False)
+            Roo = 0.5 * g.dm - (g.fo - 0.5) * g.D * math.cos(g.alpha0)
+            Zoo = -(g.fo - 0.5) * g.D * math.sin(g.alpha0)
+            xl[:, 0] = Roo + jh.X[:, 0]
+            xl[:, 1] = Zoo + jh.X[:, 1]
+            xl[:, 2] = -jh.omega_R * np.sin(jh.beta)
+            xl[:, 4] = jh.omega_R * np.cos(jh.beta) + jh.omega_m
+            xg[:5] = jh.u
+            xg[CK.G_WC] = jh.cage_speed
+        if self.opt.coupling == "displacement":
+            xg[:5] = ring
+        return xl, xg
+
+    def _loads_of_pose(self, d, omega):
+        """Loads (Fx, Fy, Fz, Mx, My) that hold the inner ring at pose d by the Jones-Harris model (the start
+        of a displacement-coupled solve, as DynamicModel.initialize)."""
+        qsm = quasistatic_model(self.g, "outer", fixed_tilt=self.opt.fixed_tilt)
+        Fb, X, st, ok = qsm.residual(np.asarray(d, dtype=float), omega)
+        return -np.asarray(Fb, dtype=float)
+
+    def _problem(self, omega, ring, T_oil):
+        """Kernel arguments of one operating point: (setup, P, U, act, tables, scales)."""
+        s = self._setup(omega, T_oil)
+        P = s.P.copy()
+        disp = self.opt.coupling == "displacement"
+        P[K.P_COUPLING] = 1.0 if disp else 0.0
+        P[K.P_CRX:K.P_CRTY + 1] = 0.0
+        U = np.zeros(K.NU)
+        U[K.U_W0] = U[K.U_W1] = omega
+        if disp:
+            U[K.U_DX:K.U_TY + 1] = ring
+        else:
+            U[K.U_FX:K.U_MY + 1] = ring
+        act = np.ones(NG, dtype=bool)
+        if disp:
+            act[:5] = False
+        elif self.opt.fixed_tilt:
+            act[3:5] = False
+        xs_l = np.array([1e-6, 1e-6, omega, omega, omega, 10.0])
+        xs_g = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5, omega, 10.0, 10.0])
+        return s, P, U, act, self._kernel_args(s), xs_l, xs_g
+
+    def _solve_from(self, omega, ring, T_oil, x0, sensitivity, cold=True):
+        """PTC from x0; the result, or the reason it failed (a string). cold: x0 has the balls at their
+        pocket centres and the cage centred; each ball is first put against the pocket wall that takes its
+        tangential force there, then the cage against the land that takes the pockets' net force."""
+        s, P, U, act, tabs, xs_l, xs_g = self._problem(omega, ring, T_oil)
+        g = self.g
+        Z = g.Z
+        xl0, xg0 = x0
+        y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
+        v = np.concatenate([(xl0 / xs_l).ravel(), xg0 / xs_g])
+        if cold:
+            out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+            Ft = out[7][:, 5]
+            v[5:Z * NL:NL] = (Ft + np.sign(Ft) * CK.Q_GAP) / xs_l[5]
+            out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+            Fc = out[8][6:8]
+            if np.hypot(*Fc) > 0.0:
+                v[Z * NL + 6:] = (Fc + Fc / np.hypot(*Fc) * CK.Q_GAP) / xs_g[6:]
+        cap = np.full(v.size, 0.2)                  # speeds: 0.2 omega a step
+        for j in range(Z):
+            cap[j * NL] = cap[j * NL + 1] = 2.0     # ball centres 2 um
+            cap[j * NL + 5] = 20.0                  # q: 200 N
+        cap[Z * NL:Z * NL + 3] = 2.0                # ring 2 um
+        cap[Z * NL + 3:Z * NL + 5] = 1.0            # tilts 10 urad
+        cap[Z * NL + 6:] = 20.0                     # g: 200 N
+        hdm = 0.5 * g.dm
+        scale = max(np.max(np.abs(ring[:3])), np.max(np.abs(ring[3:])) / hdm, 1.0) if self.opt.coupling == "load" \
+            else 100.0
+        ftol = self.tol * max(scale, 100.0)
+        iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
+        A = np.empty((Z, NL, NL))
+        B = np.empty((Z, NL, NG))
+        C = np.empty((Z, NG, NL))
+        Dg = np.empty((NG, NG))
+        r, nfev, fresh = CK.cage_ptc(0.0, y0, v, xs_l, xs_g, cap, act, float(omega), float(ftol), int(self.budget),
+                                     1.0, iF, iM, P, U, *tabs, A, B, C, Dg, False)
+        if not r <= ftol:
+            return f"residual {r:.3g} N after {nfev} evaluations (tolerance {ftol:.3g} N)"
+        return self._result(omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity)
+
+    # ---- result ---------------------------------------------------------------------------------------
+    def _evaluate(self, v, P, U, act, tabs, xs_l, xs_g):
+        Z = self.g.Z
+        xl = np.empty((Z, NL))
+        xg = np.empty(NG)
+        y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
+        yy = np.empty(y0.size)
+        dy = np.empty(y0.size)
+        diag = np.zeros(K.NOUT)
+        bd = np.zeros((Z, K.NBD))
+        Rl = np.empty((Z, NL))
+        Rg = np.empty(NG)
+        share = np.empty((Z, NG))
+        R = np.empty(v.size)
+        iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
+        r = CK.cage_scaled_residual(0.0, y0, v, xs_l, xs_g, act, iF, iM, P, U, *tabs, xl, xg, yy, dy, diag, bd, Rl,
+                                    Rg, share, R)
+        return r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R
+
+    def _result(self, omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity):
+        g = self.g
+        Z = g.Z
+        r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+        I = K.OUT_INDEX
+        heat = {k: float(diag[I[k]]) for k in _HEAT}
+        heat["total"] = float(sum(heat.values()))
+        b = K.NSTATE_FIXED + K.NSB * np.arange(Z)
+        h = np.zeros((4, Z))
+        lam = s.films_into(bd, h)
+        film = {"h_c_i": h[0], "h_min_i": h[1], "h_c_o": h[2], "h_min_o": h[3],
+                "Lambda_min": float(lam) if math.isfinite(lam) else 0.0}
+        disp = self.opt.coupling == "displacement"
+        pose = np.array(ring if disp else xg[:5], dtype=float)
+        reaction = np.array([diag[I[k]] for k in ("Fx", "Fy", "Fz", "Mx", "My")])
+        res = QuasiStaticCageResult(
+            geometry=g, omega=float(omega), loads=(-reaction if disp else np.array(ring, dtype=float)),
+            displacement=pose, T_oil=float(T_oil), coupling=self.opt.coupling,
+            cage_speed=float(xg[CK.G_WC]), cage_centre=np.array([yy[12], yy[13]]),
+            friction_torque=float(diag[I["friction_torque"]]), heat=heat, P_drive=float(diag[I["P_drive"]]),
+            reaction=reaction, alpha_i=bd[:, K.BD_AI].copy(), alpha_o=bd[:, K.BD_AO].copy(),
+            Q_i=bd[:, K.BD_QI].copy(), Q_o=bd[:, K.BD_QO].copy(), p_i=bd[:, K.BD_PI].copy(),
+            p_o=bd[:, K.BD_PO].copy(), pocket_force=bd[:, K.BD_FPOCKET].copy(), pocket_q=xl[:, 5].copy(),
+            orbit_speed=yy[b + 3].copy(), omega_ball=xl[:, 2:5].copy(), film=film,
+            outputs=output_vector(diag), residual=float(r), iterations=int(nfev), tau_cage=float("nan"),
+            input_names=DISP_INPUT_NAMES if disp else INPUT_NAMES,
+            x=(xl.copy(), xg.copy()), y=yy.copy(), diag=diag.copy())
+        if sensitivity:
+            self._sensitivity(res, v, s, P, U, act, tabs, xs_l, xs_g)
+        return res
+
+    def _sensitivity(self, res, v, s, P, U, act, tabs, xs_l, xs_g):
+        """res.sensitivity (d outputs / d inputs) and res.tau_cage (module docstring) at the solution v."""
+        g = self.g
+        Z = g.Z
+        n = v.size
+        r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+        A = np.empty((Z, NL, NL))
+        B = np.empty((Z, NL, NG))
+        C = np.empty((Z, NG, NL))
+        Dg = np.empty((NG, NG))
+        iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
+        y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
+        CK.cage_jacobian(0.0, y0, xl, xg, Rl, Rg, share, act, float(res.omega), iF, iM, P, U, *tabs, yy, dy, diag,
+                         bd, A, B, C, Dg)
+        d = np.ones(n)
+
+        def solve(rhs):            # J dv = rhs  (cage_arrow_solve solves -J dv = R)
+            dv = np.empty(n)
+            if not CK.cage_arrow_solve(A, B, C, Dg, xs_l, xs_g, d, 0.0, -rhs, dv):
+                raise np.linalg.LinAlgError("singular Jacobian at the solution")
+            return dv
+
+        # cage time constant: slope of the net torque on cage and balls with the cage speed, the other
+        # equations in equilibrium: (J^-1)[wc, cage torque row] = 1 / (dR_c/dwc on that manifold)
+        e = np.zeros(n)
+        e[Z * NL + CK.G_WC] = 1.0
+        z = solve(e)
+        hdm = 0.5 * g.dm
+        slope = 1.0 / (z[Z * NL + CK.G_WC] * xs_g[CK.G_WC]) * hdm     # dT/dwc [N m s]
+        inertia = g.cage.inertia + Z * g.ball_mass * (0.5 * g.dm) ** 2
+        res.tau_cage = float(inertia / -slope) if slope < 0.0 else float("inf")
+        # derivatives of the outputs: dx/dp = -J^-1 dR/dp, then one directional difference per input
+        p0 = res.inputs()
+        Sens = np.zeros((len(OUTPUT_NAMES), 7))
+        out0 = res.outputs
+        for k in range(7):
+            hp = [1e-6 * max(abs(p0[0]), 1.0), 1e-3, 1e-3, 1e-3, 1e-4, 1e-4, 1e-3][k]
+            if self.opt.coupling == "displacement" and 1 <= k <= 5:
+                hp = 1e-10 if k <= 3 else 1e-9
+            p = p0.copy()
+            p[k] += hp
+            s2, P2, U2, act2, tabs2, xs_l2, xs_g2 = self._problem(p[0], p[1:6], p[6])
+            R2 = np.empty(n)
+            self._residual_at(v, P2, U2, act2, tabs2, xs_l, xs_g, R2)
+            dRdp = (R2 - R) / hp
+            dv = solve(-dRdp)          # scaled unknowns' derivative
+            # outputs along (v + hp dv, p + hp e_k)
+            _, _, _, _, _, diag2, _, _, _, _, _ = self._evaluate(v + hp * dv, P2, U2, act2, tabs2, xs_l, xs_g)
+            Sens[:, k] = (output_vector(diag2) - out0) / hp
+        res.sensitivity = Sens
+
+    def _residual_at(self, v, P, U, act, tabs, xs_l, xs_g, R):
+        out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+        R[:] = out[-1]
+
+
+def solve_quasistatic_cage(geometry: BearingGeometry, omega: float, loads, options=None, **kw) -> QuasiStaticCageResult:
+    """Convenience wrapper: QuasiStaticCageModel(geometry, options).solve(omega, loads, **kw)."""
+    return QuasiStaticCageModel(geometry, options).solve(omega, loads, **kw)
