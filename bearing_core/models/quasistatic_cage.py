@@ -71,7 +71,7 @@ _DIAG = ("cage_speed", "friction_torque", "P_drive", None, "P_race_inner", "P_ra
          "P_drag", "P_churn_cage", "P_churn_ring", "Fx", "Fy", "Fz", "Mx", "My",
          "ir_x", "ir_y", "ir_z", "ir_tx", "ir_ty", "alpha_i_mean", "alpha_o_mean", "Q_i_max", "Q_o_max", "p_max",
          "cage_x", "cage_y")
-_HEAT = ("P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_churn_cage", "P_churn_ring")
+_HEAT = ("P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_churn_cage", "P_churn_ring", "P_damping")
 
 
 def output_vector(diag: np.ndarray) -> np.ndarray:
@@ -157,9 +157,21 @@ class QuasiStaticCageModel:
     settings are not used). Outer ring fixed."""
 
     #: residual tolerance relative to the load scale (largest of |F|, |M| / (dm/2), 1 N)
-    tol = 1e-6
+    tol = 5e-5
     #: residual evaluations of one solve attempt
     budget = 1500
+    #: weight of the orbit coupling (quasistatic_cage_kernels.orbit_coupling): 1 the periodic motion, 0
+    #: every ball held at the cage's azimuth rate
+    lam = 1.0
+    init_walls = False
+    #: tolerance factor of the intermediate continuation steps (the end point is solved to tol)
+    path_tol_factor = 10.0
+    _tol_factor = 1.0
+    #: residual evaluations of one continuation step
+    sub_budget = 200
+    #: step caps of the damped Newton solve: positions [um], tilts [10 urad]
+    cap_position = 10.0
+    cap_tilt = 10.0
 
     def __init__(self, geometry: BearingGeometry, options: DynamicsOptions | None = None):
         opt = DynamicsOptions() if options is None else options
@@ -219,38 +231,104 @@ class QuasiStaticCageModel:
         if start is not None and not isinstance(start, QuasiStaticCageResult):
             raise BearingInputError("start", type(start).__name__, "None or a QuasiStaticCageResult")
         errors = []
-        starts = ([("warm", start)] if start is not None else []) + [("tribological", None), ("jones-harris", None)]
-        for kind, st in starts:
-            try:
-                x0 = self._start(kind, st, omega, ring, T_oil)
-            except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
-                errors.append(f"{kind} start: {e}")
-                continue
-            res = self._solve_from(omega, ring, T_oil, x0, sensitivity, cold=(kind != "warm"))
+        if start is not None:
+            res = self._solve_from(omega, ring, T_oil, self._start("warm", start, omega, ring, T_oil), sensitivity,
+                                   cold=False)
             if isinstance(res, QuasiStaticCageResult):
                 return res
-            errors.append(f"{kind} start: {res}")
-        # continuation in speed from 1000 rpm (or omega, if lower)
-        w0 = min(omega, 1000.0 * math.pi / 30.0)
-        if w0 < omega:
-            speeds = list(np.geomspace(w0, omega, 6))
-            prev = None
-            for w in speeds:
-                try:
-                    x0 = self._start("warm" if prev is not None else "jones-harris", prev, w, ring, T_oil)
-                except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
-                    errors.append(f"speed continuation at {w * 30 / math.pi:.0f} rpm: {e}")
-                    break
-                res = self._solve_from(w, ring, T_oil, x0, sensitivity and w == speeds[-1], cold=prev is None)
-                if not isinstance(res, QuasiStaticCageResult):
-                    errors.append(f"speed continuation at {w * 30 / math.pi:.0f} rpm: {res}")
-                    break
-                prev = res
-            else:
-                return prev
+            errors.append(f"warm start: {res}")
+        budget = self.budget
+        try:
+            res = self._cold(omega, ring, T_oil, errors)
+        except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
+            errors.append(str(e))
+            res = None
+        finally:
+            self.budget = budget
+            self.lam = 1.0
+        if res is not None:
+            if sensitivity:
+                s_, P, U, act, tabs, xs_l, xs_g = self._problem(omega, ring, T_oil)
+                v = np.concatenate([(res.x[0] / xs_l).ravel(), res.x[1] / xs_g])
+                self._sensitivity(res, v, s_, P, U, act, tabs, xs_l, xs_g)
+            return res
         raise ConvergenceError(
             f"quasi-static cage model: no steady state found at {omega * 30 / math.pi:.0f} rpm, {name} "
             f"{np.array2string(ring, precision=6)}, oil {T_oil - 273.15:.1f} degC ({'; '.join(errors)})")
+
+    def _cold(self, omega, ring, T_oil, errors):
+        """Solve without a previous solution (module docstring): the pure axial load with every ball held at
+        the cage's azimuth rate (orbit coupling 0) from the free-ball tribological start (else Jones-Harris),
+        continuation in the other loads to the operating point, then in the orbit coupling to 1. With
+        displacement coupling the path runs under the loads the ring pose needs (Jones-Harris), and the
+        last step holds the pose. Returns the result or None (reasons appended to errors)."""
+        disp = self.opt.coupling == "displacement"
+        loads = self._loads_of_pose(ring, omega) if disp else ring
+        model = self if not disp else QuasiStaticCageModel(self.g, replace(self.opt, coupling="load"))
+        model.budget = self.sub_budget
+        ring0 = np.array([0.0, 0.0, loads[2], 0.0, 0.0])
+        model.lam = 0.0
+        res = None
+        for kind in ("tribological", "jones-harris"):
+            try:
+                x0 = model._start(kind, None, omega, ring0, T_oil)
+            except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
+                errors.append(f"{kind} start: {e}")
+                continue
+            model._tol_factor = self.path_tol_factor
+            res = model._solve_from(omega, ring0, T_oil, x0, False, cold=True)
+            model._tol_factor = 1.0
+            if isinstance(res, QuasiStaticCageResult):
+                break
+            errors.append(f"{kind} start under the axial load alone: {res}")
+            res = None
+        if res is None:
+            return None
+        res = model._continuation(res, lambda a: (ring0 + a * (loads - ring0), 0.0), omega, T_oil, errors, "loads")
+        if res is None:
+            return None
+        res = model._continuation(res, lambda a: (loads, a), omega, T_oil, errors, "orbit coupling")
+        if res is None:
+            return None
+        if not disp:       # the end point to the full tolerance
+            out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False,
+                                   cold=False)
+            if isinstance(out, QuasiStaticCageResult):
+                return out
+            errors.append(f"end point: {out}")
+            return None
+        self.lam = 1.0
+        out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False, cold=False)
+        if isinstance(out, QuasiStaticCageResult):
+            return out
+        errors.append(f"holding the ring pose: {out}")
+        return None
+
+    def _continuation(self, res, path, omega, T_oil, errors, what):
+        """Follow path(a) -> (ring input, orbit coupling) from a = 0 (res) to 1 in adaptive steps (a quarter
+        first, x1.5 after a success, halved after a failure, at least 1/512). Returns the end result or
+        None."""
+        a, da = 0.0, 0.25
+        lam0 = self.lam
+        self._tol_factor = self.path_tol_factor
+        try:
+            while a < 1.0:
+                a2 = min(a + da, 1.0)
+                ring, lam = path(a2)
+                self.lam = lam
+                out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False,
+                                       cold=False)
+                if isinstance(out, QuasiStaticCageResult):
+                    res, a, da = out, a2, da * 1.5
+                    continue
+                da *= 0.5
+                if da < 1.0 / 512.0:
+                    errors.append(f"continuation in the {what} stopped at {a:.4f} of the way: {out}")
+                    return None
+            return res
+        finally:
+            self.lam = 1.0 if res is not None and a >= 1.0 and what == "orbit coupling" else lam0
+            self._tol_factor = 1.0
 
     def _start(self, kind, st, omega, ring, T_oil):
         """Unknowns (xl, xg) to start from: a previous solution (speeds scaled to omega), the free-ball
@@ -265,6 +343,7 @@ class QuasiStaticCageModel:
             xl[:] = st.x[0]
             xg[:] = st.x[1]
             xl[:, 2:5] *= ratio
+            xl[:, 6] *= ratio
             xg[CK.G_WC] *= ratio
             if self.opt.coupling == "displacement":
                 xg[:5] = ring
@@ -279,6 +358,7 @@ class QuasiStaticCageModel:
             xl[:, 2:5] = tq.omega_ball
             xg[:5] = tq.u
             xg[CK.G_WC] = tq.cage_speed
+            xl[:, 6] = tq.orbit_speed
         else:
             qsm = quasistatic_model(g, "outer", fixed_tilt=self.opt.fixed_tilt)
             jh = qsm.solve(omega, loads, stiffness=False)
@@ -290,6 +370,7 @@ class QuasiStaticCageModel:
             xl[:, 4] = jh.omega_R * np.cos(jh.beta) + jh.omega_m
             xg[:5] = jh.u
             xg[CK.G_WC] = jh.cage_speed
+            xl[:, 6] = jh.omega_m
         if self.opt.coupling == "displacement":
             xg[:5] = ring
         return xl, xg
@@ -319,7 +400,7 @@ class QuasiStaticCageModel:
             act[:5] = False
         elif self.opt.fixed_tilt:
             act[3:5] = False
-        xs_l = np.array([1e-6, 1e-6, omega, omega, omega, 10.0])
+        xs_l = np.array([1e-6, 1e-6, omega, omega, omega, 10.0, omega])
         xs_g = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5, omega, 10.0, 10.0])
         return s, P, U, act, self._kernel_args(s), xs_l, xs_g
 
@@ -333,7 +414,7 @@ class QuasiStaticCageModel:
         xl0, xg0 = x0
         y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
         v = np.concatenate([(xl0 / xs_l).ravel(), xg0 / xs_g])
-        if cold:
+        if cold and self.init_walls:
             out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
             Ft = out[7][:, 5]
             v[5:Z * NL:NL] = (Ft + np.sign(Ft) * CK.Q_GAP) / xs_l[5]
@@ -343,25 +424,100 @@ class QuasiStaticCageModel:
                 v[Z * NL + 6:] = (Fc + Fc / np.hypot(*Fc) * CK.Q_GAP) / xs_g[6:]
         cap = np.full(v.size, 0.2)                  # speeds: 0.2 omega a step
         for j in range(Z):
-            cap[j * NL] = cap[j * NL + 1] = 2.0     # ball centres 2 um
+            cap[j * NL] = cap[j * NL + 1] = self.cap_position
             cap[j * NL + 5] = 20.0                  # q: 200 N
-        cap[Z * NL:Z * NL + 3] = 2.0                # ring 2 um
-        cap[Z * NL + 3:Z * NL + 5] = 1.0            # tilts 10 urad
+        cap[Z * NL:Z * NL + 3] = self.cap_position
+        cap[Z * NL + 3:Z * NL + 5] = self.cap_tilt
         cap[Z * NL + 6:] = 20.0                     # g: 200 N
         hdm = 0.5 * g.dm
         scale = max(np.max(np.abs(ring[:3])), np.max(np.abs(ring[3:])) / hdm, 1.0) if self.opt.coupling == "load" \
             else 100.0
-        ftol = self.tol * max(scale, 100.0)
-        iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
+        ftol = self.tol * self._tol_factor * max(scale, 100.0)
+        r, nfev = self._ptc(v, cap, float(omega), ftol, P, U, act, tabs, xs_l, xs_g)
+        if not r <= ftol:
+            return f"residual {r:.3g} N after {nfev} evaluations (tolerance {ftol:.3g} N)"
+        return self._result(omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity)
+
+    def _jacobian(self, v, omega, P, U, act, tabs, xs_l, xs_g):
+        """Dense Jacobian of the scaled residual at v (quasistatic_cage_kernels.cage_jacobian, 17 rhs calls)."""
+        Z = self.g.Z
+        n = v.size
+        xl = (v[:Z * NL].reshape(Z, NL) * xs_l).copy()
+        xg = v[Z * NL:] * xs_g
+        y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
+        yy, dy = np.empty(y0.size), np.empty(y0.size)
+        diag, bd = np.zeros(K.NOUT), np.zeros((Z, K.NBD))
         A = np.empty((Z, NL, NL))
         B = np.empty((Z, NL, NG))
         C = np.empty((Z, NG, NL))
         Dg = np.empty((NG, NG))
-        r, nfev, fresh = CK.cage_ptc(0.0, y0, v, xs_l, xs_g, cap, act, float(omega), float(ftol), int(self.budget),
-                                     1.0, iF, iM, P, U, *tabs, A, B, C, Dg, False)
-        if not r <= ftol:
-            return f"residual {r:.3g} N after {nfev} evaluations (tolerance {ftol:.3g} N)"
-        return self._result(omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity)
+        E = np.empty((Z, NL, NL))
+        iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
+        CK.cage_jacobian(0.0, y0, xl, xg, act, omega, iF, iM, P, U, *tabs, yy, dy, diag, bd, A, B, C, Dg, E, self.lam)
+        J = np.empty((n, n))
+        CK.cage_dense(A, B, C, Dg, E, xs_l, xs_g, J)
+        return J
+
+    def _ptc(self, v, cap, omega, ftol, P, U, act, tabs, xs_l, xs_g):
+        """Damped Newton on the scaled unknowns v (overwritten): the Newton step scaled down to the caps, then
+        halved until the residual's 2-norm falls (Armijo-free backtracking, down to 1/64); when no fraction
+        of it lowers the residual, Levenberg-Marquardt steps (J^T J + mu diag(J^T J)) dv = -J^T R with mu
+        growing ten-fold until one does. The Jacobian is kept over steps that contract the max-norm
+        residual at least four-fold (chord steps). Returns (max |R|, rhs evaluations)."""
+        budget = self.budget
+        R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)[-1]
+        r = float(np.max(np.abs(R)))
+        r2n = float(R @ R)
+        nfev = 1
+        J = None
+        while nfev < budget and not r <= ftol:
+            fresh = J is None
+            if fresh:
+                J = self._jacobian(v, omega, P, U, act, tabs, xs_l, xs_g)
+                nfev += 17
+            dv = np.empty(v.size)
+            if not CK.dense_solve(J, -R, dv):
+                dv[:] = np.nan
+            accepted = False
+            if np.all(np.isfinite(dv)):
+                f = max(1.0, float(np.max(np.abs(dv) / cap)))
+                a = 1.0 / f
+                while a >= 1.0 / 64.0 / f and nfev < budget:
+                    v2 = v + a * dv
+                    R2 = self._evaluate(v2, P, U, act, tabs, xs_l, xs_g)[-1]
+                    nfev += 1
+                    if np.all(np.isfinite(R2)) and float(R2 @ R2) < r2n:
+                        accepted = True
+                        break
+                    a *= 0.5
+            if not accepted and not fresh:
+                J = None                      # a kept Jacobian: rebuild it and try again
+                continue
+            if not accepted:
+                JTJ = J.T @ J
+                g = J.T @ R
+                dd = np.maximum(np.diag(JTJ), 1e-12 * max(np.max(np.diag(JTJ)), 1.0))
+                mu = 1e-3
+                while mu < 1e12 and nfev < budget:
+                    if not CK.dense_solve(JTJ + mu * np.diag(dd), -g, dv):
+                        mu *= 10.0
+                        continue
+                    f = max(1.0, float(np.max(np.abs(dv) / cap)))
+                    v2 = v + dv / f
+                    R2 = self._evaluate(v2, P, U, act, tabs, xs_l, xs_g)[-1]
+                    nfev += 1
+                    if np.all(np.isfinite(R2)) and float(R2 @ R2) < r2n:
+                        accepted = True
+                        break
+                    mu *= 10.0
+                if not accepted:
+                    break
+            r_new = float(np.max(np.abs(R2)))
+            contract = r_new / r if r > 0 else 0.0
+            v[:], R, r, r2n = v2, R2, r_new, float(R2 @ R2)
+            if contract > 0.25:
+                J = None
+        return r, nfev
 
     # ---- result ---------------------------------------------------------------------------------------
     def _evaluate(self, v, P, U, act, tabs, xs_l, xs_g):
@@ -379,7 +535,7 @@ class QuasiStaticCageModel:
         R = np.empty(v.size)
         iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
         r = CK.cage_scaled_residual(0.0, y0, v, xs_l, xs_g, act, iF, iM, P, U, *tabs, xl, xg, yy, dy, diag, bd, Rl,
-                                    Rg, share, R)
+                                    Rg, share, R, self.lam)
         return r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R
 
     def _result(self, omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity):
@@ -419,20 +575,11 @@ class QuasiStaticCageModel:
         Z = g.Z
         n = v.size
         r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
-        A = np.empty((Z, NL, NL))
-        B = np.empty((Z, NL, NG))
-        C = np.empty((Z, NG, NL))
-        Dg = np.empty((NG, NG))
-        iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
-        y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
-        CK.cage_jacobian(0.0, y0, xl, xg, Rl, Rg, share, act, float(res.omega), iF, iM, P, U, *tabs, yy, dy, diag,
-                         bd, A, B, C, Dg)
-        d = np.ones(n)
-
-        def solve(rhs):            # J dv = rhs  (cage_arrow_solve solves -J dv = R)
+        J = self._jacobian(v, float(res.omega), P, U, act, tabs, xs_l, xs_g)
+        def solve(rhs):            # J dv = rhs
             dv = np.empty(n)
-            if not CK.cage_arrow_solve(A, B, C, Dg, xs_l, xs_g, d, 0.0, -rhs, dv):
-                raise np.linalg.LinAlgError("singular Jacobian at the solution")
+            if not CK.dense_solve(J, np.ascontiguousarray(rhs, dtype=float), dv):
+                raise ConvergenceError("quasi-static cage model: singular Jacobian at the solution")
             return dv
 
         # cage time constant: slope of the net torque on cage and balls with the cage speed, the other

@@ -12,7 +12,7 @@ Residual:   cage_residual       one call of the dynamics' right-hand side (dynam
                                 loads, the cage's torque and its two forces, each ball's share of them
 Jacobian:   cage_jacobian       forward differences of the arrow structure: column k of every ball block from
                                 ONE rhs call that perturbs unknown k of all balls, one call per global
-                                unknown (14 calls)
+                                unknown (16 calls)
 Linear:     cage_arrow_solve    (diag(d) / dtau - J) dv = R by block elimination (a 6 x 6 LU per ball, the
                                 8 x 8 Schur complement of ring and cage), dense LU as fallback
 Solver:     cage_ptc            pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer. Anal. 35
@@ -28,30 +28,91 @@ import math
 import numpy as np
 
 from . import dynamics_kernels as K
+from ..contact.contact_kernels import ball_pocket_contact_rel
 from .quasistatic_tribo_kernels import _lu6
+from ..lubrication.pocket_film import ball_pocket_lubricated_rel
 from ..numerics.jit import hot
 
-NL = 6      # per-ball unknowns: r, z, Omega_r, Omega_t, Omega_z, q
+NL = 7      # per-ball unknowns: r, z, Omega_r, Omega_t, Omega_z, q, theta_dot
 NG = 8      # global unknowns: dx, dy, dz, tx, ty, wc, gx, gy
 G_WC, G_GX, G_GY = 5, 6, 7
 # force scale of the unknowns q and g inside the clearances [N]: a coordinate q of magnitude below Q_GAP
 # moves the ball linearly across its pocket clearance (and the cage across its land clearance), beyond it
 # the penalty contact carries |q| - Q_GAP
 Q_GAP = 1.0
-PTC_CONVERGED, PTC_BUDGET = 0, 1
 
 
 @hot
-def pocket_offset(q, cp, rp, kpk):
-    """Angular offset [rad] of a ball from its pocket centre for the pocket-force coordinate q [N]: across
-    the clearance cp [m] (half the diametral one) linearly for |q| <= Q_GAP, beyond it the penalty
-    penetration (|q| - Q_GAP) / kpk (kpk [N/m] the pocket stiffness); rp [m] the arm about the cage
-    centre. q > 0: the ball leads its pocket (it drives the cage)."""
-    a = abs(q)
-    if a <= Q_GAP:
-        return q * cp / (Q_GAP * rp)
-    s = 1.0 if q > 0.0 else -1.0
-    return s * (cp + (a - Q_GAP) / kpk) / rp
+def pocket_tangential_force(dth, thb, wc, rbc, P, D, Wr, Wz):
+    """Tangential force [N] of the pocket on the ball (along the orbit; < 0 pushes it back) at the offset dth
+    [rad] from the pocket centre about the cage centre (arm rbc [m]), the ball's azimuth rate about the cage
+    centre thb and the cage speed wc [rad/s], its angular velocity components Wr, Wz [rad/s]: the
+    dynamics' pocket kernels (dry: contact_kernels.ball_pocket_contact_rel; oil: pocket_film.
+    ball_pocket_lubricated_rel, films on both walls with their squeeze terms), at rest radially and axially."""
+    if P[K.P_LUBE] > 0.5:
+        r = ball_pocket_lubricated_rel(dth, thb, wc, rbc, P[K.P_CPOCKET], P[K.P_KPOCKET], P[K.P_CPOCKETD],
+                                       P[K.P_MUBL], P[K.P_MUEHL], 0.01, P[K.P_ETA_PK], P[K.P_ALPHA_PK],
+                                       P[K.P_EPK], P[K.P_SIGPK], D, 0.0, 0.0, Wr, Wz, 0.0, 0.0)
+        return r[1]
+    r = ball_pocket_contact_rel(dth, thb, wc, rbc, P[K.P_CPOCKET], P[K.P_KPOCKET], P[K.P_CPOCKETD],
+                                P[K.P_MUPOCKET], 0.01, D, 0.0, 0.0, Wr, Wz, 0.0, 0.0)
+    return r[1]
+
+
+@hot
+def pocket_place(q, thb, wc, rbc, P, D, Wr, Wz):
+    """Offset dth [rad] of the ball from its pocket centre (about the cage centre) at which the pocket's
+    tangential force on the ball is -q [N] (q > 0: the ball leads its pocket and drives the cage): the
+    root of pocket_tangential_force + q, decreasing in dth, bracketed by the penetrations that carry
+    |q| + 1e3 N on the penalty stiffness alone, by false position with the Illinois modification (Dahlquist
+    & Bjorck, Numerical Methods, Sec. 6.2) to 1e-9 N or 1e-14 rad; 0 (the pocket centre) where a dry
+    pocket carries no force (q = 0 in the clearance)."""
+    if q == 0.0 and P[K.P_LUBE] < 0.5:
+        return 0.0
+    cp = P[K.P_CPOCKET]
+    kpk = P[K.P_KPOCKET]
+    lim = (cp + (abs(q) + 1e3) / kpk) / rbc
+    lo = -lim
+    hi = lim
+    flo = pocket_tangential_force(lo, thb, wc, rbc, P, D, Wr, Wz) + q
+    fhi = pocket_tangential_force(hi, thb, wc, rbc, P, D, Wr, Wz) + q
+    side = 0
+    x = 0.0
+    for _ in range(100):
+        x = (lo * fhi - hi * flo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
+        if not (lo < x < hi):
+            x = 0.5 * (lo + hi)
+        f = pocket_tangential_force(x, thb, wc, rbc, P, D, Wr, Wz) + q
+        if abs(f) <= 1e-9 or hi - lo <= 1e-14:
+            break
+        if f > 0.0:
+            lo = x
+            flo = f
+            if side == -1:
+                fhi *= 0.5
+            side = -1
+        else:
+            hi = x
+            fhi = f
+            if side == 1:
+                flo *= 0.5
+            side = 1
+    return x
+
+
+@hot
+def dense_solve(J, R, dv):
+    """dv = J^-1 R by LU with partial pivoting (quasistatic_tribo_kernels._lu6, dynamics_kernels._lu_solve);
+    False if J is exactly singular."""
+    n = R.size
+    M = J.copy()
+    piv = np.empty(n, dtype=np.int64)
+    if _lu6(M, piv) == 0.0:
+        return False
+    for i in range(n):
+        dv[i] = R[i]
+    K._lu_solve(M, piv, dv)
+    return True
 
 
 @hot
@@ -82,9 +143,9 @@ def cage_centre(gx, gy, P, U):
 def cage_state(y0, xl, xg, P, U, yy):
     """yy = y0 with the unknowns written into the dynamics state: ring pose (rates 0), cage angle 0, speed wc,
     centre from (gx, gy) (at rest); ball j at the azimuth whose offset from pocket j (the right-hand side's
-    dth, measured about the cage centre) is pocket_offset(q_j), at (r, z), orbiting about the bearing axis
-    at the speed that keeps it in its pocket (its azimuth about the cage centre turns at wc), no radial or
-    axial velocity, angular velocity (Omega_r, Omega_t, Omega_z)."""
+    dth, measured about the cage centre) makes the pocket's tangential force -q_j (pocket_place), at (r, z),
+    orbiting about the bearing axis at theta_dot_j, no radial or axial velocity, angular velocity
+    (Omega_r, Omega_t, Omega_z)."""
     for i in range(y0.size):
         yy[i] = y0[i]
     for k in range(5):
@@ -99,26 +160,25 @@ def cage_state(y0, xl, xg, P, U, yy):
     yy[14] = 0.0
     yy[15] = 0.0
     Z = xl.shape[0]
-    cp = P[K.P_CPOCKET]
-    kpk = P[K.P_KPOCKET]
+    D = P[K.P_D]
     for j in range(Z):
         b = K.NSTATE_FIXED + K.NSB * j
         rb = xl[j, 0]
-        d = pocket_offset(xl[j, 5], cp, rb, kpk)
+        thd = xl[j, 6]
         psi = 2.0 * math.pi * j / Z
-        th = psi + d
-        # the rhs measures the offset about the cage centre: th + atan2(xc s - yc c, rb - xc c - yc s) - psi
-        # = d; fixed point (the correction is of order e / rb, its derivative in th too)
-        for _ in range(3):
+        th = psi
+        # the rhs measures the offset about the cage centre, dth = th - psi + atan2(xc s - yc c, rb - xc c -
+        # yc s), with the azimuth rate about it thb = thd rb (bx c + by s) / |b|^2; both change with th by
+        # terms of order e / rb: two fixed-point passes
+        for _ in range(2):
             c = math.cos(th)
             s = math.sin(th)
+            bx = rb * c - xc
+            by = rb * s - yc
+            rbc = math.sqrt(bx * bx + by * by)
+            thb = thd * rb * (bx * c + by * s) / (rbc * rbc)
+            d = pocket_place(xl[j, 5], thb, wc, rbc, P, D, xl[j, 2], xl[j, 4])
             th = psi + d - math.atan2(xc * s - yc * c, rb - xc * c - yc * s)
-        c = math.cos(th)
-        s = math.sin(th)
-        bx = rb * c - xc
-        by = rb * s - yc
-        # azimuth rate about the cage centre = thd rb (bx c + by s) / |b|^2 (rhs's thb_d with rd = 0): = wc
-        thd = wc * (bx * bx + by * by) / (rb * (bx * c + by * s))
         yy[b] = th
         yy[b + 1] = rb
         yy[b + 2] = xl[j, 1]
@@ -128,6 +188,51 @@ def cage_state(y0, xl, xg, P, U, yy):
         yy[b + 6] = xl[j, 2]
         yy[b + 7] = xl[j, 3]
         yy[b + 8] = xl[j, 4]
+
+
+@hot
+def kin_scale(P, U):
+    """Scale [N s] of the kinematic residuals: m_b (dm/2) |omega| Z / (2 pi), the orbital inertia force of a
+    speed difference of 1 rad/s over one ball spacing."""
+    return P[K.P_MB] * 0.5 * P[K.P_DM] * max(abs(U[K.U_W1]), 1.0) * P[K.P_Z] / (2.0 * math.pi)
+
+
+@hot
+def pocket_offsets(yy, Z, dth):
+    """dth[j]: offset [rad] of ball j from its pocket centre about the cage centre at the state yy (the
+    right-hand side's dth; cage angle 0)."""
+    xc = yy[12]
+    yc = yy[13]
+    for j in range(Z):
+        b = K.NSTATE_FIXED + K.NSB * j
+        th = yy[b]
+        rb = yy[b + 1]
+        c = math.cos(th)
+        s = math.sin(th)
+        dth[j] = th - 2.0 * math.pi * j / Z + math.atan2(xc * s - yc * c, rb - xc * c - yc * s)
+
+
+@hot
+def orbit_coupling(xl, xg, yy, P, U, Rl, lam):
+    """Add lam times the terms that tie ball j to ball j - 1 along the orbit (lam = 1: the periodic motion;
+    0: every ball held at the cage's azimuth rate, the start of a continuation in lam). The balls at the
+    pocket azimuths psi_j = 2 pi j / Z are one ball seen a time dpsi / wc apart (the steady motion is
+    periodic in the cage frame), so along its orbit a ball's orbital speed and its place in the pocket
+    change at the rates wc (theta_dot_j - theta_dot_(j-1)) / dpsi and wc (dth_j - dth_(j-1)) / dpsi
+    (first-order upwind differences in the direction of the orbit, wc > 0). The F_t equation gets the
+    orbital inertia force m r wc (theta_dot_j - theta_dot_(j-1)) / dpsi, the kinematic equation reads
+    thb_j - wc = wc (dth_j - dth_(j-1)) / dpsi (times kin_scale)."""
+    Z = xl.shape[0]
+    dpsi = 2.0 * math.pi / Z
+    wc = xg[G_WC]
+    mb = P[K.P_MB]
+    ks = kin_scale(P, U)
+    dth = np.empty(Z)
+    pocket_offsets(yy, Z, dth)
+    for j in range(Z):
+        i = j - 1 if j > 0 else Z - 1
+        Rl[j, 5] -= lam * mb * xl[j, 0] * wc * (xl[j, 6] - xl[i, 6]) / dpsi
+        Rl[j, 6] -= lam * ks * wc * (dth[j] - dth[i]) / dpsi
 
 
 @hot
@@ -153,6 +258,16 @@ def cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, 
         Rl[j, 3] = Jb * dy[b + 7] / hD
         Rl[j, 4] = Jb * dy[b + 8] / hD
         Rl[j, 5] = mb * yy[b + 1] * dy[b + 3]          # F_t (orbital acceleration times m r)
+        # azimuth rate of the ball about the cage centre (rhs's thb_d with rd = 0) minus the cage speed, in
+        # force units (times KIN_SCALE)
+        th = yy[b]
+        c = math.cos(th)
+        sn = math.sin(th)
+        rb_ = yy[b + 1]
+        bx = rb_ * c - yy[12]
+        by = rb_ * sn - yy[13]
+        thb = yy[b + 3] * rb_ * (bx * c + by * sn) / (bx * bx + by * by)
+        Rl[j, 6] = kin_scale(P, U) * (thb - xg[G_WC])
         share[j, 0] = bd[j, K.BD_CFRX]
         share[j, 1] = bd[j, K.BD_CFRY]
         share[j, 2] = bd[j, K.BD_CFRZ]
@@ -178,7 +293,7 @@ def cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, 
 
 @hot
 def cage_scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                         xl, xg, yy, dy, diag, bd, Rl, Rg, share, R):
+                         xl, xg, yy, dy, diag, bd, Rl, Rg, share, R, lam):
     """R = residual vector (balls then globals) at the scaled unknowns v (non-finite entries 1e12); (xl, xg)
     and (Rl, Rg, share) receive the physical unknowns and the residual blocks. Returns max |R|."""
     Z = xl.shape[0]
@@ -189,6 +304,7 @@ def cage_scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, 
         xg[k] = v[Z * NL + k] * xs_g[k]
     cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                   yy, dy, diag, bd, Rl, Rg, share)
+    orbit_coupling(xl, xg, yy, P, U, Rl, lam)
     r = 0.0
     for j in range(Z):
         for k in range(NL):
@@ -212,7 +328,8 @@ def _steps(xl, xg, omega, hl, hg):
         hl[j, 1] = 1e-10
         for k in range(2, 5):
             hl[j, k] = 1e-7 * max(abs(xl[j, k]), 0.1 * omega) + 1e-9
-        hl[j, 5] = 1e-4 if abs(xl[j, 5]) > Q_GAP else 1e-6
+        hl[j, 5] = 1e-6 * max(abs(xl[j, 5]), 1.0)
+        hl[j, 6] = 1e-7 * max(abs(omega), 1.0)
     hg[0] = 1e-10
     hg[1] = 1e-10
     hg[2] = 1e-10
@@ -225,12 +342,37 @@ def _steps(xl, xg, omega, hl, hg):
 
 
 @hot
-def cage_jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
-                  qx, qwx, qy, qwy, yy, dy, diag, bd, A, B, C, Dg):
-    """Arrow-structured Jacobian at (xl, xg) with residuals (Rl, Rg, share) there by forward differences
-    (14 rhs calls; steps: _steps): ball blocks A (Z x 6 x 6), ball-global B (Z x 6 x 8), global-ball C
-    (Z x 8 x 6), global-global Dg (8 x 8; -1 on the diagonal of inactive unknowns)."""
+def _full_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy, diag, bd,
+                   Rl, Rg, share, lam):
+    cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
+                  yy, dy, diag, bd, Rl, Rg, share)
+    orbit_coupling(xl, xg, yy, P, U, Rl, lam)
+
+
+@hot
+def ball_colour(j, Z):
+    """Colour of ball j for the coloured differences: neighbours along the orbit differ (0/1 alternating;
+    an odd number of balls gives the last one colour 2)."""
+    if Z % 2 == 1 and j == Z - 1:
+        return 2
+    return j % 2
+
+
+@hot
+def cage_jacobian(t, y0, xl, xg, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
+                  qx, qwx, qy, qwy, yy, dy, diag, bd, A, B, C, Dg, E, lam):
+    """Jacobian at (xl, xg) by forward differences (steps: _steps). Ball columns: unknown k of every ball of
+    one colour (ball_colour: no two neighbours along the orbit) perturbed in ONE rhs call; a ball's rows
+    couple only to its own unknowns (A, Z x 7 x 7), to those of the ball before it along the orbit (E, Z x
+    7 x 7, through orbit_coupling) and to the globals; the globals' rows to each ball through its share (C,
+    Z x 8 x 7). Global columns: one call each (B, Z x 7 x 8; Dg, 8 x 8, -1 on the diagonal of inactive
+    unknowns). 7 x (2 or 3) + 8 + 1 rhs calls."""
     Z = xl.shape[0]
+    Rl = np.empty((Z, NL))
+    Rg = np.empty(NG)
+    share = np.empty((Z, NG))
+    _full_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy, diag, bd,
+                   Rl, Rg, share, lam)
     xp = xl.copy()
     gp = xg.copy()
     Rl2 = np.empty((Z, NL))
@@ -239,23 +381,34 @@ def cage_jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i,
     hl = np.empty((Z, NL))
     hg = np.empty(NG)
     _steps(xl, xg, omega, hl, hg)
+    ncol = 3 if Z % 2 == 1 else 2
+    for j in range(Z):
+        for a in range(NL):
+            for b in range(NL):
+                E[j, a, b] = 0.0
     for k in range(NL):
-        for j in range(Z):
-            xp[j, k] = xl[j, k] + hl[j, k]
-        cage_residual(t, y0, xp, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                      yy, dy, diag, bd, Rl2, Rg2, sh2)
-        for j in range(Z):
-            xp[j, k] = xl[j, k]
-            h = hl[j, k]
-            for i in range(NL):
-                A[j, i, k] = (Rl2[j, i] - Rl[j, i]) / h
-            for i in range(NG):
-                C[j, i, k] = (sh2[j, i] - share[j, i]) / h if act[i] else 0.0
+        for col in range(ncol):
+            for j in range(Z):
+                if ball_colour(j, Z) == col:
+                    xp[j, k] = xl[j, k] + hl[j, k]
+            _full_residual(t, y0, xp, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy,
+                           diag, bd, Rl2, Rg2, sh2, lam)
+            for j in range(Z):
+                if ball_colour(j, Z) != col:
+                    continue
+                xp[j, k] = xl[j, k]
+                h = hl[j, k]
+                n = j + 1 if j < Z - 1 else 0           # the ball after j along the orbit
+                for i in range(NL):
+                    A[j, i, k] = (Rl2[j, i] - Rl[j, i]) / h
+                    E[n, i, k] = (Rl2[n, i] - Rl[n, i]) / h
+                for i in range(NG):
+                    C[j, i, k] = (sh2[j, i] - share[j, i]) / h if act[i] else 0.0
     for k in range(NG):
         if act[k]:
             gp[k] = xg[k] + hg[k]
-            cage_residual(t, y0, xl, gp, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                          yy, dy, diag, bd, Rl2, Rg2, sh2)
+            _full_residual(t, y0, xl, gp, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy,
+                           diag, bd, Rl2, Rg2, sh2, lam)
             gp[k] = xg[k]
             for j in range(Z):
                 for i in range(NL):
@@ -268,17 +421,14 @@ def cage_jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i,
                     B[j, i, k] = 0.0
             for i in range(NG):
                 Dg[i, k] = 0.0
-    # the ball columns' effect on the global rows is in C (each ball's share); the share does not hold the
-    # global terms that depend on ball unknowns only through the cage / ring (none: land and churning
-    # depend on the cage's own unknowns)
     for i in range(NG):
         if not act[i]:
             Dg[i, i] = -1.0
 
 
 @hot
-def cage_assemble(A, B, C, Dg, xs_l, xs_g, J):
-    """Dense Jacobian J (n x n, n = 6 Z + 8) of the scaled unknowns from the arrow blocks."""
+def cage_dense(A, B, C, Dg, E, xs_l, xs_g, J):
+    """Dense Jacobian J (n x n, n = 7 Z + 8) of the scaled unknowns from the blocks."""
     Z = A.shape[0]
     ng = Z * NL
     for i in range(J.shape[0]):
@@ -286,9 +436,11 @@ def cage_assemble(A, B, C, Dg, xs_l, xs_g, J):
             J[i, k] = 0.0
     for j in range(Z):
         r0 = j * NL
+        p0 = (j - 1 if j > 0 else Z - 1) * NL
         for i in range(NL):
             for k in range(NL):
                 J[r0 + i, r0 + k] = A[j, i, k] * xs_l[k]
+                J[r0 + i, p0 + k] += E[j, i, k] * xs_l[k]
             for k in range(NG):
                 J[r0 + i, ng + k] = B[j, i, k] * xs_g[k]
         for i in range(NG):
@@ -299,197 +451,3 @@ def cage_assemble(A, B, C, Dg, xs_l, xs_g, J):
             J[ng + i, ng + k] = Dg[i, k] * xs_g[k]
 
 
-@hot
-def _dense_solve(A, B, C, Dg, xs_l, xs_g, d, dtau, R, dv):
-    n = R.size
-    M = np.empty((n, n))
-    cage_assemble(A, B, C, Dg, xs_l, xs_g, M)
-    for i in range(n):
-        for k in range(n):
-            M[i, k] = -M[i, k]
-        if dtau > 0.0:
-            M[i, i] += d[i] / dtau
-    piv = np.empty(n, dtype=np.int64)
-    if _lu6(M, piv) == 0.0:
-        return False
-    for i in range(n):
-        dv[i] = R[i]
-    K._lu_solve(M, piv, dv)
-    return True
-
-
-@hot
-def cage_arrow_solve(A, B, C, Dg, xs_l, xs_g, d, dtau, R, dv):
-    """Solve (diag(d) / dtau - J) dv = R (dtau <= 0: -J dv = R, Newton), J the scaled arrow Jacobian, by
-    eliminating each ball's 6 unknowns and solving the 8 x 8 Schur complement of ring and cage; dense LU
-    when a pivot falls below 1e-12 of its block's largest entry. False if exactly singular."""
-    Z = A.shape[0]
-    ng = Z * NL
-    Mjj = np.empty((NL, NL))
-    X = np.empty((Z, NL, NG))
-    x = np.empty((Z, NL))
-    S = np.empty((NG, NG))
-    s = np.empty(NG)
-    col = np.empty(NL)
-    piv = np.empty(NL, dtype=np.int64)
-    pivs = np.empty(NG, dtype=np.int64)
-    for i in range(NG):
-        for k in range(NG):
-            S[i, k] = -Dg[i, k] * xs_g[k]
-        if dtau > 0.0:
-            S[i, i] += d[ng + i] / dtau
-        s[i] = R[ng + i]
-    for j in range(Z):
-        r0 = j * NL
-        for i in range(NL):
-            for k in range(NL):
-                Mjj[i, k] = -A[j, i, k] * xs_l[k]
-            if dtau > 0.0:
-                Mjj[i, i] += d[r0 + i] / dtau
-        if not _lu6(Mjj, piv) > 1e-12:
-            return _dense_solve(A, B, C, Dg, xs_l, xs_g, d, dtau, R, dv)
-        for k in range(NG):
-            for i in range(NL):
-                col[i] = -B[j, i, k] * xs_g[k]
-            K._lu_solve(Mjj, piv, col)
-            for i in range(NL):
-                X[j, i, k] = col[i]
-        for i in range(NL):
-            col[i] = R[r0 + i]
-        K._lu_solve(Mjj, piv, col)
-        for i in range(NL):
-            x[j, i] = col[i]
-        for i in range(NG):
-            acc = 0.0
-            for m in range(NL):
-                acc += C[j, i, m] * xs_l[m] * x[j, m]
-            s[i] += acc
-            for k in range(NG):
-                acc = 0.0
-                for m in range(NL):
-                    acc += C[j, i, m] * xs_l[m] * X[j, m, k]
-                S[i, k] += acc
-    if not _lu6(S, pivs) > 1e-12:
-        return _dense_solve(A, B, C, Dg, xs_l, xs_g, d, dtau, R, dv)
-    K._lu_solve(S, pivs, s)
-    for k in range(NG):
-        dv[ng + k] = s[k]
-    for j in range(Z):
-        r0 = j * NL
-        for i in range(NL):
-            acc = x[j, i]
-            for k in range(NG):
-                acc -= X[j, i, k] * s[k]
-            dv[r0 + i] = acc
-    for i in range(dv.size):
-        if not math.isfinite(dv[i]):
-            return _dense_solve(A, B, C, Dg, xs_l, xs_g, d, dtau, R, dv)
-    return True
-
-
-@hot
-def cage_diagonal(A, Dg, xs_l, xs_g, d):
-    """d = |diag J| of the scaled Jacobian, floored at 1e-6 of its largest entry (and of 1)."""
-    Z = A.shape[0]
-    ng = Z * NL
-    dmax = 0.0
-    for j in range(Z):
-        for k in range(NL):
-            d[j * NL + k] = abs(A[j, k, k] * xs_l[k])
-            dmax = max(dmax, d[j * NL + k])
-    for k in range(NG):
-        d[ng + k] = abs(Dg[k, k] * xs_g[k])
-        dmax = max(dmax, d[ng + k])
-    floor = 1e-6 * max(dmax, 1.0)
-    for i in range(d.size):
-        d[i] = max(d[i], floor)
-
-
-@hot
-def cage_ptc(t, y0, v, xs_l, xs_g, cap, act, omega, ftol, budget, dtau0, iF, iM, P, U, tab_i, tab_o, ta0, tda,
-             tp, qx, qwx, qy, qwy, A, B, C, Dg, have_jac):
-    """Pseudo-transient continuation from the scaled unknowns v (overwritten with the end point): implicit
-    Euler steps (diag(|J_ii|) / dtau - J) dv = R of the pseudo-dynamics dx/dtau = diag(|J_ii|)^-1 R(x),
-    dtau from dtau0 by switched evolution relaxation (dtau *= |R_old| / |R_new| within [0.3, 10]; beyond
-    1e12 the steps are Newton's), each step scaled down to the caps cap (per scaled unknown). The Jacobian
-    (A, B, C, Dg; given at v if have_jac) is kept over accepted steps that contract the residual at least
-    two-fold and rebuilt otherwise; a step that raises the residual is rejected (on a fresh Jacobian dtau
-    shrinks ten-fold). Stops when max |R| <= ftol or after budget residual evaluations (15 per Jacobian).
-    Returns (max |R|, evaluations, Jacobian fresh at v: 1/0)."""
-    Z = (v.size - NG) // NL
-    n = v.size
-    xl = np.empty((Z, NL))
-    xg = np.empty(NG)
-    yy = np.empty(y0.size)
-    dy = np.empty(y0.size)
-    diag = np.zeros(K.NOUT)
-    bd = np.zeros((Z, K.NBD))
-    Rl = np.empty((Z, NL))
-    Rg = np.empty(NG)
-    share = np.empty((Z, NG))
-    R = np.empty(n)
-    R2 = np.empty(n)
-    v2 = np.empty(n)
-    dv = np.empty(n)
-    d = np.empty(n)
-    r = cage_scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy,
-                             qwy, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R)
-    nfev = 1
-    dtau = dtau0
-    fresh = have_jac
-    if fresh:
-        cage_diagonal(A, Dg, xs_l, xs_g, d)
-    age = 0
-    at_v = True
-    while nfev < budget and r > ftol:
-        if not fresh:
-            if not at_v:
-                cage_scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx,
-                                     qy, qwy, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R)
-                nfev += 1
-                at_v = True
-            cage_jacobian(t, y0, xl, xg, Rl, Rg, share, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
-                          qx, qwx, qy, qwy, yy, dy, diag, bd, A, B, C, Dg)
-            nfev += 14
-            cage_diagonal(A, Dg, xs_l, xs_g, d)
-            fresh = True
-            age = 0
-        if not cage_arrow_solve(A, B, C, Dg, xs_l, xs_g, d, dtau if dtau < 1e12 else 0.0, R, dv):
-            dtau *= 0.1
-            nfev += 1
-            if dtau < 1e-10:
-                break
-            continue
-        f = 1.0
-        for i in range(n):
-            f = max(f, abs(dv[i]) / cap[i])
-        for i in range(n):
-            v2[i] = v[i] + dv[i] / f
-        r2 = cage_scaled_residual(t, y0, v2, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
-                                  qx, qwx, qy, qwy, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R2)
-        nfev += 1
-        at_v = False
-        if not math.isfinite(r2) or r2 > r * (1.0 if f == 1.0 else 2.0):
-            if age > 0:
-                fresh = False           # a kept Jacobian: rebuild it first
-            else:
-                dtau = max(dtau * 0.1, 1e-10)
-                if dtau <= 1e-10:
-                    break
-            continue
-        for i in range(n):
-            v[i] = v2[i]
-            R[i] = R2[i]
-        at_v = True
-        ratio = r2 / r if r > 0.0 else 0.0
-        dtau = min(dtau * min(max(r / max(r2, 1e-300), 0.3), 10.0), 1e15)
-        r = r2
-        age += 1
-        if ratio > 0.5 or age >= 8:
-            fresh = False
-        else:
-            fresh = fresh       # chord step: the Jacobian is kept
-        if age > 0 and fresh:
-            pass
-    # a fresh Jacobian only if no accepted step since it was built
-    return r, nfev, 1 if (fresh and age == 0) else 0
