@@ -85,7 +85,8 @@ def dynamic_window(g, regime, rpm, fx, fz, window=0.04, min_time=0.1, max_time=0
 def reference(n, seed, regimes):
     g = load_bearing("7218B")
     data = json.loads(REF_FILE.read_text()) if REF_FILE.exists() else {"points": []}
-    done = {(p["regime"], round(p["speed_rpm"], 6), round(p["Fx"], 6), round(p["Fz"], 6)) for p in data["points"]}
+    done = {(p["regime"], round(p["speed_rpm"], 6), round(p["load_Fx"], 6), round(p["load_Fz"], 6))
+            for p in data["points"]}
     pts = []
     for regime in regimes:
         if regime == "oil":
@@ -100,7 +101,7 @@ def reference(n, seed, regimes):
             err = None
         except Exception as e:   # noqa: BLE001 (recorded with the point)
             s, err = {}, f"{type(e).__name__}: {e}"
-        s.update(regime=regime, speed_rpm=rpm, Fx=fx, Fz=fz, kind=kind, wall_s=time.perf_counter() - t0, error=err)
+        s.update(regime=regime, speed_rpm=rpm, load_Fx=fx, load_Fz=fz, kind=kind, wall_s=time.perf_counter() - t0, error=err)
         data["points"].append(s)
         data["machine"] = machine_info()
         data["seed"] = seed
@@ -110,17 +111,141 @@ def reference(n, seed, regimes):
               f"({s['wall_s']:.0f} s) {err or ''}", flush=True)
 
 
+TOL = {"cage_speed": 0.01, "friction_torque": 0.05, "heat": 0.05, "reaction": 0.005, "alpha_deg": 0.5}
+
+
+def qs_model(regime):
+    from bearing_core.models.quasistatic_cage import QuasiStaticCageModel
+    return QuasiStaticCageModel(load_bearing("7218B"), options(regime))
+
+
+def accuracy(regimes, out_json=None):
+    """The quasi-static cage model at the reference points: errors against the dynamic window means (relative
+    for cage speed, friction torque, heat; reactions relative to the largest load component; contact angles
+    absolute in degrees), cold solve time, warm re-solve time at +0.5 % speed, and the linear update's
+    error there."""
+    data = json.loads(REF_FILE.read_text())
+    rows = []
+    models = {r: qs_model(r) for r in regimes}
+    for p in data["points"]:
+        if p["regime"] not in regimes or p.get("error"):
+            continue
+        m = models[p["regime"]]
+        w = p["speed_rpm"] * RPM
+        loads = (p["load_Fx"], 0.0, p["load_Fz"], 0.0, 0.0)
+        row = dict(regime=p["regime"], speed_rpm=p["speed_rpm"], Fx=p["load_Fx"], Fz=p["load_Fz"], kind=p["kind"],
+                   dyn_steady=p["steady"])
+        t0 = time.perf_counter()
+        try:
+            r = m.solve(w, loads)
+        except Exception as e:   # noqa: BLE001 (reported per point)
+            row.update(converged=False, error=str(e)[:300], cold_s=time.perf_counter() - t0)
+            rows.append(row)
+            print(f"{p['regime']:5s} {p['speed_rpm']:6.0f} rpm Fx {p['load_Fx']:5.0f} Fz {p['load_Fz']:5.0f}: "
+                  f"NOT CONVERGED {row['error'][:120]}", flush=True)
+            continue
+        row["cold_s"] = time.perf_counter() - t0
+        heat_dyn = sum(p[k] for k in HEAT)
+        react_dyn = np.array([p[k] for k in ("Fx", "Fy", "Fz", "Mx", "My")])
+        hdm = 0.5 * m.g.dm
+        scale = max(abs(p["load_Fx"]), abs(p["load_Fz"]))
+        dre = np.abs(r.reaction - react_dyn)
+        dre[3:] /= hdm
+        row.update(converged=True, iterations=r.iterations,
+                   cage_rpm=r.cage_speed / RPM, cage_rpm_dyn=p["cage_speed"] / RPM,
+                   torque=r.friction_torque, torque_dyn=p["friction_torque"],
+                   heat=r.heat["total"], heat_dyn=heat_dyn, P_drive=r.P_drive,
+                   err_cage=r.cage_speed / p["cage_speed"] - 1.0,
+                   err_torque=r.friction_torque / p["friction_torque"] - 1.0,
+                   err_heat=r.heat["total"] / heat_dyn - 1.0,
+                   err_reaction=float(np.max(dre)) / scale,
+                   err_alpha_i_deg=math.degrees(r.output("alpha_i_mean") - p["alpha_i_mean"]),
+                   err_alpha_o_deg=math.degrees(r.output("alpha_o_mean") - p["alpha_o_mean"]),
+                   power_balance=r.heat["total"] / r.P_drive - 1.0, tau_cage_s=r.tau_cage,
+                   heat_by_source={k: r.heat[k] for k in r.heat}, heat_by_source_dyn={k: p[k] for k in HEAT})
+        w2 = w * 1.005
+        t0 = time.perf_counter()
+        try:
+            r2 = m.solve(w2, loads, start=r, sensitivity=False)
+            row["warm_s"] = time.perf_counter() - t0
+            pred = r.predict(w2, loads)
+            row["update_err_cage"] = pred[0] / r2.cage_speed - 1.0
+            row["update_err_torque"] = pred[1] / r2.friction_torque - 1.0
+        except Exception as e:   # noqa: BLE001
+            row["warm_error"] = str(e)[:200]
+        rows.append(row)
+        print(f"{p['regime']:5s} {p['speed_rpm']:6.0f} rpm Fx {p['load_Fx']:5.0f} Fz {p['load_Fz']:5.0f}: cage "
+              f"{row['err_cage'] * 100:+6.2f} % torque {row['err_torque'] * 100:+6.1f} % heat {row['err_heat'] * 100:+6.1f} % "
+              f"react {row['err_reaction'] * 100:5.2f} % ai {row['err_alpha_i_deg']:+5.2f} ao {row['err_alpha_o_deg']:+5.2f} deg "
+              f"({row['cold_s']:.2f} s, warm {row.get('warm_s', float('nan')) * 1e3:.1f} ms)", flush=True)
+    summ = {}
+    for regime in regimes:
+        rr = [r for r in rows if r["regime"] == regime]
+        ok = [r for r in rr if r["converged"]]
+        s = dict(points=len(rr), converged=len(ok))
+        for k, tol in (("err_cage", TOL["cage_speed"]), ("err_torque", TOL["friction_torque"]),
+                       ("err_heat", TOL["heat"]), ("err_reaction", TOL["reaction"]),
+                       ("err_alpha_i_deg", TOL["alpha_deg"]), ("err_alpha_o_deg", TOL["alpha_deg"])):
+            e = np.abs([r[k] for r in ok])
+            if e.size:
+                s[k] = dict(within=int(np.sum(e <= tol)), max=float(e.max()), median=float(np.median(e)),
+                            mean_signed=float(np.mean([r[k] for r in ok])))
+        if ok:
+            s["cold_s_median"] = float(np.median([r["cold_s"] for r in ok]))
+            ws = [r["warm_s"] for r in ok if "warm_s" in r]
+            s["warm_ms_median"] = 1e3 * float(np.median(ws)) if ws else None
+        summ[regime] = s
+    print(json.dumps(summ, indent=1))
+    if out_json:
+        Path(out_json).write_text(json.dumps(dict(machine=machine_info(), tolerances=TOL, summary=summ, rows=rows),
+                                             indent=1))
+    return summ
+
+
+def convergence(out_json=None):
+    """The quasi-static cage model over bench_tribo_qs.py --speed's case set (presets, traction laws, speeds,
+    loads): converged or not, cold solve time."""
+    from bench_tribo_qs import speed_cases
+    from bearing_core.models.quasistatic_cage import QuasiStaticCageModel
+    rows = []
+    models = {}
+    for key, g, opt, w, loads in speed_cases():
+        k2 = (key.split("|")[0], key.split("|")[1])
+        if k2 not in models:
+            models[k2] = QuasiStaticCageModel(g, opt)
+        t0 = time.perf_counter()
+        try:
+            r = models[k2].solve(w, loads, sensitivity=False)
+            rows.append(dict(case=key, converged=True, s=time.perf_counter() - t0, cage_rpm=r.cage_speed / RPM,
+                             torque=r.friction_torque))
+        except Exception as e:   # noqa: BLE001
+            rows.append(dict(case=key, converged=False, s=time.perf_counter() - t0, error=str(e)[:300]))
+        print(f"{key:40s} {'ok ' if rows[-1]['converged'] else 'FAIL'} {rows[-1]['s']:.2f} s", flush=True)
+    n_ok = sum(r["converged"] for r in rows)
+    print(f"converged {n_ok} of {len(rows)}")
+    if out_json:
+        Path(out_json).write_text(json.dumps(dict(machine=machine_info(), converged=n_ok, cases=len(rows), rows=rows),
+                                             indent=1))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--reference", action="store_true")
     ap.add_argument("--n", type=int, default=32)
     ap.add_argument("--seed", type=int, default=31)
     ap.add_argument("--regime", default="both", choices=("oil", "solid", "both"))
+    ap.add_argument("--accuracy", action="store_true")
+    ap.add_argument("--convergence", action="store_true")
+    ap.add_argument("--json", help="write the results to this JSON file")
     a = ap.parse_args()
     print(machine_line(), flush=True)
     regimes = ("oil", "solid") if a.regime == "both" else (a.regime,)
     if a.reference:
         reference(a.n, a.seed, regimes)
+    if a.accuracy:
+        accuracy(regimes, a.json)
+    if a.convergence:
+        convergence(a.json)
 
 
 if __name__ == "__main__":

@@ -163,7 +163,9 @@ class QuasiStaticCageModel:
     #: weight of the orbit coupling (quasistatic_cage_kernels.orbit_coupling): 1 the periodic motion, 0
     #: every ball held at the cage's azimuth rate
     lam = 1.0
-    init_walls = False
+    #: orbit coupling along the load path (None: 0 with an oil-lubricated cage, whose pocket films give every
+    #: ball a pocket force; 1 with a dry one, whose balls float in their clearance until the load grows)
+    path_lam0 = None
     #: tolerance factor of the intermediate continuation steps (the end point is solved to tol)
     path_tol_factor = 10.0
     _tol_factor = 1.0
@@ -254,7 +256,7 @@ class QuasiStaticCageModel:
             return res
         raise ConvergenceError(
             f"quasi-static cage model: no steady state found at {omega * 30 / math.pi:.0f} rpm, {name} "
-            f"{np.array2string(ring, precision=6)}, oil {T_oil - 273.15:.1f} degC ({'; '.join(errors)})")
+            f"{np.array2string(ring, precision=6)}, oil temperature {T_oil - 273.15:.1f} degC ({'; '.join(errors)})")
 
     def _cold(self, omega, ring, T_oil, errors):
         """Solve without a previous solution (module docstring): the pure axial load with every ball held at
@@ -267,7 +269,8 @@ class QuasiStaticCageModel:
         model = self if not disp else QuasiStaticCageModel(self.g, replace(self.opt, coupling="load"))
         model.budget = self.sub_budget
         ring0 = np.array([0.0, 0.0, loads[2], 0.0, 0.0])
-        model.lam = 0.0
+        lam0 = self.path_lam0 if self.path_lam0 is not None else (0.0 if self.opt.regime == "oil" else 1.0)
+        model.lam = lam0
         res = None
         for kind in ("tribological", "jones-harris"):
             try:
@@ -284,10 +287,12 @@ class QuasiStaticCageModel:
             res = None
         if res is None:
             return None
-        res = model._continuation(res, lambda a: (ring0 + a * (loads - ring0), 0.0), omega, T_oil, errors, "loads")
+        res = model._continuation(res, lambda a: (ring0 + a * (loads - ring0), lam0), omega, T_oil, errors, "loads")
         if res is None:
             return None
-        res = model._continuation(res, lambda a: (loads, a), omega, T_oil, errors, "orbit coupling")
+        if lam0 < 1.0:
+            res = model._continuation(res, lambda a: (loads, lam0 + a * (1.0 - lam0)), omega, T_oil, errors,
+                                      "orbit coupling")
         if res is None:
             return None
         if not disp:       # the end point to the full tolerance
@@ -309,7 +314,7 @@ class QuasiStaticCageModel:
         first, x1.5 after a success, halved after a failure, at least 1/512). Returns the end result or
         None."""
         a, da = 0.0, 0.25
-        lam0 = self.lam
+        lam_res = self.lam          # the orbit coupling of res
         self._tol_factor = self.path_tol_factor
         try:
             while a < 1.0:
@@ -319,7 +324,7 @@ class QuasiStaticCageModel:
                 out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False,
                                        cold=False)
                 if isinstance(out, QuasiStaticCageResult):
-                    res, a, da = out, a2, da * 1.5
+                    res, a, da, lam_res = out, a2, da * 1.5, lam
                     continue
                 da *= 0.5
                 if da < 1.0 / 512.0:
@@ -327,7 +332,7 @@ class QuasiStaticCageModel:
                     return None
             return res
         finally:
-            self.lam = 1.0 if res is not None and a >= 1.0 and what == "orbit coupling" else lam0
+            self.lam = lam_res
             self._tol_factor = 1.0
 
     def _start(self, kind, st, omega, ring, T_oil):
@@ -405,23 +410,29 @@ class QuasiStaticCageModel:
         return s, P, U, act, self._kernel_args(s), xs_l, xs_g
 
     def _solve_from(self, omega, ring, T_oil, x0, sensitivity, cold=True):
-        """PTC from x0; the result, or the reason it failed (a string). cold: x0 has the balls at their
-        pocket centres and the cage centred; each ball is first put against the pocket wall that takes its
-        tangential force there, then the cage against the land that takes the pockets' net force."""
+        """Damped Newton from x0 (_ptc); the result, or the reason it failed (a string)."""
         s, P, U, act, tabs, xs_l, xs_g = self._problem(omega, ring, T_oil)
         g = self.g
         Z = g.Z
         xl0, xg0 = x0
         y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
         v = np.concatenate([(xl0 / xs_l).ravel(), xg0 / xs_g])
-        if cold and self.init_walls:
+        if P[K.P_LUBE] < 0.5:
+            # dry pocket and land: no force in the clearance, so no slope there. A ball inside its clearance
+            # is first put against the wall that takes the tangential force it has there, then a cage inside
+            # its land clearance against the land that takes the pockets' net force
             out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+            q = v[5:Z * NL:NL] * xs_l[5]
             Ft = out[7][:, 5]
-            v[5:Z * NL:NL] = (Ft + np.sign(Ft) * CK.Q_GAP) / xs_l[5]
-            out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
-            Fc = out[8][6:8]
-            if np.hypot(*Fc) > 0.0:
-                v[Z * NL + 6:] = (Fc + Fc / np.hypot(*Fc) * CK.Q_GAP) / xs_g[6:]
+            gap = np.abs(q) <= CK.Q_GAP
+            q[gap] = Ft[gap] + np.sign(Ft[gap]) * CK.Q_GAP
+            v[5:Z * NL:NL] = q / xs_l[5]
+            gv = v[Z * NL + 6:] * xs_g[6:]
+            if np.hypot(*gv) <= CK.Q_GAP and P[K.P_ETA_LAND] <= 0.0:
+                out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+                Fc = out[8][6:8]
+                if np.hypot(*Fc) > 0.0:
+                    v[Z * NL + 6:] = (Fc + Fc / np.hypot(*Fc) * CK.Q_GAP) / xs_g[6:]
         cap = np.full(v.size, 0.2)                  # speeds: 0.2 omega a step
         for j in range(Z):
             cap[j * NL] = cap[j * NL + 1] = self.cap_position

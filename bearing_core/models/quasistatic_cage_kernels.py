@@ -65,15 +65,23 @@ def pocket_place(q, thb, wc, rbc, P, D, Wr, Wz):
     tangential force on the ball is -q [N] (q > 0: the ball leads its pocket and drives the cage): the
     root of pocket_tangential_force + q, decreasing in dth, bracketed by the penetrations that carry
     |q| + 1e3 N on the penalty stiffness alone, by false position with the Illinois modification (Dahlquist
-    & Bjorck, Numerical Methods, Sec. 6.2) to 1e-9 N or 1e-14 rad; 0 (the pocket centre) where a dry
-    pocket carries no force (q = 0 in the clearance)."""
-    if q == 0.0 and P[K.P_LUBE] < 0.5:
-        return 0.0
+    & Bjorck, Numerical Methods, Sec. 6.2) to 1e-9 N or 1e-14 rad. A dry pocket carries no force in its
+    clearance: there |q| <= Q_GAP moves the ball linearly from the pocket centre to the wall, and beyond the
+    pocket's force is -(|q| - Q_GAP) sign(q), so that the place is continuous in q."""
     cp = P[K.P_CPOCKET]
     kpk = P[K.P_KPOCKET]
     lim = (cp + (abs(q) + 1e3) / kpk) / rbc
     lo = -lim
     hi = lim
+    if P[K.P_LUBE] < 0.5:
+        if abs(q) <= Q_GAP:
+            return q / Q_GAP * cp / rbc
+        if q > 0.0:
+            lo = cp / rbc
+            q = q - Q_GAP
+        else:
+            hi = -cp / rbc
+            q = q + Q_GAP
     flo = pocket_tangential_force(lo, thb, wc, rbc, P, D, Wr, Wz) + q
     fhi = pocket_tangential_force(hi, thb, wc, rbc, P, D, Wr, Wz) + q
     side = 0
