@@ -156,8 +156,12 @@ class QuasiStaticCageModel:
     traction, lubrication regime, cage and land parameters, drag, churning, coupling, fixed_tilt; integrator
     settings are not used). Outer ring fixed."""
 
-    #: residual tolerance relative to the load scale (largest of |F|, |M| / (dm/2), 1 N)
-    tol = 5e-5
+    #: residual tolerance relative to the load scale (largest of |F|, |M| / (dm/2), 100 N): the solve aims at
+    #: tol and accepts a point at tol_accept where the contact laws' kinks leave a residual floor above tol
+    #: (measured: 7218B, 3000 rpm, Fx 1 kN, Fz 3 kN: cage speed 0.35 % and torque 3.4 % apart between a point
+    #: at 1e-3 and one at 5e-5)
+    tol = 2e-5
+    tol_accept = 1e-3
     #: residual evaluations of one solve attempt
     budget = 1500
     #: weight of the orbit coupling (quasistatic_cage_kernels.orbit_coupling): 1 the periodic motion, 0
@@ -167,7 +171,7 @@ class QuasiStaticCageModel:
     #: ball a pocket force; 1 with a dry one, whose balls float in their clearance until the load grows)
     path_lam0 = None
     #: tolerance factor of the intermediate continuation steps (the end point is solved to tol)
-    path_tol_factor = 10.0
+    path_tol_factor = 3.0
     _tol_factor = 1.0
     #: residual evaluations of one continuation step
     sub_budget = 200
@@ -267,7 +271,6 @@ class QuasiStaticCageModel:
         disp = self.opt.coupling == "displacement"
         loads = self._loads_of_pose(ring, omega) if disp else ring
         model = self if not disp else QuasiStaticCageModel(self.g, replace(self.opt, coupling="load"))
-        model.budget = self.sub_budget
         ring0 = np.array([0.0, 0.0, loads[2], 0.0, 0.0])
         lam0 = self.path_lam0 if self.path_lam0 is not None else (0.0 if self.opt.regime == "oil" else 1.0)
         model.lam = lam0
@@ -279,15 +282,19 @@ class QuasiStaticCageModel:
                 errors.append(f"{kind} start: {e}")
                 continue
             model._tol_factor = self.path_tol_factor
+            model.budget = self.budget
             res = model._solve_from(omega, ring0, T_oil, x0, False, cold=True)
             model._tol_factor = 1.0
+            model.budget = self.sub_budget
             if isinstance(res, QuasiStaticCageResult):
                 break
             errors.append(f"{kind} start under the axial load alone: {res}")
             res = None
         if res is None:
             return None
-        res = model._continuation(res, lambda a: (ring0 + a * (loads - ring0), lam0), omega, T_oil, errors, "loads")
+        if np.any(loads != ring0):
+            res = model._continuation(res, lambda a: (ring0 + a * (loads - ring0), lam0), omega, T_oil, errors,
+                                      "loads")
         if res is None:
             return None
         if lam0 < 1.0:
@@ -417,21 +424,25 @@ class QuasiStaticCageModel:
         xl0, xg0 = x0
         y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
         v = np.concatenate([(xl0 / xs_l).ravel(), xg0 / xs_g])
+        hdm = 0.5 * g.dm
+        scale = max(np.max(np.abs(ring[:3])), np.max(np.abs(ring[3:])) / hdm, 1.0) if self.opt.coupling == "load" \
+            else 100.0
+        ftol = self.tol * self._tol_factor * max(scale, 100.0)
         if P[K.P_LUBE] < 0.5:
             # dry pocket and land: no force in the clearance, so no slope there. A ball inside its clearance
-            # is first put against the wall that takes the tangential force it has there, then a cage inside
-            # its land clearance against the land that takes the pockets' net force
+            # with an unbalanced tangential force is first put against the wall that takes it, then a cage
+            # inside its land clearance against the land that takes the pockets' net force
             out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
             q = v[5:Z * NL:NL] * xs_l[5]
             Ft = out[7][:, 5]
-            gap = np.abs(q) <= CK.Q_GAP
+            gap = (np.abs(q) <= CK.Q_GAP) & (np.abs(Ft) > ftol)
             q[gap] = Ft[gap] + np.sign(Ft[gap]) * CK.Q_GAP
             v[5:Z * NL:NL] = q / xs_l[5]
             gv = v[Z * NL + 6:] * xs_g[6:]
             if np.hypot(*gv) <= CK.Q_GAP and P[K.P_ETA_LAND] <= 0.0:
                 out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
                 Fc = out[8][6:8]
-                if np.hypot(*Fc) > 0.0:
+                if np.hypot(*Fc) > ftol:
                     v[Z * NL + 6:] = (Fc + Fc / np.hypot(*Fc) * CK.Q_GAP) / xs_g[6:]
         cap = np.full(v.size, 0.2)                  # speeds: 0.2 omega a step
         for j in range(Z):
@@ -440,13 +451,10 @@ class QuasiStaticCageModel:
         cap[Z * NL:Z * NL + 3] = self.cap_position
         cap[Z * NL + 3:Z * NL + 5] = self.cap_tilt
         cap[Z * NL + 6:] = 20.0                     # g: 200 N
-        hdm = 0.5 * g.dm
-        scale = max(np.max(np.abs(ring[:3])), np.max(np.abs(ring[3:])) / hdm, 1.0) if self.opt.coupling == "load" \
-            else 100.0
-        ftol = self.tol * self._tol_factor * max(scale, 100.0)
         r, nfev = self._ptc(v, cap, float(omega), ftol, P, U, act, tabs, xs_l, xs_g)
-        if not r <= ftol:
-            return f"residual {r:.3g} N after {nfev} evaluations (tolerance {ftol:.3g} N)"
+        facc = ftol * self.tol_accept / self.tol
+        if not r <= facc:
+            return f"residual {r:.3g} N after {nfev} evaluations (tolerance {facc:.3g} N)"
         return self._result(omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity)
 
     def _jacobian(self, v, omega, P, U, act, tabs, xs_l, xs_g):
@@ -474,14 +482,17 @@ class QuasiStaticCageModel:
         halved until the residual's 2-norm falls (Armijo-free backtracking, down to 1/64); when no fraction
         of it lowers the residual, Levenberg-Marquardt steps (J^T J + mu diag(J^T J)) dv = -J^T R with mu
         growing ten-fold until one does. The Jacobian is kept over steps that contract the max-norm
-        residual at least four-fold (chord steps). Returns (max |R|, rhs evaluations)."""
+        residual at least four-fold (chord steps). Stops at max |R| <= ftol, after the budget, or when four
+        steps on fresh Jacobians in a row lowered the max-norm residual by less than 10 % each (the floor
+        that the kinks of the contact laws leave). Returns (max |R|, rhs evaluations)."""
         budget = self.budget
         R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)[-1]
         r = float(np.max(np.abs(R)))
         r2n = float(R @ R)
         nfev = 1
         J = None
-        while nfev < budget and not r <= ftol:
+        stall = 0
+        while nfev < budget and not r <= ftol and stall < 4:
             fresh = J is None
             if fresh:
                 J = self._jacobian(v, omega, P, U, act, tabs, xs_l, xs_g)
@@ -525,6 +536,7 @@ class QuasiStaticCageModel:
                     break
             r_new = float(np.max(np.abs(R2)))
             contract = r_new / r if r > 0 else 0.0
+            stall = stall + 1 if (fresh and contract > 0.9) else 0
             v[:], R, r, r2n = v2, R2, r_new, float(R2 @ R2)
             if contract > 0.25:
                 J = None
@@ -587,11 +599,13 @@ class QuasiStaticCageModel:
         n = v.size
         r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
         J = self._jacobian(v, float(res.omega), P, U, act, tabs, xs_l, xs_g)
-        def solve(rhs):            # J dv = rhs
-            dv = np.empty(n)
-            if not CK.dense_solve(J, np.ascontiguousarray(rhs, dtype=float), dv):
-                raise ConvergenceError("quasi-static cage model: singular Jacobian at the solution")
-            return dv
+        def solve(rhs):            # J dv = rhs; the least-squares solution of smallest norm if J is singular
+            dv = np.empty(n)       # (a dry cage whose balls all float: their common place in the pockets)
+            if CK.dense_solve(J, np.ascontiguousarray(rhs, dtype=float), dv):
+                return dv
+            from threadpoolctl import threadpool_limits
+            with threadpool_limits(limits=1, user_api="blas"):
+                return np.linalg.lstsq(J, rhs, rcond=1e-12)[0]
 
         # cage time constant: slope of the net torque on cage and balls with the cage speed, the other
         # equations in equilibrium: (J^-1)[wc, cage torque row] = 1 / (dR_c/dwc on that manifold)
