@@ -309,11 +309,18 @@ class QuasiStaticCageModel:
                 return out
             errors.append(f"end point: {out}")
             return None
+        # the ring pose: from the load path's end to the prescribed one
         self.lam = 1.0
+        self.budget = self.sub_budget
+        pose0 = np.array(res.displacement)
+        res = replace(res, coupling="displacement")
+        res = self._continuation(res, lambda a: (pose0 + a * (ring - pose0), 1.0), omega, T_oil, errors, "ring pose")
+        if res is None:
+            return None
         out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False, cold=False)
         if isinstance(out, QuasiStaticCageResult):
             return out
-        errors.append(f"holding the ring pose: {out}")
+        errors.append(f"end point: {out}")
         return None
 
     def _continuation(self, res, path, omega, T_oil, errors, what):
@@ -387,6 +394,16 @@ class QuasiStaticCageModel:
             xg[:5] = ring
         return xl, xg
 
+    def _pose_scale(self, d, omega):
+        """Load scale [N] of a ring pose: the largest force (or moment over dm/2) that holds it (Jones-Harris),
+        memoised for the last pose."""
+        key = (tuple(np.round(np.asarray(d, dtype=float), 12)), round(float(omega), 6))
+        if getattr(self, "_pose_key", None) != key:
+            F = self._loads_of_pose(d, omega)
+            self._pose_key = key
+            self._pose_val = max(np.max(np.abs(F[:3])), np.max(np.abs(F[3:])) / (0.5 * self.g.dm), 100.0)
+        return self._pose_val
+
     def _loads_of_pose(self, d, omega):
         """Loads (Fx, Fy, Fz, Mx, My) that hold the inner ring at pose d by the Jones-Harris model (the start
         of a displacement-coupled solve, as DynamicModel.initialize)."""
@@ -425,8 +442,10 @@ class QuasiStaticCageModel:
         y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
         v = np.concatenate([(xl0 / xs_l).ravel(), xg0 / xs_g])
         hdm = 0.5 * g.dm
-        scale = max(np.max(np.abs(ring[:3])), np.max(np.abs(ring[3:])) / hdm, 1.0) if self.opt.coupling == "load" \
-            else 100.0
+        if self.opt.coupling == "load":
+            scale = max(np.max(np.abs(ring[:3])), np.max(np.abs(ring[3:])) / hdm, 1.0)
+        else:                    # the loads the pose needs (Jones-Harris), as the load scale
+            scale = self._pose_scale(ring, omega)
         ftol = self.tol * self._tol_factor * max(scale, 100.0)
         if P[K.P_LUBE] < 0.5:
             # dry pocket and land: no force in the clearance, so no slope there. A ball inside its clearance
