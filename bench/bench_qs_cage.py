@@ -5,8 +5,11 @@
         in bench/qs_cage_reference.json (points already there are kept; run once, in the background)
     python bench/bench_qs_cage.py --accuracy [--json out.json]
         the quasi-static cage model at the same points: errors against the references, solve times
-    python bench/bench_qs_cage.py --convergence
+    python bench/bench_qs_cage.py --convergence [--json out.json]
         convergence over bench_tribo_qs.py --speed's case set (presets x traction laws x speeds x loads)
+    python bench/bench_qs_cage.py --ramp --regime oil [--json out.json]
+        seed 000's speed profile stepped at 1 ms (re-solve beyond the sensitivity's input tolerance, linear
+        update otherwise, cage speed through its first-order lag) against the dynamic model
 
 Operating points: 7218B, speed uniform in 500-12,000 rpm, Fx uniform in 0-3 kN, Fz uniform in 0.5-8 kN
 (numpy default_rng(seed)), oil-lubricated (EHL race traction, lubricated pocket, flooded land) and
@@ -228,6 +231,57 @@ def convergence(out_json=None):
                                              indent=1))
 
 
+def ramp(regime, out_json=None, rel=2e-3, dt=1e-3):
+    """Seed 000's speed profile (dynamics.SEED000_PROFILE; Fx 1 kN, Fz 3 kN) at dt steps the way a
+    co-simulation step would use the model: a warm re-solve (with sensitivity) when an input has moved by more
+    than half its input_tolerance(rel) since the last solve, else the linear update predict(); the cage speed
+    through the first-order lag with the solution's tau_cage. Against the dynamic model run through the same
+    profile (records every dt): the cage speed's largest deviation after the first 0.05 s, and the wall time
+    per simulated second of the quasi-static stepping."""
+    from bearing_core.models.dynamics import SEED000_PROFILE, simulate_profile
+    g = load_bearing("7218B")
+    loads = (1000.0, 0.0, 3000.0, 0.0, 0.0)
+    tp, npf = np.array([p[0] for p in SEED000_PROFILE]), np.array([p[1] for p in SEED000_PROFILE])
+    m = qs_model(regime)
+    t = np.arange(0.0, tp[-1] + 0.5 * dt, dt)
+    w = np.interp(t, tp, npf) * RPM
+    r0 = m.solve(w[0], loads)
+    tol = r0.input_tolerance(rel)
+    wc = r0.cage_speed
+    out = np.empty((t.size, 3))
+    n_solve = 0
+    t0 = time.perf_counter()
+    for k in range(t.size):
+        p = np.concatenate([[w[k]], loads, [r0.T_oil]])
+        if np.any(np.abs(p - r0.inputs()) > 0.5 * tol):
+            r0 = m.solve(w[k], loads, start=r0)
+            tol = r0.input_tolerance(rel)
+            n_solve += 1
+            y = r0.outputs
+        else:
+            y = r0.predict(w[k], loads)
+        a = 1.0 - math.exp(-dt / r0.tau_cage) if math.isfinite(r0.tau_cage) and r0.tau_cage > 0 else 1.0
+        wc += (y[0] - wc) * a
+        out[k] = (wc, y[0], y[1])
+    wall = time.perf_counter() - t0
+    d = DynamicModel(g, options(regime))
+    d.initialize(w[0], loads)
+    rec = simulate_profile(d, SEED000_PROFILE, record_dt=dt)
+    I = K.OUT_INDEX
+    td, wcd = rec[:, I["t"]], rec[:, I["cage_speed"]]
+    wq = np.interp(td, t, out[:, 0])
+    sel = td > 0.05
+    dev = wq[sel] / wcd[sel] - 1.0
+    res = dict(regime=regime, dt=dt, rel=rel, wall_s_per_sim_s=wall / t[-1], resolves=n_solve, steps=int(t.size),
+               cage_dev_max=float(np.max(np.abs(dev))), cage_dev_mean=float(np.mean(dev)),
+               cage_dev_at_end=float(dev[-1]), torque_end_qs=float(out[-1, 2]),
+               torque_end_dyn=float(np.mean(rec[-100:, I["friction_torque"]])))
+    print(json.dumps(res, indent=1))
+    if out_json:
+        Path(out_json).write_text(json.dumps(dict(machine=machine_info(), **res), indent=1))
+    return res
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--reference", action="store_true")
@@ -236,6 +290,7 @@ def main():
     ap.add_argument("--regime", default="both", choices=("oil", "solid", "both"))
     ap.add_argument("--accuracy", action="store_true")
     ap.add_argument("--convergence", action="store_true")
+    ap.add_argument("--ramp", action="store_true")
     ap.add_argument("--json", help="write the results to this JSON file")
     a = ap.parse_args()
     print(machine_line(), flush=True)
@@ -246,6 +301,8 @@ def main():
         accuracy(regimes, a.json)
     if a.convergence:
         convergence(a.json)
+    if a.ramp:
+        ramp(regimes[0], a.json)
 
 
 if __name__ == "__main__":
