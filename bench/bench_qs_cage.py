@@ -75,8 +75,8 @@ def dynamic_window(g, regime, rpm, fx, fz, window=0.04, min_time=0.1, max_time=0
         s["cage_x_mean"] = float(np.mean(rec[:, I["cage_x"]]))
         s["cage_y_mean"] = float(np.mean(rec[:, I["cage_y"]]))
         s["cage_e_mean"] = float(np.mean(np.hypot(rec[:, I["cage_x"]], rec[:, I["cage_y"]])))
-        if prev is not None and abs(s["cage_speed"] - prev["cage_speed"]) <= steady_tol * abs(s["cage_speed"]) \
-                and abs(s["friction_torque"] - prev["friction_torque"]) <= torque_tol * abs(s["friction_torque"]) + 1e-6:
+        dc = prev is not None and abs(s["cage_speed"] - prev["cage_speed"]) <= steady_tol * abs(s["cage_speed"])
+        if dc and abs(s["friction_torque"] - prev["friction_torque"]) <= torque_tol * abs(s["friction_torque"]) + 1e-6:
             steady = True
             break
         prev = s
@@ -104,7 +104,8 @@ def reference(n, seed, regimes):
             err = None
         except Exception as e:   # noqa: BLE001 (recorded with the point)
             s, err = {}, f"{type(e).__name__}: {e}"
-        s.update(regime=regime, speed_rpm=rpm, load_Fx=fx, load_Fz=fz, kind=kind, wall_s=time.perf_counter() - t0, error=err)
+        s.update(regime=regime, speed_rpm=rpm, load_Fx=fx, load_Fz=fz, kind=kind, wall_s=time.perf_counter() - t0,
+                 error=err)
         data["points"].append(s)
         data["machine"] = machine_info()
         data["seed"] = seed
@@ -178,8 +179,9 @@ def accuracy(regimes, out_json=None):
             row["warm_error"] = str(e)[:200]
         rows.append(row)
         print(f"{p['regime']:5s} {p['speed_rpm']:6.0f} rpm Fx {p['load_Fx']:5.0f} Fz {p['load_Fz']:5.0f}: cage "
-              f"{row['err_cage'] * 100:+6.2f} % torque {row['err_torque'] * 100:+6.1f} % heat {row['err_heat'] * 100:+6.1f} % "
-              f"react {row['err_reaction'] * 100:5.2f} % ai {row['err_alpha_i_deg']:+5.2f} ao {row['err_alpha_o_deg']:+5.2f} deg "
+              f"{row['err_cage'] * 100:+6.2f} % torque {row['err_torque'] * 100:+6.1f} % "
+              f"heat {row['err_heat'] * 100:+6.1f} % react {row['err_reaction'] * 100:5.2f} % "
+              f"ai {row['err_alpha_i_deg']:+5.2f} ao {row['err_alpha_o_deg']:+5.2f} deg "
               f"({row['cold_s']:.2f} s, warm {row.get('warm_s', float('nan')) * 1e3:.1f} ms)", flush=True)
     summ = {}
     for regime in regimes:
@@ -243,6 +245,9 @@ def ramp(regime, out_json=None, rel=2e-3, dt=1e-3):
     loads = (1000.0, 0.0, 3000.0, 0.0, 0.0)
     tp, npf = np.array([p[0] for p in SEED000_PROFILE]), np.array([p[1] for p in SEED000_PROFILE])
     m = qs_model(regime)
+    # derivatives by the implicit function theorem at each re-solve: the secants (the solver's default) cost
+    # 14 warm solves per re-solve, hours over the 900-odd re-solves of this profile
+    m.sensitivity_method = "implicit"
     t = np.arange(0.0, tp[-1] + 0.5 * dt, dt)
     w = np.interp(t, tp, npf) * RPM
     r0 = m.solve(w[0], loads)

@@ -4,45 +4,44 @@ The dynamics' right-hand side (dynamics_kernels.rhs: Hertz contact, the traction
 rheology-based EHL traction or Kalker/FASTSIM --, the ball-pocket contact -- lubricated films on both walls
 (lubrication.pocket_film) or dry Coulomb --, the guiding land -- oil-flooded short journal bearing with
 Petroff drag, or dry penalty contact with Coulomb friction --, ball drag and churning) is evaluated at a
-candidate steady state and its accelerations are driven to zero. In the candidate state every ball orbits
-with the cage: ball j sits in pocket j (cage angle 0, pocket azimuth 2 pi j / Z) at an offset set by the
-unknown q_j, the cage turns at wc about its centre (xc, yc), which stands still, the inner ring stands at its
-pose and turns at omega. Steady equations (Gupta, Advanced Dynamics of Rolling Elements 1984, Ch. 3 and 5,
-all rates zero in the frame orbiting with each ball; the same equations as quasistatic_tribo, with the orbit
-tied to the cage):
+candidate steady state and its accelerations are driven to zero. In the candidate state the cage turns at wc
+about its centre (xc, yc), which stands still; ball j sits in pocket j (cage angle 0, pocket azimuth
+2 pi j / Z) where the pocket pushes it with the tangential force -q_j, orbits at theta_dot_j; the inner ring
+stands at its pose and turns at omega. Steady equations (Gupta, Advanced Dynamics of Rolling Elements 1984,
+Ch. 3 and 5, the equations of dynamics_kernels' ball with all rates zero in the frame orbiting with it):
 
-  ball j (unknowns r, z, Omega_r, Omega_t, Omega_z, q):
+  ball j (unknowns r, z, Omega_r, Omega_t, Omega_z, q, theta_dot):
       F_r + m r th_d^2 = 0,  F_z = 0,  M_r + J th_d Omega_t = 0,  M_t - J th_d Omega_r = 0,  M_z = 0,
-      F_t = 0  (race tractions + drag + pocket force: the pocket takes what the traction does not balance)
+      F_t = m r wc (th_d,j - th_d,j-1) / dpsi        (race tractions + drag + pocket force)
+      thb_j - wc = wc (dth_j - dth_j-1) / dpsi        (azimuth rate about the cage centre; place in pocket)
   inner ring (unknowns dx, dy, dz, tx, ty; load coupling):  F_ext + sum_j F_ball->ring = 0
   cage (unknowns wc and the centre coordinates gx, gy):
       sum_j (pocket force moments + pocket film shear) + land torque + churning = 0   (torque about z)
       sum_j pocket forces + land force = 0                                           (forces in x, y)
 
-The pocket-force coordinate q [N] (quasistatic_cage_kernels.pocket_offset) moves the ball linearly across
-its pocket clearance for |q| <= 1 N and beyond that presses it into the wall with the penalty force |q| - 1
-N; the cage centre's coordinates (gx, gy) [N] do the same in the land clearance (cage_centre). These are the
-unknowns that make the cage-held problem regular: with the pocket force itself as the unknown the ball's
-place in the gap is undefined, with the place as the unknown the dry contact has no slope in the gap; the
-coordinate q has a slope everywhere the contact carries load (and in the oil regime the pocket films give it
-one in the gap too). A ball in the loaded zone that leads its pocket (q > 0) drives the cage; one that
-trails it is pushed by the cage against its traction and drag. The ball's orbital speed is the one that
-keeps its azimuth about the (eccentric) cage centre turning at wc.
+The right-hand sides of the last two ball equations tie ball j to ball j - 1 (quasistatic_cage_kernels.
+orbit_coupling): the balls at the pocket azimuths are one ball seen dpsi / wc apart in a motion periodic in
+the cage frame (dpsi = 2 pi / Z), so along its orbit a ball speeds up or slows down and crosses its pocket
+clearance; summed over the balls, the mean orbital speed about the cage centre is the cage speed. The
+pocket-force coordinate q and the cage-centre coordinates (quasistatic_cage_kernels.pocket_place,
+cage_centre) make the problem regular: the ball's place in its pocket follows from the force through the
+dynamics' own pocket kernel (a dry pocket: linear across its clearance for |q| <= 1 N).
 
-Solution: 6 Z + 8 unknowns, the bearing's arrow structure (balls are coupled only through ring and cage),
-a finite-difference Jacobian of 14 right-hand-side calls, pseudo-transient continuation (Kelley & Keyes,
-SIAM J. Numer. Anal. 35 (1998) 508) with step caps, all in numba (quasistatic_cage_kernels). Start: a
-previous solution (warm start), else the free-ball tribological solution (quasistatic_tribo) with the cage
-at the balls' mean orbital speed, else the Jones-Harris solution; if neither converges, continuation in
-speed from 1000 rpm. A point that does not converge raises ConvergenceError naming speed, loads and oil
-temperature.
+Solution: 7 Z + 8 unknowns, a finite-difference Jacobian (23 right-hand-side calls), damped Newton steps with
+caps and Levenberg-Marquardt steps where no fraction of the Newton step lowers the residual. Cold start: the
+pure axial load from the free-ball tribological solution (quasistatic_tribo; else Jones-Harris), with the
+balls held at the cage's azimuth rate in the oil regime (orbit coupling 0), continuation in the other loads,
+then in the orbit coupling to 1 (and, with displacement coupling, in the ring pose). A previous solution is a
+warm start. A point that does not converge raises ConvergenceError naming speed, loads or pose, and oil
+temperature. Tolerances: aim at tol, accept tol_accept (the contact laws' kinks leave a residual floor).
 
-Sensitivity: at the solution, the derivatives of the outputs with respect to the inputs (shaft speed, the
-five loads or the ring pose, the oil temperature) from the implicit function theorem, dx/dp = -J^-1 dR/dp
-on the converged Jacobian, and one directional difference of the outputs per input. Time constant of the
-cage speed's first-order lag: tau = (I_c + Z m r_p^2) / (-dT/dwc), T the net torque on cage and balls about
-the axis with every other equation in equilibrium (the balls' spin, contact and pocket forces follow the
-cage speed much faster: traction relaxation ~3e5 1/s): -dT/dwc = -(dm/2) / (J^-1)[wc, cage torque row].
+Sensitivity: central secants of the outputs over warm re-solves at the inputs +- a step on the scale of the
+re-solve tolerance (or, sensitivity_method 'implicit', dx/dp = -J^-1 dR/dp on the solution's Jacobian with
+chord steps, secants where that fails its checks). Time constant of the cage speed's first-order lag:
+tau = (I_c + Z m (dm/2)^2) / (-dT/dwc), T the net torque on cage and balls about the axis with every other
+equation in equilibrium (ball spin, contact and pocket forces follow the cage much faster):
+-dT/dwc = -(dm/2) / (J^-1)[wc, cage torque row]. Method, accuracy against the dynamic model and its limits:
+docs/fidelity_quasistatic.md.
 """
 from __future__ import annotations
 
@@ -91,7 +90,7 @@ class QuasiStaticCageResult:
 
     geometry: BearingGeometry
     omega: float                   # inner-ring speed [rad/s]
-    loads: np.ndarray              # (Fx, Fy, Fz, Mx, My) applied [N, N m] (displacement coupling: the reaction's negative)
+    loads: np.ndarray              # (Fx, Fy, Fz, Mx, My) applied [N, N m] (displacement: -reaction)
     displacement: np.ndarray       # inner-ring pose (dx, dy, dz, tx, ty) [m, rad]
     T_oil: float                   # oil temperature [K]
     coupling: str
@@ -235,7 +234,8 @@ class QuasiStaticCageModel:
         disp = self.opt.coupling == "displacement"
         if disp:
             if displacement is None:
-                raise BearingInputError("displacement", None, "5 values (dx, dy, dz, tx, ty) with displacement coupling")
+                raise BearingInputError("displacement", None,
+                                        "5 values (dx, dy, dz, tx, ty) with displacement coupling")
             ring = np.asarray(displacement, dtype=float).reshape(-1)
             name = "displacement"
         else:
@@ -249,8 +249,7 @@ class QuasiStaticCageModel:
             raise BearingInputError("start", type(start).__name__, "None or a QuasiStaticCageResult")
         errors = []
         if start is not None:
-            res = self._solve_from(omega, ring, T_oil, self._start("warm", start, omega, ring, T_oil), sensitivity,
-                                   cold=False)
+            res = self._solve_from(omega, ring, T_oil, self._start("warm", start, omega, ring, T_oil), sensitivity)
             if isinstance(res, QuasiStaticCageResult):
                 return res
             errors.append(f"warm start: {res}")
@@ -294,7 +293,7 @@ class QuasiStaticCageModel:
                 continue
             model._tol_factor = self.path_tol_factor
             model.budget = self.budget
-            res = model._solve_from(omega, ring0, T_oil, x0, False, cold=True)
+            res = model._solve_from(omega, ring0, T_oil, x0, False)
             model._tol_factor = 1.0
             model.budget = self.sub_budget
             if isinstance(res, QuasiStaticCageResult):
@@ -314,8 +313,7 @@ class QuasiStaticCageModel:
         if res is None:
             return None
         if not disp:       # the end point to the full tolerance
-            out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False,
-                                   cold=False)
+            out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False)
             if isinstance(out, QuasiStaticCageResult):
                 return out
             errors.append(f"end point: {out}")
@@ -328,7 +326,7 @@ class QuasiStaticCageModel:
         res = self._continuation(res, lambda a: (pose0 + a * (ring - pose0), 1.0), omega, T_oil, errors, "ring pose")
         if res is None:
             return None
-        out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False, cold=False)
+        out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False)
         if isinstance(out, QuasiStaticCageResult):
             return out
         errors.append(f"end point: {out}")
@@ -346,8 +344,7 @@ class QuasiStaticCageModel:
                 a2 = min(a + da, 1.0)
                 ring, lam = path(a2)
                 self.lam = lam
-                out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False,
-                                       cold=False)
+                out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False)
                 if isinstance(out, QuasiStaticCageResult):
                     res, a, da, lam_res = out, a2, da * 1.5, lam
                     continue
@@ -444,13 +441,12 @@ class QuasiStaticCageModel:
         xs_g = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5, omega, 10.0, 10.0])
         return s, P, U, act, self._kernel_args(s), xs_l, xs_g
 
-    def _solve_from(self, omega, ring, T_oil, x0, sensitivity, cold=True):
+    def _solve_from(self, omega, ring, T_oil, x0, sensitivity):
         """Damped Newton from x0 (_ptc); the result, or the reason it failed (a string)."""
         s, P, U, act, tabs, xs_l, xs_g = self._problem(omega, ring, T_oil)
         g = self.g
         Z = g.Z
         xl0, xg0 = x0
-        y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
         v = np.concatenate([(xl0 / xs_l).ravel(), xg0 / xs_g])
         hdm = 0.5 * g.dm
         if self.opt.coupling == "load":
@@ -692,8 +688,7 @@ class QuasiStaticCageModel:
                         p = p0.copy()
                         p[k] += sg * f * dp
                         ring = p[1:6]
-                        out = self._solve_from(p[0], ring, p[6], self._start("warm", res, p[0], ring, p[6]), False,
-                                               cold=False)
+                        out = self._solve_from(p[0], ring, p[6], self._start("warm", res, p[0], ring, p[6]), False)
                         if isinstance(out, QuasiStaticCageResult):
                             sec[sg] = out.outputs
                     if sec:

@@ -1,23 +1,22 @@
 """numba kernels of the quasi-static cage model (bearing_core.models.quasistatic_cage, whose module docstring
 states the equations and the method).
 
-Unknowns:   xl (Z, 6) per ball: r, z [m] (centre), Omega_r, Omega_t, Omega_z [rad/s] (absolute angular
-            velocity, local frame), q [N] (pocket-force coordinate: the ball's place in its pocket, pocket_offset)
-            xg (8): inner ring dx, dy, dz [m], tx, ty [rad]; cage speed wc [rad/s]; cage-centre force
-            coordinates gx, gy [N] (the cage centre's place in its land clearance, cage_centre)
-State:      cage_state          the unknowns written into a dynamics state (dynamics_kernels layout) in which
-                                every ball orbits with its pocket and nothing moves but the rotations
+Unknowns:   xl (Z, 7) per ball: r, z [m] (centre), Omega_r, Omega_t, Omega_z [rad/s] (absolute angular
+            velocity, local frame), q [N] (pocket-force coordinate, pocket_place), theta_dot [rad/s]
+            (orbital speed); xg (8): inner ring dx, dy, dz [m], tx, ty [rad]; cage speed wc [rad/s];
+            cage-centre coordinates gx, gy [N] (cage_centre)
+Pocket:     pocket_tangential_force, pocket_place   the dynamics' pocket kernels and the ball's place in its
+                                pocket for a given tangential pocket force (false position)
+State:      cage_state          the unknowns written into a dynamics state (dynamics_kernels layout): cage
+                                turning about its standing centre, balls in their pockets, ring at its pose
 Residual:   cage_residual       one call of the dynamics' right-hand side (dynamics_kernels.rhs) at that
-                                state; per ball the generalised forces of its 6 unknowns, the ring's 5
-                                loads, the cage's torque and its two forces, each ball's share of them
-Jacobian:   cage_jacobian       forward differences of the arrow structure: column k of every ball block from
-                                ONE rhs call that perturbs unknown k of all balls, one call per global
-                                unknown (16 calls)
-Linear:     cage_arrow_solve    (diag(d) / dtau - J) dv = R by block elimination (a 6 x 6 LU per ball, the
-                                8 x 8 Schur complement of ring and cage), dense LU as fallback
-Solver:     cage_ptc            pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer. Anal. 35
-                                (1998) 508) with switched evolution relaxation and step caps, the Jacobian
-                                kept while steps contract
+                                state: per ball the generalised forces of its unknowns and its kinematic
+                                residual, the ring's 5 loads, the cage's torque and forces, each ball's
+                                share of them; orbit_coupling adds the terms that tie ball j to ball j - 1
+                                along the orbit (the motion periodic in the cage frame)
+Jacobian:   cage_jacobian       forward differences, ball columns coloured (no two neighbours along the
+                                orbit perturbed together), one call per global unknown; cage_dense
+                                assembles the dense matrix; dense_solve its LU solve
 Scaled unknowns v = (xl / xs_l, xg / xs_g) flattened (ball-major); residuals are forces [N] (moments over
 D/2 or dm/2).
 """
@@ -36,9 +35,9 @@ from ..numerics.jit import hot
 NL = 7      # per-ball unknowns: r, z, Omega_r, Omega_t, Omega_z, q, theta_dot
 NG = 8      # global unknowns: dx, dy, dz, tx, ty, wc, gx, gy
 G_WC, G_GX, G_GY = 5, 6, 7
-# force scale of the unknowns q and g inside the clearances [N]: a coordinate q of magnitude below Q_GAP
-# moves the ball linearly across its pocket clearance (and the cage across its land clearance), beyond it
-# the penalty contact carries |q| - Q_GAP
+# force scale of the coordinates q and g inside a dry clearance [N]: |q| <= Q_GAP moves the ball linearly
+# across its pocket clearance (g the cage across its land clearance), beyond it the penalty contact carries
+# |q| - Q_GAP
 Q_GAP = 1.0
 
 
