@@ -121,6 +121,7 @@ class QuasiStaticCageResult:
     x: tuple = field(repr=False, default=None)   # (xl, xg) unknowns (warm start)
     y: np.ndarray = field(repr=False, default=None)
     diag: np.ndarray = field(repr=False, default=None)
+    jacobian: np.ndarray = field(repr=False, default=None)   # last Jacobian of the solve (scaled; warm starts)
 
     def output(self, name: str) -> float:
         return float(self.outputs[OUTPUT_NAMES.index(name)])
@@ -249,7 +250,8 @@ class QuasiStaticCageModel:
             raise BearingInputError("start", type(start).__name__, "None or a QuasiStaticCageResult")
         errors = []
         if start is not None:
-            res = self._solve_from(omega, ring, T_oil, self._start("warm", start, omega, ring, T_oil), sensitivity)
+            res = self._solve_from(omega, ring, T_oil, self._start("warm", start, omega, ring, T_oil), sensitivity,
+                                   J0=start.jacobian)
             if isinstance(res, QuasiStaticCageResult):
                 return res
             errors.append(f"warm start: {res}")
@@ -441,8 +443,9 @@ class QuasiStaticCageModel:
         xs_g = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5, omega, 10.0, 10.0])
         return s, P, U, act, self._kernel_args(s), xs_l, xs_g
 
-    def _solve_from(self, omega, ring, T_oil, x0, sensitivity):
-        """Damped Newton from x0 (_ptc); the result, or the reason it failed (a string)."""
+    def _solve_from(self, omega, ring, T_oil, x0, sensitivity, J0=None):
+        """Damped Newton from x0 (_ptc; J0: a Jacobian to start the chord steps with, e.g. the previous
+        solution's); the result, or the reason it failed (a string)."""
         s, P, U, act, tabs, xs_l, xs_g = self._problem(omega, ring, T_oil)
         g = self.g
         Z = g.Z
@@ -477,11 +480,14 @@ class QuasiStaticCageModel:
         cap[Z * NL:Z * NL + 3] = self.cap_position
         cap[Z * NL + 3:Z * NL + 5] = self.cap_tilt
         cap[Z * NL + 6:] = 20.0                     # g: 200 N
-        r, nfev = self._ptc(v, cap, float(omega), ftol, P, U, act, tabs, xs_l, xs_g)
+        r, nfev, J = self._ptc(v, cap, float(omega), ftol, P, U, act, tabs, xs_l, xs_g, J0)
         facc = ftol * self.tol_accept / self.tol
         if not r <= facc:
             return f"residual {r:.3g} N after {nfev} evaluations (tolerance {facc:.3g} N)"
-        return self._result(omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity)
+        res = self._result(omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity)
+        if res.jacobian is None:
+            res.jacobian = J
+        return res
 
     def _jacobian(self, v, omega, P, U, act, tabs, xs_l, xs_g):
         """Dense Jacobian of the scaled residual at v (quasistatic_cage_kernels.cage_jacobian, 17 rhs calls)."""
@@ -503,25 +509,28 @@ class QuasiStaticCageModel:
         CK.cage_dense(A, B, C, Dg, E, xs_l, xs_g, J)
         return J
 
-    def _ptc(self, v, cap, omega, ftol, P, U, act, tabs, xs_l, xs_g):
+    def _ptc(self, v, cap, omega, ftol, P, U, act, tabs, xs_l, xs_g, J0=None):
         """Damped Newton on the scaled unknowns v (overwritten): the Newton step scaled down to the caps, then
         halved until the residual's 2-norm falls (Armijo-free backtracking, down to 1/64); when no fraction
         of it lowers the residual, Levenberg-Marquardt steps (J^T J + mu diag(J^T J)) dv = -J^T R with mu
         growing ten-fold until one does. The Jacobian is kept over steps that contract the max-norm
-        residual at least four-fold (chord steps). Stops at max |R| <= ftol, after the budget, or when four
-        steps on fresh Jacobians in a row lowered the max-norm residual by less than 10 % each (the floor
-        that the kinks of the contact laws leave). Returns (max |R|, rhs evaluations)."""
+        residual at least four-fold (chord steps); J0, if given, is the first one (rebuilt as soon as a step on
+        it fails). Stops at max |R| <= ftol, after the budget, or when four steps on fresh Jacobians in a row
+        lowered the max-norm residual by less than 10 % each (the floor that the kinks of the contact laws
+        leave). Returns (max |R|, rhs evaluations, the last Jacobian or None)."""
         budget = self.budget
         R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)[-1]
         r = float(np.max(np.abs(R)))
         r2n = float(R @ R)
         nfev = 1
-        J = None
+        J = J0
+        J_last = J0
         stall = 0
         while nfev < budget and not r <= ftol and stall < 4:
             fresh = J is None
             if fresh:
                 J = self._jacobian(v, omega, P, U, act, tabs, xs_l, xs_g)
+                J_last = J
                 nfev += 17
             dv = np.empty(v.size)
             if not CK.dense_solve(J, -R, dv):
@@ -566,7 +575,7 @@ class QuasiStaticCageModel:
             v[:], R, r, r2n = v2, R2, r_new, float(R2 @ R2)
             if contract > 0.25:
                 J = None
-        return r, nfev
+        return r, nfev, J_last
 
     # ---- result ---------------------------------------------------------------------------------------
     def _evaluate(self, v, P, U, act, tabs, xs_l, xs_g):
@@ -625,6 +634,7 @@ class QuasiStaticCageModel:
         n = v.size
         r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
         J = self._jacobian(v, float(res.omega), P, U, act, tabs, xs_l, xs_g)
+        res.jacobian = J
         def solve(rhs):            # J dv = rhs; the least-squares solution of smallest norm if J is singular
             dv = np.empty(n)       # (a dry cage whose balls all float: their common place in the pockets)
             if CK.dense_solve(J, np.ascontiguousarray(rhs, dtype=float), dv):
@@ -688,7 +698,8 @@ class QuasiStaticCageModel:
                         p = p0.copy()
                         p[k] += sg * f * dp
                         ring = p[1:6]
-                        out = self._solve_from(p[0], ring, p[6], self._start("warm", res, p[0], ring, p[6]), False)
+                        out = self._solve_from(p[0], ring, p[6], self._start("warm", res, p[0], ring, p[6]), False,
+                                               J0=J)
                         if isinstance(out, QuasiStaticCageResult):
                             sec[sg] = out.outputs
                     if sec:
