@@ -274,6 +274,17 @@ class QuasiStaticCageModel:
             f"quasi-static cage model: no steady state found at {omega * 30 / math.pi:.0f} rpm, {name} "
             f"{np.array2string(ring, precision=6)}, oil temperature {T_oil - 273.15:.1f} degC ({'; '.join(errors)})")
 
+    def update_sensitivity(self, res: QuasiStaticCageResult) -> QuasiStaticCageResult:
+        """Compute res.sensitivity and res.tau_cage (as solve(..., sensitivity=True)) for a solution solved
+        without them; returns res."""
+        if not isinstance(res, QuasiStaticCageResult):
+            raise BearingInputError("res", type(res).__name__, "a QuasiStaticCageResult")
+        p0 = res.inputs()
+        s_, P, U, act, tabs, xs_l, xs_g = self._problem(p0[0], p0[1:6], p0[6])
+        v = np.concatenate([(res.x[0] / xs_l).ravel(), res.x[1] / xs_g])
+        self._sensitivity(res, v, s_, P, U, act, tabs, xs_l, xs_g)
+        return res
+
     def _cold(self, omega, ring, T_oil, errors):
         """Solve without a previous solution (module docstring): the pure axial load with every ball held at
         the cage's azimuth rate (orbit coupling 0) from the free-ball tribological start (else Jones-Harris),
