@@ -274,15 +274,16 @@ class QuasiStaticCageModel:
             f"quasi-static cage model: no steady state found at {omega * 30 / math.pi:.0f} rpm, {name} "
             f"{np.array2string(ring, precision=6)}, oil temperature {T_oil - 273.15:.1f} degC ({'; '.join(errors)})")
 
-    def update_sensitivity(self, res: QuasiStaticCageResult) -> QuasiStaticCageResult:
+    def update_sensitivity(self, res: QuasiStaticCageResult, columns=None) -> QuasiStaticCageResult:
         """Compute res.sensitivity and res.tau_cage (as solve(..., sensitivity=True)) for a solution solved
-        without them; returns res."""
+        without them; columns: indices of the inputs (res.input_names) whose derivatives are computed (None:
+        all); the others are kept from res.sensitivity (zero if it has none). Returns res."""
         if not isinstance(res, QuasiStaticCageResult):
             raise BearingInputError("res", type(res).__name__, "a QuasiStaticCageResult")
         p0 = res.inputs()
         s_, P, U, act, tabs, xs_l, xs_g = self._problem(p0[0], p0[1:6], p0[6])
         v = np.concatenate([(res.x[0] / xs_l).ravel(), res.x[1] / xs_g])
-        self._sensitivity(res, v, s_, P, U, act, tabs, xs_l, xs_g)
+        self._sensitivity(res, v, s_, P, U, act, tabs, xs_l, xs_g, columns)
         return res
 
     def _cold(self, omega, ring, T_oil, errors):
@@ -638,7 +639,7 @@ class QuasiStaticCageModel:
             self._sensitivity(res, v, s, P, U, act, tabs, xs_l, xs_g)
         return res
 
-    def _sensitivity(self, res, v, s, P, U, act, tabs, xs_l, xs_g):
+    def _sensitivity(self, res, v, s, P, U, act, tabs, xs_l, xs_g, columns=None):
         """res.sensitivity (d outputs / d inputs) and res.tau_cage (module docstring) at the solution v."""
         g = self.g
         Z = g.Z
@@ -665,13 +666,13 @@ class QuasiStaticCageModel:
         res.tau_cage = float(inertia / -slope) if slope < 0.0 else float("inf")
         # derivatives of the outputs: dx/dp = -J^-1 dR/dp, then one directional difference per input
         p0 = res.inputs()
-        Sens = np.zeros((len(OUTPUT_NAMES), 7))
+        Sens = np.zeros((len(OUTPUT_NAMES), 7)) if res.sensitivity is None else res.sensitivity.copy()
         # a point accepted above the target tolerance sits on a kink of the contact laws: secants there
         ring0 = p0[1:6]
         scale0 = (max(np.max(np.abs(ring0[:3])), np.max(np.abs(ring0[3:])) / (0.5 * g.dm), 100.0)
                   if self.opt.coupling == "load" else self._pose_scale(ring0, p0[0]))
         smooth = res.residual <= self.tol * scale0
-        for k in range(7):
+        for k in (range(7) if columns is None else columns):
             # central differences over steps that span the kinks of the contact laws (shaft speed 1e-4 of it,
             # forces 0.1 N, moments 0.01 N m, oil 0.1 K; ring pose 10 nm, 0.1 urad)
             hp = [1e-4 * max(abs(p0[0]), 1.0), 0.1, 0.1, 0.1, 1e-2, 1e-2, 0.1][k]
