@@ -185,7 +185,7 @@ class QuasiStaticCageModel:
     path_tol_factor = 3.0
     _tol_factor = 1.0
     #: residual evaluations of one continuation step
-    sub_budget = 200
+    sub_budget = 500
     #: step caps of the damped Newton solve: positions [um], tilts [10 urad]
     cap_position = 10.0
     cap_tilt = 10.0
