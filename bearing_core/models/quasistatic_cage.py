@@ -1,0 +1,757 @@
+"""Quasi-static cage model: the steady state of the whole bearing, cage included, on the dynamics' own forces.
+
+The dynamics' right-hand side (dynamics_kernels.rhs: Hertz contact, the traction law of the options --
+rheology-based EHL traction or Kalker/FASTSIM --, the ball-pocket contact -- lubricated films on both walls
+(lubrication.pocket_film) or dry Coulomb --, the guiding land -- oil-flooded short journal bearing with
+Petroff drag, or dry penalty contact with Coulomb friction --, ball drag and churning) is evaluated at a
+candidate steady state and its accelerations are driven to zero. In the candidate state the cage turns at wc
+about its centre (xc, yc), which stands still; ball j sits in pocket j (cage angle 0, pocket azimuth
+2 pi j / Z) where the pocket pushes it with the tangential force -q_j, orbits at theta_dot_j; the inner ring
+stands at its pose and turns at omega. Steady equations (Gupta, Advanced Dynamics of Rolling Elements 1984,
+Ch. 3 and 5, the equations of dynamics_kernels' ball with all rates zero in the frame orbiting with it):
+
+  ball j (unknowns r, z, Omega_r, Omega_t, Omega_z, q, theta_dot):
+      F_r + m r th_d^2 = 0,  F_z = 0,  M_r + J th_d Omega_t = 0,  M_t - J th_d Omega_r = 0,  M_z = 0,
+      F_t = m r wc (th_d,j - th_d,j-1) / dpsi        (race tractions + drag + pocket force)
+      thb_j - wc = wc (dth_j - dth_j-1) / dpsi        (azimuth rate about the cage centre; place in pocket)
+  inner ring (unknowns dx, dy, dz, tx, ty; load coupling):  F_ext + sum_j F_ball->ring = 0
+  cage (unknowns wc and the centre coordinates gx, gy):
+      sum_j (pocket force moments + pocket film shear) + land torque + churning = 0   (torque about z)
+      sum_j pocket forces + land force = 0                                           (forces in x, y)
+
+The right-hand sides of the last two ball equations tie ball j to ball j - 1 (quasistatic_cage_kernels.
+orbit_coupling): the balls at the pocket azimuths are one ball seen dpsi / wc apart in a motion periodic in
+the cage frame (dpsi = 2 pi / Z), so along its orbit a ball speeds up or slows down and crosses its pocket
+clearance; summed over the balls, the mean orbital speed about the cage centre is the cage speed. The
+pocket-force coordinate q and the cage-centre coordinates (quasistatic_cage_kernels.pocket_place,
+cage_centre) make the problem regular: the ball's place in its pocket follows from the force through the
+dynamics' own pocket kernel (a dry pocket: linear across its clearance for |q| <= 1 N).
+
+Solution: 7 Z + 8 unknowns, a finite-difference Jacobian (23 right-hand-side calls), damped Newton steps with
+caps and Levenberg-Marquardt steps where no fraction of the Newton step lowers the residual. Cold start: the
+pure axial load from the free-ball tribological solution (quasistatic_tribo; else Jones-Harris), with the
+balls held at the cage's azimuth rate in the oil regime (orbit coupling 0), continuation in the other loads,
+then in the orbit coupling to 1 (and, with displacement coupling, in the ring pose). A previous solution is a
+warm start. A point that does not converge raises ConvergenceError naming speed, loads or pose, and oil
+temperature. Tolerances: aim at tol, accept tol_accept (the contact laws' kinks leave a residual floor).
+
+Sensitivity: central secants of the outputs over warm re-solves at the inputs +- a step on the scale of the
+re-solve tolerance (or, sensitivity_method 'implicit', dx/dp = -J^-1 dR/dp on the solution's Jacobian with
+chord steps, secants where that fails its checks). Time constant of the cage speed's first-order lag:
+tau = (I_c + Z m (dm/2)^2) / (-dT/dwc), T the net torque on cage and balls about the axis with every other
+equation in equilibrium (ball spin, contact and pocket forces follow the cage much faster):
+-dT/dwc = -(dm/2) / (J^-1)[wc, cage torque row]. Method, accuracy against the dynamic model and its limits:
+docs/fidelity_quasistatic.md.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from . import dynamics_kernels as K
+from . import quasistatic_cage_kernels as CK
+from .dynamics_setup import DynamicSetup, DynamicsOptions
+from .quasistatic import quasistatic_model
+from .quasistatic_tribo import TriboQuasiStaticModel
+from ..bearing.geometry import BearingGeometry
+from ..errors import BearingInputError, ConvergenceError, check_range
+
+NL, NG = CK.NL, CK.NG
+INPUT_NAMES = ("omega", "Fx", "Fy", "Fz", "Mx", "My", "T_oil")
+DISP_INPUT_NAMES = ("omega", "dx", "dy", "dz", "tx", "ty", "T_oil")
+# scalar outputs of a solution (and of its sensitivity)
+OUTPUT_NAMES = ("cage_speed", "friction_torque", "P_drive", "heat", "P_race_inner", "P_race_outer", "P_pocket",
+                "P_land", "P_drag", "P_churn_cage", "P_churn_ring", "Fx", "Fy", "Fz", "Mx", "My",
+                "dx", "dy", "dz", "tx", "ty", "alpha_i_mean", "alpha_o_mean", "Q_i_max", "Q_o_max", "p_max",
+                "cage_x", "cage_y")
+_DIAG = ("cage_speed", "friction_torque", "P_drive", None, "P_race_inner", "P_race_outer", "P_pocket", "P_land",
+         "P_drag", "P_churn_cage", "P_churn_ring", "Fx", "Fy", "Fz", "Mx", "My",
+         "ir_x", "ir_y", "ir_z", "ir_tx", "ir_ty", "alpha_i_mean", "alpha_o_mean", "Q_i_max", "Q_o_max", "p_max",
+         "cage_x", "cage_y")
+_HEAT = ("P_race_inner", "P_race_outer", "P_pocket", "P_land", "P_drag", "P_churn_cage", "P_churn_ring", "P_damping")
+
+
+def output_vector(diag: np.ndarray) -> np.ndarray:
+    """The scalar outputs (OUTPUT_NAMES) from the dynamics' output channels diag; 'heat' is the sum of the
+    loss channels [W] (races, pocket, land, drag, churning)."""
+    I = K.OUT_INDEX
+    out = np.empty(len(OUTPUT_NAMES))
+    for k, n in enumerate(_DIAG):
+        out[k] = sum(diag[I[h]] for h in _HEAT) if n is None else diag[I[n]]
+    return out
+
+
+@dataclass
+class QuasiStaticCageResult:
+    """Steady state of the quasi-static cage model (SI: m, rad, N, N m, rad/s, W). Per-ball arrays have
+    length Z; ``y`` is the matching dynamics state (a start for DynamicModel)."""
+
+    geometry: BearingGeometry
+    omega: float                   # inner-ring speed [rad/s]
+    loads: np.ndarray              # (Fx, Fy, Fz, Mx, My) applied [N, N m] (displacement: -reaction)
+    displacement: np.ndarray       # inner-ring pose (dx, dy, dz, tx, ty) [m, rad]
+    T_oil: float                   # oil temperature [K]
+    coupling: str
+    cage_speed: float              # [rad/s]
+    cage_centre: np.ndarray        # (xc, yc) [m]
+    friction_torque: float         # torque the shaft supplies [N m]
+    heat: dict                     # loss powers by source [W] and their sum 'total'
+    P_drive: float                 # drive power [W]
+    reaction: np.ndarray           # (Fx, Fy, Fz, Mx, My) of the balls on the inner ring [N, N m]
+    alpha_i: np.ndarray            # contact angles [rad]
+    alpha_o: np.ndarray
+    Q_i: np.ndarray                # contact loads [N]
+    Q_o: np.ndarray
+    p_i: np.ndarray                # largest Hertz pressures [Pa]
+    p_o: np.ndarray
+    pocket_force: np.ndarray       # ball-pocket normal force [N]
+    pocket_q: np.ndarray           # pocket-force coordinate q [N] (> 0: the ball leads its pocket)
+    orbit_speed: np.ndarray        # orbital speed of each ball [rad/s]
+    omega_ball: np.ndarray         # (Z, 3) angular velocity (Omega_r, Omega_t, Omega_z) [rad/s]
+    film: dict                     # Hamrock-Dowson films (DynamicSetup.film) and the smallest film parameter
+    outputs: np.ndarray            # the scalar outputs, in the order of OUTPUT_NAMES
+    residual: float                # max |residual| [N]
+    iterations: int                # right-hand-side evaluations of the solve
+    tau_cage: float                # time constant of the cage speed's first-order lag [s]
+    sensitivity: np.ndarray = field(repr=False, default=None)   # d outputs / d inputs (len OUTPUT_NAMES x 7)
+    input_names: tuple = INPUT_NAMES
+    secant_inputs: tuple = ()      # inputs whose derivatives are secants over warm re-solves (contact-law kinks)
+    x: tuple = field(repr=False, default=None)   # (xl, xg) unknowns (warm start)
+    y: np.ndarray = field(repr=False, default=None)
+    diag: np.ndarray = field(repr=False, default=None)
+    jacobian: np.ndarray = field(repr=False, default=None)   # last Jacobian of the solve (scaled; warm starts)
+
+    def output(self, name: str) -> float:
+        return float(self.outputs[OUTPUT_NAMES.index(name)])
+
+    def inputs(self) -> np.ndarray:
+        """The input vector (INPUT_NAMES, or DISP_INPUT_NAMES with displacement coupling) of this solution."""
+        ring = self.loads if self.coupling == "load" else self.displacement
+        return np.concatenate([[self.omega], ring, [self.T_oil]])
+
+    def predict(self, omega: float, ring, T_oil: float | None = None) -> np.ndarray:
+        """First-order update of the outputs (OUTPUT_NAMES) at new inputs: omega [rad/s], ring = loads (Fx,
+        Fy, Fz, Mx, My) [N, N m] or the ring pose (displacement coupling), T_oil [K] (None: this one)."""
+        p = np.concatenate([[omega], np.asarray(ring, dtype=float).reshape(5),
+                            [self.T_oil if T_oil is None else T_oil]])
+        return self.outputs + self.sensitivity @ (p - self.inputs())
+
+    def input_tolerance(self, rel: float = 2e-3, keys=("cage_speed", "friction_torque", "heat")) -> np.ndarray:
+        """Per input, the change that moves any of the outputs ``keys`` by rel of its value on the linear
+        update (inf where they do not depend on it): re-solve when an input has moved beyond a fraction of
+        this since the last solve; within it, predict()."""
+        tol = np.full(len(INPUT_NAMES), np.inf)
+        for k in keys:
+            i = OUTPUT_NAMES.index(k)
+            scale = rel * max(abs(self.outputs[i]), 1e-9)
+            s = np.abs(self.sensitivity[i])
+            with np.errstate(divide="ignore"):
+                tol = np.minimum(tol, np.where(s > 0, scale / s, np.inf))
+        return tol
+
+
+class QuasiStaticCageModel:
+    """Quasi-static cage model of one bearing with the options of the dynamics (a DynamicsOptions:
+    traction, lubrication regime, cage and land parameters, drag, churning, coupling, fixed_tilt; integrator
+    settings are not used). Outer ring fixed."""
+
+    #: residual tolerance relative to the load scale (largest of |F|, |M| / (dm/2), 100 N): the solve aims at
+    #: tol and accepts a point at tol_accept where the contact laws' kinks leave a residual floor above tol
+    #: (measured: 7218B, 3000 rpm, Fx 1 kN, Fz 3 kN: cage speed 0.35 % and torque 3.4 % apart between a point
+    #: at 1e-3 and one at 5e-5)
+    tol = 2e-5
+    tol_accept = 1e-3
+    #: residual evaluations of one solve attempt
+    budget = 1500
+    #: derivatives of the outputs: 'secant' (central secants over warm re-solves at the inputs +- a step on the
+    #: scale of the re-solve tolerance, _secant_step; 14 warm solves) or 'implicit' (implicit function theorem on
+    #: the solution's Jacobian, secants only where the linearisation fails its checks; measured: 7218B, 6452 rpm,
+    #: Fx 1.9 kN, Fz 5 kN, the implicit dT/dFx was 0.127 N m/N against a secant -1.9e-4: a near-null direction of
+    #: the finite-difference Jacobian (the balls' places in their pockets) that barely moves the residual moves
+    #: the torque)
+    sensitivity_method = "secant"
+    #: chord steps on the solution's Jacobian after the first-order change of the unknowns in the directional
+    #: differences of the sensitivity (the residual at the solution, R, stays the reference)
+    sensitivity_chord_steps = 2
+    #: weight of the orbit coupling (quasistatic_cage_kernels.orbit_coupling): 1 the periodic motion, 0
+    #: every ball held at the cage's azimuth rate
+    lam = 1.0
+    #: orbit coupling along the load path (None: 0 with an oil-lubricated cage, whose pocket films give every
+    #: ball a pocket force; 1 with a dry one, whose balls float in their clearance until the load grows)
+    path_lam0 = None
+    #: largest relative change of the cage speed in one continuation step
+    path_jump = 0.05
+    #: tolerance factor of the intermediate continuation steps (the end point is solved to tol)
+    path_tol_factor = 3.0
+    _tol_factor = 1.0
+    #: residual evaluations of one continuation step
+    sub_budget = 500
+    #: step caps of the damped Newton solve: positions [um], tilts [10 urad]
+    cap_position = 10.0
+    cap_tilt = 10.0
+
+    def __init__(self, geometry: BearingGeometry, options: DynamicsOptions | None = None):
+        opt = DynamicsOptions() if options is None else options
+        if opt.outer_mount != "fixed":
+            raise BearingInputError("outer_mount", opt.outer_mount, "fixed (quasi-static cage model)")
+        geometry.require_two_point("quasi-static cage model")
+        if geometry.cage.guidance == "ball":
+            raise BearingInputError("cage.guidance", "ball", "outer | inner (land-guided cage)")
+        self.g = geometry
+        self.opt = replace(opt, reduced="full", thermal=False)
+        self.opt.validate()
+        self._setups = {}
+
+    # ---- parameters -------------------------------------------------------------------------------
+    def _setup(self, omega: float, T_oil: float):
+        """DynamicSetup at oil temperature T_oil [K] (and shaft speed omega with ring growth), memoised per
+        (T_oil, speed if ring growth)."""
+        key = (round(T_oil, 9), round(omega, 6) if self.opt.ring_growth else 0.0)
+        s = self._setups.get(key)
+        if s is None:
+            if len(self._setups) > 8:
+                self._setups.clear()
+            s = DynamicSetup(self.g, replace(self.opt, oil_temperature=T_oil))
+            s.U[K.U_W0] = s.U[K.U_W1] = omega
+            s.update_operating_geometry(omega)
+            s.P = s._params(False)
+            s.apply_temperatures(T_oil, T_oil)
+            self._setups[key] = s
+        return s
+
+    def _kernel_args(self, s):
+        return (s._tab_i, s._tab_o, s._ta0, s._tda, s._tp, *s._quad)
+
+    # ---- solve ------------------------------------------------------------------------------------------
+    def solve(self, omega: float, loads=None, displacement=None, T_oil: float | None = None,
+              start: QuasiStaticCageResult | None = None, sensitivity: bool = True) -> QuasiStaticCageResult:
+        """Steady state at inner-ring speed omega [rad/s] (>= 10) under loads (Fx, Fy, Fz, Mx, My) [N, N m]
+        (load coupling) or at the ring pose displacement (dx, dy, dz, tx, ty) [m, rad] (displacement
+        coupling), oil temperature T_oil [K] (None: options.oil_temperature). start: a previous solution to
+        start from (warm start). sensitivity: also the derivatives and the cage time constant. Raises
+        ConvergenceError naming the operating point if no start converges."""
+        omega = check_range("omega", omega, 10.0, 2.0e4, unit="rad/s")
+        T_oil = self.opt.oil_temperature if T_oil is None else check_range("T_oil", T_oil, 233.15, 473.15, unit="K")
+        disp = self.opt.coupling == "displacement"
+        if disp:
+            if displacement is None:
+                raise BearingInputError("displacement", None,
+                                        "5 values (dx, dy, dz, tx, ty) with displacement coupling")
+            ring = np.asarray(displacement, dtype=float).reshape(-1)
+            name = "displacement"
+        else:
+            if loads is None:
+                raise BearingInputError("loads", None, "5 values (Fx, Fy, Fz, Mx, My) with load coupling")
+            ring = np.asarray(loads, dtype=float).reshape(-1)
+            name = "loads"
+        if ring.size != 5 or not np.all(np.isfinite(ring)):
+            raise BearingInputError(name, ring.tolist(), "5 finite values")
+        if start is not None and not isinstance(start, QuasiStaticCageResult):
+            raise BearingInputError("start", type(start).__name__, "None or a QuasiStaticCageResult")
+        errors = []
+        if start is not None:
+            res = self._solve_from(omega, ring, T_oil, self._start("warm", start, omega, ring, T_oil), sensitivity,
+                                   J0=start.jacobian)
+            if isinstance(res, QuasiStaticCageResult):
+                return res
+            errors.append(f"warm start: {res}")
+        budget = self.budget
+        lam0 = self.path_lam0 if self.path_lam0 is not None else (0.0 if self.opt.regime == "oil" else 1.0)
+        try:
+            res = self._cold(omega, ring, T_oil, errors, lam0)
+        except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
+            errors.append(str(e))
+            res = None
+        finally:
+            self.budget = budget
+            self.lam = 1.0
+        if res is not None:
+            if sensitivity:
+                s_, P, U, act, tabs, xs_l, xs_g = self._problem(omega, ring, T_oil)
+                v = np.concatenate([(res.x[0] / xs_l).ravel(), res.x[1] / xs_g])
+                self._sensitivity(res, v, s_, P, U, act, tabs, xs_l, xs_g)
+            return res
+        raise ConvergenceError(
+            f"quasi-static cage model: no steady state found at {omega * 30 / math.pi:.0f} rpm, {name} "
+            f"{np.array2string(ring, precision=6)}, oil temperature {T_oil - 273.15:.1f} degC ({'; '.join(errors)})")
+
+    def update_sensitivity(self, res: QuasiStaticCageResult, columns=None) -> QuasiStaticCageResult:
+        """Compute res.sensitivity and res.tau_cage (as solve(..., sensitivity=True)) for a solution solved
+        without them; columns: indices of the inputs (res.input_names) whose derivatives are computed (None:
+        all); the others are kept from res.sensitivity (zero if it has none). Returns res."""
+        if not isinstance(res, QuasiStaticCageResult):
+            raise BearingInputError("res", type(res).__name__, "a QuasiStaticCageResult")
+        p0 = res.inputs()
+        s_, P, U, act, tabs, xs_l, xs_g = self._problem(p0[0], p0[1:6], p0[6])
+        v = np.concatenate([(res.x[0] / xs_l).ravel(), res.x[1] / xs_g])
+        self._sensitivity(res, v, s_, P, U, act, tabs, xs_l, xs_g, columns)
+        return res
+
+    def _cold(self, omega, ring, T_oil, errors, lam0):
+        """Solve without a previous solution (module docstring): the pure axial load at orbit coupling lam0 (0:
+        every ball held at the cage's azimuth rate) from the free-ball tribological start (else Jones-Harris),
+        continuation in the other loads to the operating point, then in the orbit coupling to 1. With
+        displacement coupling the path runs under the loads the ring pose needs (Jones-Harris), and the
+        last step holds the pose. Returns the result or None (reasons appended to errors)."""
+        disp = self.opt.coupling == "displacement"
+        loads = self._loads_of_pose(ring, omega) if disp else ring
+        model = self if not disp else QuasiStaticCageModel(self.g, replace(self.opt, coupling="load"))
+        ring0 = np.array([0.0, 0.0, loads[2], 0.0, 0.0])
+        model.lam = lam0
+        res = None
+        for kind in ("tribological", "jones-harris"):
+            try:
+                x0 = model._start(kind, None, omega, ring0, T_oil)
+            except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
+                errors.append(f"{kind} start: {e}")
+                continue
+            model._tol_factor = self.path_tol_factor
+            model.budget = self.budget
+            res = model._solve_from(omega, ring0, T_oil, x0, False)
+            model._tol_factor = 1.0
+            model.budget = self.sub_budget
+            if isinstance(res, QuasiStaticCageResult):
+                break
+            errors.append(f"{kind} start under the axial load alone: {res}")
+            res = None
+        if res is None:
+            return None
+        if np.any(loads != ring0):
+            res = model._continuation(res, lambda a: (ring0 + a * (loads - ring0), lam0), omega, T_oil, errors,
+                                      "loads")
+        if res is None:
+            return None
+        if lam0 < 1.0:
+            res = model._continuation(res, lambda a: (loads, lam0 + a * (1.0 - lam0)), omega, T_oil, errors,
+                                      "orbit coupling")
+        if res is None:
+            return None
+        if not disp:       # the end point to the full tolerance
+            out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False)
+            if isinstance(out, QuasiStaticCageResult):
+                return out
+            errors.append(f"end point: {out}")
+            return None
+        # the ring pose: from the load path's end to the prescribed one
+        self.lam = 1.0
+        self.budget = self.sub_budget
+        pose0 = np.array(res.displacement)
+        res = replace(res, coupling="displacement")
+        res = self._continuation(res, lambda a: (pose0 + a * (ring - pose0), 1.0), omega, T_oil, errors, "ring pose")
+        if res is None:
+            return None
+        out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False)
+        if isinstance(out, QuasiStaticCageResult):
+            return out
+        errors.append(f"end point: {out}")
+        return None
+
+    def _continuation(self, res, path, omega, T_oil, errors, what):
+        """Follow path(a) -> (ring input, orbit coupling) from a = 0 (res) to 1 in adaptive steps (a quarter
+        first, x1.5 after a success, halved after a failure, at least 1/512). Returns the end result or
+        None."""
+        a, da = 0.0, 0.25
+        lam_res = self.lam          # the orbit coupling of res
+        self._tol_factor = self.path_tol_factor
+        try:
+            while a < 1.0:
+                a2 = min(a + da, 1.0)
+                ring, lam = path(a2)
+                self.lam = lam
+                out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False)
+                # a step that moves the cage speed by more than path_jump has left the branch it follows (the
+                # steady problem has several roots: 7218B, 10,000 rpm, Fx 1 kN, Fz 3 kN has one at 4374 rpm
+                # and a skidding one at 2664 rpm): a smaller step
+                jump = isinstance(out, QuasiStaticCageResult) and \
+                    abs(out.cage_speed / res.cage_speed - 1.0) > self.path_jump
+                if isinstance(out, QuasiStaticCageResult) and not jump:
+                    res, a, da, lam_res = out, a2, da * 1.5, lam
+                    continue
+                if jump:
+                    out = (f"cage speed jumped from {res.cage_speed * 30 / math.pi:.0f} to "
+                           f"{out.cage_speed * 30 / math.pi:.0f} rpm")
+                da *= 0.5
+                if da < 1.0 / 512.0:
+                    errors.append(f"continuation in the {what} stopped at {a:.4f} of the way: {out}")
+                    return None
+            return res
+        finally:
+            self.lam = lam_res
+            self._tol_factor = 1.0
+
+    def _start(self, kind, st, omega, ring, T_oil):
+        """Unknowns (xl, xg) to start from: a previous solution (speeds scaled to omega), the free-ball
+        tribological solution or the Jones-Harris one (cage at the mean orbital speed, centred, balls at their
+        pocket centres)."""
+        g = self.g
+        Z = g.Z
+        xl = np.zeros((Z, NL))
+        xg = np.zeros(NG)
+        if kind == "warm":
+            ratio = omega / st.omega
+            xl[:] = st.x[0]
+            xg[:] = st.x[1]
+            xl[:, 2:5] *= ratio
+            xl[:, 6] *= ratio
+            xg[CK.G_WC] *= ratio
+            if self.opt.coupling == "displacement":
+                xg[:5] = ring
+            return xl, xg
+        loads = ring if self.opt.coupling == "load" else self._loads_of_pose(ring, omega)
+        if kind == "tribological":
+            o = replace(self.opt, coupling="load", oil_temperature=T_oil)
+            tq = TriboQuasiStaticModel(g, o).solve(omega, loads)
+            b = K.NSTATE_FIXED + K.NSB * np.arange(Z)
+            xl[:, 0] = tq.y[b + 1]
+            xl[:, 1] = tq.y[b + 2]
+            xl[:, 2:5] = tq.omega_ball
+            xg[:5] = tq.u
+            xg[CK.G_WC] = tq.cage_speed
+            xl[:, 6] = tq.orbit_speed
+        else:
+            qsm = quasistatic_model(g, "outer", fixed_tilt=self.opt.fixed_tilt)
+            jh = qsm.solve(omega, loads, stiffness=False)
+            Roo = 0.5 * g.dm - (g.fo - 0.5) * g.D * math.cos(g.alpha0)
+            Zoo = -(g.fo - 0.5) * g.D * math.sin(g.alpha0)
+            xl[:, 0] = Roo + jh.X[:, 0]
+            xl[:, 1] = Zoo + jh.X[:, 1]
+            xl[:, 2] = -jh.omega_R * np.sin(jh.beta)
+            xl[:, 4] = jh.omega_R * np.cos(jh.beta) + jh.omega_m
+            xg[:5] = jh.u
+            xg[CK.G_WC] = jh.cage_speed
+            xl[:, 6] = jh.omega_m
+        if self.opt.coupling == "displacement":
+            xg[:5] = ring
+        return xl, xg
+
+    def _pose_scale(self, d, omega):
+        """Load scale [N] of a ring pose: the largest force (or moment over dm/2) that holds it (Jones-Harris),
+        memoised for the last pose."""
+        key = (tuple(np.round(np.asarray(d, dtype=float), 12)), round(float(omega), 6))
+        if getattr(self, "_pose_key", None) != key:
+            F = self._loads_of_pose(d, omega)
+            self._pose_key = key
+            self._pose_val = max(np.max(np.abs(F[:3])), np.max(np.abs(F[3:])) / (0.5 * self.g.dm), 100.0)
+        return self._pose_val
+
+    def _loads_of_pose(self, d, omega):
+        """Loads (Fx, Fy, Fz, Mx, My) that hold the inner ring at pose d by the Jones-Harris model (the start
+        of a displacement-coupled solve, as DynamicModel.initialize)."""
+        qsm = quasistatic_model(self.g, "outer", fixed_tilt=self.opt.fixed_tilt)
+        Fb, X, st, ok = qsm.residual(np.asarray(d, dtype=float), omega)
+        return -np.asarray(Fb, dtype=float)
+
+    def _problem(self, omega, ring, T_oil):
+        """Kernel arguments of one operating point: (setup, P, U, act, tables, scales)."""
+        s = self._setup(omega, T_oil)
+        P = s.P.copy()
+        disp = self.opt.coupling == "displacement"
+        P[K.P_COUPLING] = 1.0 if disp else 0.0
+        P[K.P_CRX:K.P_CRTY + 1] = 0.0
+        U = np.zeros(K.NU)
+        U[K.U_W0] = U[K.U_W1] = omega
+        if disp:
+            U[K.U_DX:K.U_TY + 1] = ring
+        else:
+            U[K.U_FX:K.U_MY + 1] = ring
+        act = np.ones(NG, dtype=bool)
+        if disp:
+            act[:5] = False
+        elif self.opt.fixed_tilt:
+            act[3:5] = False
+        xs_l = np.array([1e-6, 1e-6, omega, omega, omega, 10.0, omega])
+        xs_g = np.array([1e-6, 1e-6, 1e-6, 1e-5, 1e-5, omega, 10.0, 10.0])
+        return s, P, U, act, self._kernel_args(s), xs_l, xs_g
+
+    def _solve_from(self, omega, ring, T_oil, x0, sensitivity, J0=None):
+        """Damped Newton from x0 (_ptc; J0: a Jacobian to start the chord steps with, e.g. the previous
+        solution's); the result, or the reason it failed (a string)."""
+        s, P, U, act, tabs, xs_l, xs_g = self._problem(omega, ring, T_oil)
+        g = self.g
+        Z = g.Z
+        xl0, xg0 = x0
+        v = np.concatenate([(xl0 / xs_l).ravel(), xg0 / xs_g])
+        hdm = 0.5 * g.dm
+        if self.opt.coupling == "load":
+            scale = max(np.max(np.abs(ring[:3])), np.max(np.abs(ring[3:])) / hdm, 1.0)
+        else:                    # the loads the pose needs (Jones-Harris), as the load scale
+            scale = self._pose_scale(ring, omega)
+        ftol = self.tol * self._tol_factor * max(scale, 100.0)
+        if P[K.P_LUBE] < 0.5:
+            # dry pocket and land: no force in the clearance, so no slope there. A ball inside its clearance
+            # with an unbalanced tangential force is first put against the wall that takes it, then a cage
+            # inside its land clearance against the land that takes the pockets' net force
+            out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+            q = v[5:Z * NL:NL] * xs_l[5]
+            Ft = out[7][:, 5]
+            gap = (np.abs(q) <= CK.Q_GAP) & (np.abs(Ft) > ftol)
+            q[gap] = Ft[gap] + np.sign(Ft[gap]) * CK.Q_GAP
+            v[5:Z * NL:NL] = q / xs_l[5]
+            gv = v[Z * NL + 6:] * xs_g[6:]
+            if np.hypot(*gv) <= CK.Q_GAP and P[K.P_ETA_LAND] <= 0.0:
+                out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+                Fc = out[8][6:8]
+                if np.hypot(*Fc) > ftol:
+                    v[Z * NL + 6:] = (Fc + Fc / np.hypot(*Fc) * CK.Q_GAP) / xs_g[6:]
+        cap = np.full(v.size, 0.2)                  # speeds: 0.2 omega a step
+        for j in range(Z):
+            cap[j * NL] = cap[j * NL + 1] = self.cap_position
+            cap[j * NL + 5] = 20.0                  # q: 200 N
+        cap[Z * NL:Z * NL + 3] = self.cap_position
+        cap[Z * NL + 3:Z * NL + 5] = self.cap_tilt
+        cap[Z * NL + 6:] = 20.0                     # g: 200 N
+        r, nfev, J = self._ptc(v, cap, float(omega), ftol, P, U, act, tabs, xs_l, xs_g, J0)
+        facc = ftol * self.tol_accept / self.tol
+        if not r <= facc:
+            return f"residual {r:.3g} N after {nfev} evaluations (tolerance {facc:.3g} N)"
+        res = self._result(omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity)
+        if res.jacobian is None:
+            res.jacobian = J
+        return res
+
+    def _jacobian(self, v, omega, P, U, act, tabs, xs_l, xs_g):
+        """Dense Jacobian of the scaled residual at v (quasistatic_cage_kernels.cage_jacobian, 17 rhs calls)."""
+        Z = self.g.Z
+        n = v.size
+        xl = (v[:Z * NL].reshape(Z, NL) * xs_l).copy()
+        xg = v[Z * NL:] * xs_g
+        y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
+        yy, dy = np.empty(y0.size), np.empty(y0.size)
+        diag, bd = np.zeros(K.NOUT), np.zeros((Z, K.NBD))
+        A = np.empty((Z, NL, NL))
+        B = np.empty((Z, NL, NG))
+        C = np.empty((Z, NG, NL))
+        Dg = np.empty((NG, NG))
+        E = np.empty((Z, NL, NL))
+        iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
+        CK.cage_jacobian(0.0, y0, xl, xg, act, omega, iF, iM, P, U, *tabs, yy, dy, diag, bd, A, B, C, Dg, E, self.lam)
+        J = np.empty((n, n))
+        CK.cage_dense(A, B, C, Dg, E, xs_l, xs_g, J)
+        return J
+
+    def _ptc(self, v, cap, omega, ftol, P, U, act, tabs, xs_l, xs_g, J0=None):
+        """Damped Newton on the scaled unknowns v (overwritten): the Newton step scaled down to the caps, then
+        halved until the residual's 2-norm falls (Armijo-free backtracking, down to 1/64); when no fraction
+        of it lowers the residual, Levenberg-Marquardt steps (J^T J + mu diag(J^T J)) dv = -J^T R with mu
+        growing ten-fold until one does. The Jacobian is kept over steps that contract the max-norm
+        residual at least four-fold (chord steps); J0, if given, is the first one (rebuilt as soon as a step on
+        it fails). Stops at max |R| <= ftol, after the budget, or when six steps on fresh Jacobians in a row
+        lowered the max-norm residual by less than 5 % each (the floor that the kinks of the contact laws
+        leave). Returns (max |R|, rhs evaluations, the last Jacobian or None)."""
+        budget = self.budget
+        R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)[-1]
+        r = float(np.max(np.abs(R)))
+        r2n = float(R @ R)
+        nfev = 1
+        J = J0
+        J_last = J0
+        stall = 0
+        while nfev < budget and not r <= ftol and stall < 6:
+            fresh = J is None
+            if fresh:
+                J = self._jacobian(v, omega, P, U, act, tabs, xs_l, xs_g)
+                J_last = J
+                nfev += 17
+            dv = np.empty(v.size)
+            if not CK.dense_solve(J, -R, dv):
+                dv[:] = np.nan
+            accepted = False
+            if np.all(np.isfinite(dv)):
+                f = max(1.0, float(np.max(np.abs(dv) / cap)))
+                a = 1.0 / f
+                while a >= 1.0 / 64.0 / f and nfev < budget:
+                    v2 = v + a * dv
+                    R2 = self._evaluate(v2, P, U, act, tabs, xs_l, xs_g)[-1]
+                    nfev += 1
+                    if np.all(np.isfinite(R2)) and float(R2 @ R2) < r2n:
+                        accepted = True
+                        break
+                    a *= 0.5
+            if not accepted and not fresh:
+                J = None                      # a kept Jacobian: rebuild it and try again
+                continue
+            if not accepted:
+                JTJ = J.T @ J
+                g = J.T @ R
+                dd = np.maximum(np.diag(JTJ), 1e-12 * max(np.max(np.diag(JTJ)), 1.0))
+                mu = 1e-3
+                while mu < 1e12 and nfev < budget:
+                    if not CK.dense_solve(JTJ + mu * np.diag(dd), -g, dv):
+                        mu *= 10.0
+                        continue
+                    f = max(1.0, float(np.max(np.abs(dv) / cap)))
+                    v2 = v + dv / f
+                    R2 = self._evaluate(v2, P, U, act, tabs, xs_l, xs_g)[-1]
+                    nfev += 1
+                    if np.all(np.isfinite(R2)) and float(R2 @ R2) < r2n:
+                        accepted = True
+                        break
+                    mu *= 10.0
+                if not accepted:
+                    break
+            r_new = float(np.max(np.abs(R2)))
+            contract = r_new / r if r > 0 else 0.0
+            stall = stall + 1 if (fresh and contract > 0.95) else 0
+            v[:], R, r, r2n = v2, R2, r_new, float(R2 @ R2)
+            if contract > 0.25:
+                J = None
+        return r, nfev, J_last
+
+    # ---- result ---------------------------------------------------------------------------------------
+    def _evaluate(self, v, P, U, act, tabs, xs_l, xs_g):
+        Z = self.g.Z
+        xl = np.empty((Z, NL))
+        xg = np.empty(NG)
+        y0 = np.zeros(K.NSTATE_FIXED + K.NSB * Z)
+        yy = np.empty(y0.size)
+        dy = np.empty(y0.size)
+        diag = np.zeros(K.NOUT)
+        bd = np.zeros((Z, K.NBD))
+        Rl = np.empty((Z, NL))
+        Rg = np.empty(NG)
+        share = np.empty((Z, NG))
+        R = np.empty(v.size)
+        iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
+        r = CK.cage_scaled_residual(0.0, y0, v, xs_l, xs_g, act, iF, iM, P, U, *tabs, xl, xg, yy, dy, diag, bd, Rl,
+                                    Rg, share, R, self.lam)
+        return r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R
+
+    def _result(self, omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity):
+        g = self.g
+        Z = g.Z
+        r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+        I = K.OUT_INDEX
+        heat = {k: float(diag[I[k]]) for k in _HEAT}
+        heat["total"] = float(sum(heat.values()))
+        b = K.NSTATE_FIXED + K.NSB * np.arange(Z)
+        h = np.zeros((4, Z))
+        lam = s.films_into(bd, h)
+        film = {"h_c_i": h[0], "h_min_i": h[1], "h_c_o": h[2], "h_min_o": h[3],
+                "Lambda_min": float(lam) if math.isfinite(lam) else 0.0}
+        disp = self.opt.coupling == "displacement"
+        pose = np.array(ring if disp else xg[:5], dtype=float)
+        reaction = np.array([diag[I[k]] for k in ("Fx", "Fy", "Fz", "Mx", "My")])
+        res = QuasiStaticCageResult(
+            geometry=g, omega=float(omega), loads=(-reaction if disp else np.array(ring, dtype=float)),
+            displacement=pose, T_oil=float(T_oil), coupling=self.opt.coupling,
+            cage_speed=float(xg[CK.G_WC]), cage_centre=np.array([yy[12], yy[13]]),
+            friction_torque=float(diag[I["friction_torque"]]), heat=heat, P_drive=float(diag[I["P_drive"]]),
+            reaction=reaction, alpha_i=bd[:, K.BD_AI].copy(), alpha_o=bd[:, K.BD_AO].copy(),
+            Q_i=bd[:, K.BD_QI].copy(), Q_o=bd[:, K.BD_QO].copy(), p_i=bd[:, K.BD_PI].copy(),
+            p_o=bd[:, K.BD_PO].copy(), pocket_force=bd[:, K.BD_FPOCKET].copy(), pocket_q=xl[:, 5].copy(),
+            orbit_speed=yy[b + 3].copy(), omega_ball=xl[:, 2:5].copy(), film=film,
+            outputs=output_vector(diag), residual=float(r), iterations=int(nfev), tau_cage=float("nan"),
+            input_names=DISP_INPUT_NAMES if disp else INPUT_NAMES,
+            x=(xl.copy(), xg.copy()), y=yy.copy(), diag=diag.copy())
+        if sensitivity:
+            self._sensitivity(res, v, s, P, U, act, tabs, xs_l, xs_g)
+        return res
+
+    def _sensitivity(self, res, v, s, P, U, act, tabs, xs_l, xs_g, columns=None):
+        """res.sensitivity (d outputs / d inputs) and res.tau_cage (module docstring) at the solution v."""
+        g = self.g
+        Z = g.Z
+        n = v.size
+        r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+        J = self._jacobian(v, float(res.omega), P, U, act, tabs, xs_l, xs_g)
+        res.jacobian = J
+        def solve(rhs):            # J dv = rhs; the least-squares solution of smallest norm if J is singular
+            dv = np.empty(n)       # (a dry cage whose balls all float: their common place in the pockets)
+            if CK.dense_solve(J, np.ascontiguousarray(rhs, dtype=float), dv):
+                return dv
+            from threadpoolctl import threadpool_limits
+            with threadpool_limits(limits=1, user_api="blas"):
+                return np.linalg.lstsq(J, rhs, rcond=1e-12)[0]
+
+        # cage time constant: slope of the net torque on cage and balls with the cage speed, the other
+        # equations in equilibrium: (J^-1)[wc, cage torque row] = 1 / (dR_c/dwc on that manifold)
+        e = np.zeros(n)
+        e[Z * NL + CK.G_WC] = 1.0
+        z = solve(e)
+        hdm = 0.5 * g.dm
+        slope = 1.0 / (z[Z * NL + CK.G_WC] * xs_g[CK.G_WC]) * hdm     # dT/dwc [N m s]
+        inertia = g.cage.inertia + Z * g.ball_mass * (0.5 * g.dm) ** 2
+        res.tau_cage = float(inertia / -slope) if slope < 0.0 else float("inf")
+        # derivatives of the outputs: dx/dp = -J^-1 dR/dp, then one directional difference per input
+        p0 = res.inputs()
+        Sens = np.zeros((len(OUTPUT_NAMES), 7)) if res.sensitivity is None else res.sensitivity.copy()
+        # a point accepted above the target tolerance sits on a kink of the contact laws: secants there
+        ring0 = p0[1:6]
+        scale0 = (max(np.max(np.abs(ring0[:3])), np.max(np.abs(ring0[3:])) / (0.5 * g.dm), 100.0)
+                  if self.opt.coupling == "load" else self._pose_scale(ring0, p0[0]))
+        smooth = res.residual <= self.tol * scale0
+        for k in (range(7) if columns is None else columns):
+            # central differences over steps that span the kinks of the contact laws (shaft speed 1e-4 of it,
+            # forces 0.1 N, moments 0.01 N m, oil 0.1 K; ring pose 10 nm, 0.1 urad)
+            hp = [1e-4 * max(abs(p0[0]), 1.0), 0.1, 0.1, 0.1, 1e-2, 1e-2, 0.1][k]
+            if self.opt.coupling == "displacement" and 1 <= k <= 5:
+                hp = 1e-8 if k <= 3 else 1e-7
+            outs = []
+            linear = True
+            for sg in (1.0, -1.0):
+                p = p0.copy()
+                p[k] += sg * hp
+                s2, P2, U2, act2, tabs2, xs_l2, xs_g2 = self._problem(p[0], p[1:6], p[6])
+                R2 = np.empty(n)
+                self._residual_at(v, P2, U2, act2, tabs2, xs_l, xs_g, R2)
+                v1 = v + solve(-(R2 - R))  # first-order change of the scaled unknowns, then chord steps on J
+                R1 = np.empty(n)           # while they bring the residual closer to the solution's
+                R0 = R2.copy()
+                self._residual_at(v1, P2, U2, act2, tabs2, xs_l, xs_g, R1)
+                for _ in range(self.sensitivity_chord_steps):
+                    v2 = v1 + solve(-(R1 - R))
+                    self._residual_at(v2, P2, U2, act2, tabs2, xs_l, xs_g, R2)
+                    if not np.max(np.abs(R2 - R)) < np.max(np.abs(R1 - R)):
+                        break
+                    v1, R1 = v2, R2.copy()
+                # the linearisation holds if the steps took away most of the residual change
+                linear = linear and np.max(np.abs(R1 - R)) <= 0.01 * np.max(np.abs(R0 - R))
+                outs.append(output_vector(self._evaluate(v1, P2, U2, act2, tabs2, xs_l, xs_g)[5]))
+            if self.sensitivity_method == "secant" or not (linear and smooth):
+                # the secant over warm re-solves at p +- dp
+                # (shaft speed 1 %, forces 2 % of the load scale, moments 2 % of it times dm/2, oil 1 K),
+                # the scale on which the linear update is used
+                dp = self._secant_step(k, p0)
+                sec = {}
+                for f in (1.0, 0.25):          # a quarter of the step where the warm solve does not converge
+                    for sg in (1.0, -1.0):
+                        p = p0.copy()
+                        p[k] += sg * f * dp
+                        ring = p[1:6]
+                        out = self._solve_from(p[0], ring, p[6], self._start("warm", res, p[0], ring, p[6]), False,
+                                               J0=J)
+                        if isinstance(out, QuasiStaticCageResult):
+                            sec[sg] = out.outputs
+                    if sec:
+                        dp *= f
+                        break
+                if not sec:         # neither side converged: keep the linearisation
+                    Sens[:, k] = (outs[0] - outs[1]) / (2.0 * hp)
+                    continue
+                outs = [sec.get(1.0, res.outputs), sec.get(-1.0, res.outputs)]
+                hp = dp * 0.5 * len(sec)
+                res.secant_inputs = res.secant_inputs + (res.input_names[k],)
+            Sens[:, k] = (outs[0] - outs[1]) / (2.0 * hp)
+        res.sensitivity = Sens
+
+    def _secant_step(self, k, p0):
+        """Input step of the secant sensitivity of input k (see _sensitivity)."""
+        if k == 0:
+            return 1e-2 * abs(p0[0])
+        if k == 6:
+            return 1.0
+        if self.opt.coupling == "displacement":
+            return 2e-7 if k <= 3 else 2e-6
+        scale = max(np.max(np.abs(p0[1:4])), np.max(np.abs(p0[4:6])) / (0.5 * self.g.dm), 100.0)
+        return 2e-2 * scale * (1.0 if k <= 3 else 0.5 * self.g.dm)
+
+    def _residual_at(self, v, P, U, act, tabs, xs_l, xs_g, R):
+        out = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
+        R[:] = out[-1]
+
+
+def solve_quasistatic_cage(geometry: BearingGeometry, omega: float, loads, options=None, **kw) -> QuasiStaticCageResult:
+    """Convenience wrapper: QuasiStaticCageModel(geometry, options).solve(omega, loads, **kw)."""
+    return QuasiStaticCageModel(geometry, options).solve(omega, loads, **kw)
