@@ -1,9 +1,18 @@
 """Quasi-static cage model (bearing_core.models.quasistatic_cage): convergence, balances, the free-ball limit of a
-lossless cage, displacement coupling, sensitivity and agreement with the dynamic model's window means."""
+lossless cage, displacement coupling, sensitivity and agreement with the dynamic model's window means.
+
+The solver is not yet a fidelity level of the session or the FMU (docs/fidelity_quasistatic.md: its accuracy
+against the dynamic model). Compiling its kernels from an empty numba cache takes about two CPU minutes, more than
+the suite's budget for a model no product path runs: these tests run with BEARING_TEST_QS_CAGE=1."""
 import math
+import os
 
 import numpy as np
 import pytest
+
+if os.environ.get("BEARING_TEST_QS_CAGE") != "1":
+    pytest.skip("quasi-static cage solver tests: set BEARING_TEST_QS_CAGE=1 (kernels compile for ~2 CPU minutes)",
+                allow_module_level=True)
 
 from bearing_core import load_bearing
 from bearing_core.errors import BearingInputError, ConvergenceError
