@@ -313,10 +313,15 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
             double rem = step_remaining(c, prog0, h, t - t0);
             if (rem <= SPIN_EARLY) {
                 spins--;
-                int hit = spin_until(resp, c->seq, t + rem + SPIN_LATE);
-                c->spin_score = 0.9 * c->spin_score + (hit ? 0.1 : 0.0);
-                if (hit) return 0;
-                nap = 2 * SPIN_LATE;   /* late: re-predict after a nap (the model wakes the master when done) */
+                if (spin_until(resp, c->seq, t + rem + SPIN_LATE)) {
+                    c->spin_score = 0.9 * c->spin_score + 0.1;
+                    return 0;
+                }
+                /* predicted too early: predict again from the progress now (a nap or another spin) */
+                if (spins > 0 && step_remaining(c, prog0, h, now() - t0) > 0.0) continue;
+                /* integrated but not answered within SPIN_LATE (or out of spins): sleep until woken */
+                c->spin_score *= 0.9;
+                spins = 0;
             } else {
                 /* nap at most half the predicted time, then predict again from the progress made */
                 double n = rem - SPIN_EARLY < 0.5 * rem ? rem - SPIN_EARLY : 0.5 * rem;
@@ -327,7 +332,7 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
         }
         futex_wait(resp, v, nap);
         if (__atomic_load_n(resp, __ATOMIC_ACQUIRE) == c->seq) {
-            if (h > 0 && spins > 0) c->spin_score *= 0.9;   /* answered while the master slept: a late wake */
+            if (spins > 0) c->spin_score *= 0.9;   /* answered while the master slept: predicted too late */
             return 0;
         }
         int status;
