@@ -104,7 +104,7 @@ def worker(fmu: str, t_end: float) -> dict:
     prof = json.loads(Path(os.environ["BEARING_FMU_PROFILE"]).read_text())
     busy, kerns, bares = prof["busy"], prof["kernel"], prof["bare_kernel"]
     return {"init_s": t_init, "first_step_s": walls[0], "step_walls": walls, "kernel_walls": kerns[:n],
-            "bare_kernel_walls": bares[:n], "busy": busy[:n],
+            "bare_kernel_walls": bares[:n], "busy": busy[:n], "slave_step": prof.get("slave_step", [])[:n],
             "short_step_overheads": [w - b for w, b in zip(short, bares[n:])],
             "short_step_exchange": [w - b for w, b in zip(short, busy[n:])], "cage_speed_end": last[0]}
 
@@ -162,14 +162,20 @@ def in_process(t_end: float) -> dict:
 
 
 def _run_worker(fmu, t_end, cache):
-    env = dict(os.environ, BEARING_FMU_CACHE=str(cache), BEARING_FMU_PROFILE=str(Path(cache) / "profile.json"))
+    env = dict(os.environ, BEARING_FMU_CACHE=str(cache), BEARING_FMU_PROFILE=str(Path(cache) / "profile.json"),
+               BEARING_FMU_WAIT_STATS="1")
     env.pop("NUMBA_CACHE_DIR", None)
     p = subprocess.run([sys.executable, __file__, "--worker", "--fmu", str(fmu), "--t-end", str(t_end)],
                        capture_output=True, text=True, env=env)
     lines = [ln for ln in p.stdout.splitlines() if ln.startswith("RESULT ")]
     if p.returncode != 0 or not lines:
         raise RuntimeError(f"FMU worker failed ({p.returncode}): {p.stderr[-2000:]}")
-    return json.loads(lines[-1][7:])
+    res = json.loads(lines[-1][7:])
+    # how the native layer saw the step answers (its counters, printed at fmi2FreeInstance)
+    stats = [ln.split()[1:] for ln in p.stderr.splitlines() if ln.startswith("BEARING_FMU_WAIT_STATS ")]
+    if stats:
+        res["wait_stats"] = {k: float(v) for k, v in (kv.split("=") for kv in stats[-1])}
+    return res
 
 
 def main(argv=None):
@@ -213,6 +219,10 @@ def main(argv=None):
         # the FMI layer alone: fmpy + native layer + exchange with the model process (step wall - model's time)
         "exchange_us": _median_us(sw, warm["busy"][1:]),
         "exchange_short_step_us": float(np.median(warm["short_step_exchange"])) * 1e6,
+        # the model process's own loop around the slave's do_step (request, outputs into the shared segment)
+        "model_loop_us": (_median_us(warm["busy"][1:], warm["slave_step"][1:]) if warm["slave_step"] else None),
+        # steps whose answer the master saw in its first spin, in a predicted spin, or asleep (futex)
+        "wait_stats": warm.get("wait_stats"),
         "session_overhead_short_step_us": float(np.median(ip["short_step_overheads"])) * 1e6,
         # of which the one right-hand-side call for the outputs and films at the communication point
         "output_eval_us": float(np.median(ip["eval_walls"][1:])) * 1e6,

@@ -274,7 +274,7 @@ class DynamicModel(DynamicSetup):
                 ta = tb
         else:
             n = self._integrate(self.t, t_end, rdt, rec, nmax)
-        if self.stats[4] != 0.0 or not np.all(np.isfinite(self.y)):
+        if self.stats[4] != 0.0 or not self._finite:
             raise FloatingPointError(
                 f"integration failed at t in [{self.t:.6g}, {t_end:.6g}] s "
                 f"({'non-finite state' if self.stats[4] == 1 else 'step size underflow'}); "
@@ -438,10 +438,14 @@ class DynamicModel(DynamicSetup):
                 # first steps there passed the error test yet lost ~1 % of the energy balance
                 dt0 = min(dt0, self.opt.dt)
         self.stats[4] = 0.0
-        before = self.stats[:3].copy()
         nb = int(self.P[K.P_NB])
         if self._end_diag is None or self._end_bd.shape[0] != nb:
             self._end_diag, self._end_bd = np.zeros(K.NOUT), np.zeros((nb, K.NBD))
+        kb = self._key_buf
+        if kb is None or kb[0].shape != self.y.shape or kb[1].shape != self.U.shape or kb[2].shape != self.P.shape:
+            kb = self._key_buf = (np.empty_like(self.y), np.empty_like(self.U), np.empty_like(self.P), np.empty(3))
+        before = kb[3]
+        before[:] = self.stats[:3]
         self._end_key = None
         if method == 2:
             nb = int(self.P[K.P_NB])
@@ -457,18 +461,17 @@ class DynamicModel(DynamicSetup):
             n = K.integrate(self.y, t_start, t_end, dt0, method, self.opt.rtol, self._atol, self.P, self.U,
                             self._tab_i, self._tab_o, self._ta0, self._tda, self._tp, *self._quad,
                             rdt, rec, nmax, self.stats, self.quad, self._end_diag, self._end_bd)
+        # one kernel for the bookkeeping (numpy calls here cost several us each once the integration has
+        # evicted the caches): the finiteness of y, the key of the end point's outputs (evaluate_point
+        # reuses them), and for the adaptive methods their last step and their cost in right-hand-side
+        # equivalents per simulated second (deterministic, unlike wall time). The implicit step adds its
+        # linear algebra, 12-17 us per step attempt (7218B, 16 balls), about one right-hand side under Kalker
+        # traction and half of one under EHL traction: counted as 1
+        self._finite = K.close_interval(self.y, self.U, self.P, self.stats, before, ST_H.get(method, -1),
+                                        ST_C2 if method == 2 else ST_C1, ROSW_LA_RHS if method == 2 else 0.0,
+                                        t_start, t_end, kb[0], kb[1], kb[2])
         if self.stats[4] == 0.0:
-            # outputs at the end point come with the integration (evaluate_point reuses them)
-            self._end_key = (float(t_end), self.y.copy(), self.U.copy(), self.P.copy(), self._tp)
-        if method > 0:
-            self.stats[ST_H[method]] = self.stats[3]
-            d = self.stats[:3] - before
-            # cost in right-hand-side equivalents per simulated second (deterministic, unlike wall time):
-            # the implicit step adds its linear algebra, 12-17 us per step attempt (7218B, 16 balls), about
-            # one right-hand side under Kalker traction and half of one under EHL traction: counted as 1
-            cost = (d[2] + (ROSW_LA_RHS * (d[0] + d[1]) if method == 2 else 0.0)) / (t_end - t_start)
-            k = ST_C2 if method == 2 else ST_C1
-            self.stats[k] = cost if self.stats[k] <= 0 else 0.5 * (self.stats[k] + cost)
+            self._end_key = (float(t_end), kb[0], kb[1], kb[2], self._tp)
         return n
 
     def integrator_state(self):

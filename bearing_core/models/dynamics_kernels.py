@@ -1219,6 +1219,29 @@ def _all_finite(y):
     return True
 
 
+@hot(fastmath=frozenset())     # strict IEEE: the cost steers 'auto', the same in every build
+def close_interval(y, U, P, stats, before, i_h, i_c, la_rhs, t0, t1, key_y, key_U, key_P):
+    """Bookkeeping after an integration call from t0 to t1 [s], in one call: returns True if the state y is
+    finite. If the call succeeded (stats[4] == 0) y, U, P are copied into key_y, key_U, key_P (the key of the
+    end point's outputs). With i_h >= 0 (an adaptive method) its last step size goes to stats[i_h] and its
+    cost in right-hand-side equivalents per simulated second, (rhs calls + la_rhs x step attempts) / (t1 -
+    t0) counted from before = stats[:3] at the call's start, into the running mean stats[i_c] (the 'auto'
+    selector's measure)."""
+    ok = _all_finite(y)
+    if stats[4] == 0.0:
+        for i in range(y.size):
+            key_y[i] = y[i]
+        for i in range(U.size):
+            key_U[i] = U[i]
+        for i in range(P.size):
+            key_P[i] = P[i]
+    if i_h >= 0:
+        stats[i_h] = stats[3]
+        cost = ((stats[2] - before[2]) + la_rhs * ((stats[0] - before[0]) + (stats[1] - before[1]))) / (t1 - t0)
+        stats[i_c] = cost if stats[i_c] <= 0 else 0.5 * (stats[i_c] + cost)
+    return ok
+
+
 @hot
 def _accept_fsal(y, ynew, k1, kf, quad, h, dq, t, diag, d0):
     """Take an accepted explicit step ending at t: y <- ynew, first stage <- the FSAL derivative kf, its

@@ -257,7 +257,8 @@ class DynamicSetup:
     Hertz tables, traction parameters, temperatures, parameter vector P and input vector U."""
 
     _rosw_ws = None     # implicit integrator's Jacobian workspace (dynamics_kernels.rosw_workspace), per instance
-    _end_diag = _end_bd = _end_key = None   # outputs at the last integration's end, key (t, y, U, P, tp)
+    _end_diag = _end_bd = _end_key = _key_buf = None   # outputs at the last integration's end, key (t, y, U, P, tp)
+    _finite = True                                     # the state after the last integration call is finite
 
     def __init__(self, geometry: BearingGeometry, options: DynamicsOptions = DynamicsOptions()):
         options.validate()
@@ -538,17 +539,23 @@ class DynamicSetup:
         """film() into a caller's array: h (4 x nb) = h_c_i, h_min_i, h_c_o, h_min_o [m] of the per-ball
         details bd; returns the smallest film parameter Lambda (inf if no contact is loaded)."""
         g = self.g
+        return K.contact_films(bd, g.D, g.dm, g.fi, g.fo, *self.film_parameters(), h)
+
+    def film_parameters(self) -> tuple:
+        """(eta0 [Pa s], alpha [1/Pa] of the oil at its current temperature, reduced modulus E' [Pa], rms
+        roughness of ball and race [m]): the arguments of dynamics_kernels.contact_films after the geometry,
+        recomputed when the oil temperature or the options change."""
         T = getattr(self, "_T_oil", self.opt.oil_temperature)
         key = (id(self.opt), T)
         if getattr(self, "_film_key", None) != key:      # oil properties at T, recomputed when T changes
             from ..lubrication.lubricants import get_oil
+            g = self.g
             oil = get_oil(self.oil_name)
             Ep = 2.0 / ((1 - g.ring_material.nu ** 2) / g.ring_material.E
                         + (1 - g.ball_material.nu ** 2) / g.ball_material.E)
             self._film_key = key
             self._film_par = (float(oil.eta(T)), float(oil.alpha(T)), Ep, *self.roughness_pair())
-        eta0, alpha, Ep, s1, s2 = self._film_par
-        return K.contact_films(bd, g.D, g.dm, g.fi, g.fo, eta0, alpha, Ep, s1, s2, h)
+        return self._film_par
 
     def evaluate_point(self) -> tuple[np.ndarray, np.ndarray]:
         """(output channels (NOUT), per-ball details (nb x NBD)) at the current instant: those the last

@@ -503,7 +503,7 @@ class CoSimSession:
         return Outputs(self.values.copy())
 
     def _update_outputs(self, q0=None, h=0.0):
-        """Outputs at the current instant into self.values (one numba call, session_kernels.assemble_outputs).
+        """Outputs at the current instant into self.values (one numba call, session_kernels.films_and_outputs).
         Step averages: from the time integrals (model.quad) at the end of the step of length h [s] and q0 at
         its start; q0 None at initialisation, where the instantaneous values stand for them. Raises
         StepRejected, values unchanged, if any output is not finite."""
@@ -511,7 +511,6 @@ class CoSimSession:
         diag, bd = m.evaluate_point()      # from the integration's end point (or one rhs call)
         if self._films is None or self._films.shape[1] != bd.shape[0]:
             self._films = np.zeros((4, bd.shape[0]))
-        lam = m.films_into(bd, self._films)
         ext = self._ext
         if m.thermal is not None or not self._ext_isothermal:     # (isothermal: constant, filled once)
             T = m.temperatures()
@@ -525,8 +524,11 @@ class CoSimSession:
             h = 0.0
         else:
             q1 = m.quad
-        ok = SK.assemble_outputs(diag, q1, q0, h, self._films, lam, ext, _OUT_CH, CSR_MIN_SPEED, SKID_TOL,
-                                 SKID_MIN_SPEED, _OUT_PTR, _OUT_IDX, self._x, self._new)
+        # films and outputs in one kernel call: the Python here runs on caches the integration has evicted
+        g = m.g
+        ok = SK.films_and_outputs(bd, g.D, g.dm, g.fi, g.fo, *m.film_parameters(), self._films, diag, q1, q0, h,
+                                  ext, _OUT_CH, CSR_MIN_SPEED, SKID_TOL, SKID_MIN_SPEED, _OUT_PTR, _OUT_IDX,
+                                  self._x, self._new)
         if not ok:
             bad = [n for n, v in zip(ALL_OUTPUT_NAMES, self._new) if not math.isfinite(v)]
             raise StepRejected(f"non-finite outputs {bad} (solver failure)")

@@ -12,6 +12,7 @@ import math
 from numba import njit
 
 from ..numerics.compare import same_point  # noqa: F401  (the session's cheap unchanged-point test)
+from ..models.dynamics_kernels import contact_films
 
 # Strict IEEE arithmetic here (no fastmath): with the reciprocal flag LLVM computes a division as a
 # multiplication by the reciprocal in a vectorised loop body but divides in its scalar remainder, so which
@@ -93,3 +94,14 @@ def assemble_outputs(diag, q1, q0, dt, films, lam, ext, ch, csr_min, skid_tol, s
         if not math.isfinite(acc):
             ok = False
     return ok
+
+
+@_exact
+def films_and_outputs(bd, D, dm, fi, fo, eta0, alpha, Ep, s_ball, s_race, films, diag, q1, q0, dt, ext, ch, csr_min,
+                      skid_tol, skid_min, ptr, idx, x, out):
+    """The films of every ball-race contact into films (dynamics_kernels.contact_films: per-ball details bd,
+    geometry D, dm [m], conformities fi, fo, oil eta0 [Pa s], alpha [1/Pa], reduced modulus Ep [Pa], rms
+    roughness [m]) and then the outputs of the communication point into out (assemble_outputs), in one call.
+    Returns True if every output is finite."""
+    lam = contact_films(bd, D, dm, fi, fo, eta0, alpha, Ep, s_ball, s_race, films)
+    return assemble_outputs(diag, q1, q0, dt, films, lam, ext, ch, csr_min, skid_tol, skid_min, ptr, idx, x, out)

@@ -98,6 +98,8 @@ typedef struct {
     double step_h;      /* the communication step of the fmi2DoStep being sent [s] */
     double spin_score;  /* running share of steps whose answer came during a predicted spin */
     double short_score; /* the same for the spin through a short step */
+    double tail;        /* running mean of the time from the integration's end to the answer [s] */
+    unsigned long n_wait[3]; /* step answers seen by: the first spin, a predicted spin, the futex (asleep) */
     double init_timeout, step_timeout;
     Var *vars;
     int nvars;
@@ -241,12 +243,13 @@ static void describe_exit(int status, char *out, size_t n) {
  *  - fmi2DoStep: the model process publishes the simulated time its integrator has reached (a double in the
  *    shared header, O_PROG). From the progress over the elapsed wall time the master predicts the end of the
  *    integration, sleeps on the futex (with a timeout) until SPIN_EARLY before it, then spins, at most
- *    SPIN_LATE beyond the predicted end. Without progress (no integration) the last step's time serves as
- *    the prediction. A step that takes longer than predicted is waited for on the futex: no core burns while
+ *    spin_late() beyond the predicted end (learned from the model's work after its integration). Without
+ *    progress (no integration) the last step's time serves as the prediction. A step that takes longer than predicted is waited for on the futex: no core burns while
  *    the model process works. */
 #define SPIN_SHORT 50e-6   /* [s] */
 #define SPIN_EARLY 150e-6  /* [s] */
-#define SPIN_LATE 250e-6   /* [s] */
+#define SPIN_LATE 250e-6   /* [s], at least: 2 x the learned tail + 50 us, at most SPIN_LATE_MAX */
+#define SPIN_LATE_MAX 1e-3 /* [s] */
 #define MAX_SPINS 3        /* predicted spins per call */
 #define SPIN_SHORT_STEP 300e-6 /* a step the model process answered within this is spun through: 2 x its time + 100 us [s] */
 
@@ -271,6 +274,43 @@ static double progress(Comp *c) {
     double t;
     memcpy(&t, &bits, 8);
     return t;
+}
+
+/* The spin of a step near its predicted end: until the response or t_end, watching the progress too. The
+ * time from the integration's end (progress at prog0 + h) to the answer is the model's work after its
+ * integration (outputs, the session's Python): its running mean c->tail sets how long the master spins past
+ * the predicted end, so that a slower machine's longer tail is still caught by the spin. */
+static int spin_step(Comp *c, volatile uint32_t *resp, double t_end, double prog0, double h) {
+    double t_int = -1.0;
+    for (;;) {
+        for (int i = 0; i < 32; i++) {
+            if (__atomic_load_n(resp, __ATOMIC_ACQUIRE) == c->seq) {
+                if (t_int >= 0.0) {
+                    double d = now() - t_int;
+                    c->tail = 0.8 * c->tail + 0.2 * (d < SPIN_LATE_MAX ? d : SPIN_LATE_MAX);
+                }
+                return 1;
+            }
+            __builtin_ia32_pause();
+        }
+        double t = now();
+        if (t_int < 0.0 && isfinite(prog0) && (progress(c) - prog0) >= h * (1.0 - 1e-9)) t_int = t;
+        if (t >= t_end) {
+            if (__atomic_load_n(resp, __ATOMIC_ACQUIRE) == c->seq) return 1;
+            /* integrated, yet no answer within the window: the tail is longer than learned, lengthen it */
+            if (t_int >= 0.0) {
+                double d = t - t_int + 100e-6;
+                c->tail = 0.8 * c->tail + 0.2 * (d < SPIN_LATE_MAX ? d : SPIN_LATE_MAX);
+            }
+            return 0;
+        }
+    }
+}
+
+/* How long the master spins past the predicted end of an integration [s]. */
+static double spin_late(const Comp *c) {
+    double late = 2.0 * c->tail + 50e-6;
+    return late < SPIN_LATE ? SPIN_LATE : (late > SPIN_LATE_MAX ? SPIN_LATE_MAX : late);
 }
 
 /* Seconds until the answer to a step is expected: from the integration's progress since the request
@@ -300,7 +340,10 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
     if (long_spin) spin = 2.0 * c->step_expect + 100e-6;
     int hit = spin_until(resp, c->seq, t0 + spin);
     if (long_spin) c->short_score = 0.9 * c->short_score + (hit ? 0.1 : 0.0);
-    if (hit) return 0;
+    if (hit) {
+        if (h > 0) c->n_wait[0]++;
+        return 0;
+    }
     /* predicted spins only while they pay: on a machine with more runnable threads than cores the progress
      * is erratic and a spinning master takes a core from the model process; then every 16th step probes */
     int spins = h > 0 && (c->spin_score > 0.3 || (c->seq & 15u) == 0) ? MAX_SPINS : 0;
@@ -313,13 +356,14 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
             double rem = step_remaining(c, prog0, h, t - t0);
             if (rem <= SPIN_EARLY) {
                 spins--;
-                if (spin_until(resp, c->seq, t + rem + SPIN_LATE)) {
+                if (spin_step(c, resp, t + rem + spin_late(c), prog0, h)) {
                     c->spin_score = 0.9 * c->spin_score + 0.1;
+                    c->n_wait[1]++;
                     return 0;
                 }
                 /* predicted too early: predict again from the progress now (a nap or another spin) */
                 if (spins > 0 && step_remaining(c, prog0, h, now() - t0) > 0.0) continue;
-                /* integrated but not answered within SPIN_LATE (or out of spins): sleep until woken */
+                /* integrated but not answered within the late spin (or out of spins): sleep until woken */
                 c->spin_score *= 0.9;
                 spins = 0;
             } else {
@@ -333,6 +377,7 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
         futex_wait(resp, v, nap);
         if (__atomic_load_n(resp, __ATOMIC_ACQUIRE) == c->seq) {
             if (spins > 0) c->spin_score *= 0.9;   /* answered while the master slept: predicted too late */
+            if (h > 0) c->n_wait[2]++;
             return 0;
         }
         int status;
@@ -628,6 +673,7 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
     c->magic = MODEL_MAGIC;
     c->spin_score = 1.0;
     c->short_score = 1.0;
+    c->tail = 100e-6;
     c->init_timeout = env_seconds("BEARING_FMU_INIT_TIMEOUT", 900.0);
     c->step_timeout = env_seconds("BEARING_FMU_STEP_TIMEOUT", 600.0);
     char err[4600];
@@ -664,6 +710,9 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
 FMI2_EXPORT void fmi2FreeInstance(fmi2Component comp) {
     Comp *c = (Comp *)comp;
     if (!c || c->magic != MODEL_MAGIC) return;
+    if (getenv("BEARING_FMU_WAIT_STATS"))   /* how the master saw the step answers (bench/bench_fmu.py) */
+        fprintf(stderr, "BEARING_FMU_WAIT_STATS first_spin=%lu predicted_spin=%lu asleep=%lu tail_us=%.1f\n",
+                c->n_wait[0], c->n_wait[1], c->n_wait[2], c->tail * 1e6);
     if (!c->dead && c->pid > 0) {
         unsigned char *p = req_begin(c);
         exchange(c, C_FREE, p, 30.0, "fmi2FreeInstance", NULL, NULL);

@@ -195,16 +195,17 @@ def load_slave_class(res: Path, cfg: dict):
 
 
 class Profile:
-    """BEARING_FMU_PROFILE=<file>: per fmi2DoStep, the model process's time in the call and in the numba
-    integration kernels (bench/bench_fmu.py), written as JSON to <file> at fmi2FreeInstance."""
+    """BEARING_FMU_PROFILE=<file>: per fmi2DoStep, the model process's time in the call, in the slave's
+    do_step, and in the numba integration kernels (bench/bench_fmu.py), written as JSON to <file> at
+    fmi2FreeInstance."""
 
-    def __init__(self, path):
+    def __init__(self, path, slave_cls):
         from bearing_core.models import dynamics
-        self.path, self.kern, self.bare = path, [0.0], [0.0]
+        self.path, self.kern, self.bare, self.slave = path, [0.0], [0.0], [0.0]
         self.rows = []
         K = dynamics.K
         for obj, name, box in ((dynamics.DynamicModel, "_integrate", self.kern), (K, "integrate", self.bare),
-                               (K, "integrate_rosw", self.bare)):
+                               (K, "integrate_rosw", self.bare), (slave_cls, "do_step", self.slave)):
             setattr(obj, name, self._timed(getattr(obj, name), box))
 
     @staticmethod
@@ -218,12 +219,13 @@ class Profile:
         return timed
 
     def record(self, busy):
-        self.rows.append((busy, self.kern[0], self.bare[0]))
-        self.kern[0] = self.bare[0] = 0.0
+        self.rows.append((busy, self.kern[0], self.bare[0], self.slave[0]))
+        self.kern[0] = self.bare[0] = self.slave[0] = 0.0
 
     def write(self):
         Path(self.path).write_text(json.dumps({"busy": [r[0] for r in self.rows], "kernel": [r[1] for r in self.rows],
-                                               "bare_kernel": [r[2] for r in self.rows]}))
+                                               "bare_kernel": [r[2] for r in self.rows],
+                                               "slave_step": [r[3] for r in self.rows]}))
 
 
 # ---- the FMI calls -----------------------------------------------------------------------------------
@@ -560,7 +562,7 @@ def serve(res: Path, fd: int, master_pid: int):
                 var_table(model, w)
                 flags |= F_SNAPSHOT
                 if os.environ.get("BEARING_FMU_PROFILE"):
-                    profile = Profile(os.environ["BEARING_FMU_PROFILE"])
+                    profile = Profile(os.environ["BEARING_FMU_PROFILE"], type(model.slave))
             elif model is None:
                 raise FmiError("the model was not instantiated")
             else:
