@@ -82,13 +82,19 @@ def worker(fmu: str, t_end: float) -> dict:
     vr = {v.name: v.valueReference for v in md.modelVariables}
     outs = [vr["cage_speed"], vr["reaction_Fx"], vr["heat_flux_total"]]
     n = int(round(t_end / H))
-    walls = []
+    walls, gets, gets_again = [], [], []
     t = 0.0
     for k in range(n):
         a = time.perf_counter()
         f.doStep(currentCommunicationPoint=t, communicationStepSize=H)
+        b = time.perf_counter()
         f.getReal(outs)
-        walls.append(time.perf_counter() - a)
+        c = time.perf_counter()
+        walls.append(c - a)
+        # the same call again: the master's own code with warm caches (the first follows the wait)
+        f.getReal(outs)
+        gets.append(c - b)
+        gets_again.append(time.perf_counter() - c)
         t = (k + 1) * H
     last = f.getReal(outs)
     short = []
@@ -106,7 +112,8 @@ def worker(fmu: str, t_end: float) -> dict:
     return {"init_s": t_init, "first_step_s": walls[0], "step_walls": walls, "kernel_walls": kerns[:n],
             "bare_kernel_walls": bares[:n], "busy": busy[:n], "slave_step": prof.get("slave_step", [])[:n],
             "short_step_overheads": [w - b for w, b in zip(short, bares[n:])],
-            "short_step_exchange": [w - b for w, b in zip(short, busy[n:])], "cage_speed_end": last[0]}
+            "short_step_exchange": [w - b for w, b in zip(short, busy[n:])], "cage_speed_end": last[0],
+            "get_real": gets, "get_real_again": gets_again}
 
 
 def in_process(t_end: float) -> dict:
@@ -175,6 +182,11 @@ def _run_worker(fmu, t_end, cache):
     stats = [ln.split()[1:] for ln in p.stderr.splitlines() if ln.startswith("BEARING_FMU_WAIT_STATS ")]
     if stats:
         res["wait_stats"] = {k: float(v) for k, v in (kv.split("=") for kv in stats[-1])}
+        # the native layer's own exchange time (request sent to answer seen, less the model's busy time) per
+        # way the answer was seen, in bins < 10, < 20, < 40, < 80, >= 80 us
+        kinds = ("first_spin", "predicted_spin", "asleep")
+        hist = [ln.split() for ln in p.stderr.splitlines() if ln.startswith("BEARING_FMU_EXCHANGE_HIST ")][-3:]
+        res["exchange_hist"] = {kinds[int(w[1])]: [int(x) for x in w[2:]] for w in hist}
     return res
 
 
@@ -222,7 +234,10 @@ def main(argv=None):
         # the model process's own loop around the slave's do_step (request, outputs into the shared segment)
         "model_loop_us": (_median_us(warm["busy"][1:], warm["slave_step"][1:]) if warm["slave_step"] else None),
         # steps whose answer the master saw in its first spin, in a predicted spin, or asleep (futex)
-        "wait_stats": warm.get("wait_stats"),
+        "wait_stats": warm.get("wait_stats"), "exchange_hist": warm.get("exchange_hist"),
+        # fmpy's getReal of 3 outputs right after doStep, and the same call repeated at once (warm caches)
+        "get_real_after_step_us": _median_us(warm["get_real"][1:], 0.0) if "get_real" in warm else None,
+        "get_real_again_us": _median_us(warm["get_real_again"][1:], 0.0) if "get_real" in warm else None,
         "session_overhead_short_step_us": float(np.median(ip["short_step_overheads"])) * 1e6,
         # of which the one right-hand-side call for the outputs and films at the communication point
         "output_eval_us": float(np.median(ip["eval_walls"][1:])) * 1e6,
@@ -247,7 +262,13 @@ def main(argv=None):
               f"(warm caches): {out['fmu_overhead_short_step_us']:.0f} us / "
               f"{out['session_overhead_short_step_us']:.0f} us")
         print(f"of which the FMI layer and the exchange with the model process: {out['exchange_us']:.0f} us "
-              f"({out['exchange_short_step_us']:.0f} us at {SHORT_H * 1e6:g} us steps)")
+              f"({out['exchange_short_step_us']:.0f} us at {SHORT_H * 1e6:g} us steps); the model process's own "
+              f"loop: {out['model_loop_us']:.0f} us")
+        if out["exchange_hist"]:
+            print("  the native layer's exchange (request to answer seen, less the model's time), steps per bin "
+                  "<10 / <20 / <40 / <80 / >=80 us: " + "; ".join(f"{k} {v}" for k, v in out["exchange_hist"].items()))
+        print(f"  fmpy getReal right after doStep {out['get_real_after_step_us']:.1f} us, the same call repeated "
+              f"{out['get_real_again_us']:.1f} us (the master's code on cold caches after the wait)")
         print(f"warm: initialisation {out['warm_init_s']:.2f} s, first step {out['warm_first_step_s']:.3f} s")
         print(f"first run (cold if the cache folder was empty): initialisation {out['cold_init_s']:.2f} s, "
               f"first step {out['cold_first_step_s']:.3f} s")

@@ -100,6 +100,9 @@ typedef struct {
     double short_score; /* the same for the spin through a short step */
     double tail;        /* running mean of the time from the integration's end to the answer [s] */
     unsigned long n_wait[3]; /* step answers seen by: the first spin, a predicted spin, the futex (asleep) */
+    int last_wait;           /* which of them saw the last answer */
+    unsigned long ex_hist[3][5]; /* exchange time (request to answer seen, less the model's busy time) per kind,
+                                    in bins < 10, < 20, < 40, < 80, >= 80 us (BEARING_FMU_WAIT_STATS) */
     double init_timeout, step_timeout;
     Var *vars;
     int nvars;
@@ -342,6 +345,7 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
     if (long_spin) c->short_score = 0.9 * c->short_score + (hit ? 0.1 : 0.0);
     if (hit) {
         if (h > 0) c->n_wait[0]++;
+        c->last_wait = 0;
         return 0;
     }
     /* predicted spins only while they pay: on a machine with more runnable threads than cores the progress
@@ -359,6 +363,7 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
                 if (spin_step(c, resp, t + rem + spin_late(c), prog0, h)) {
                     c->spin_score = 0.9 * c->spin_score + 0.1;
                     c->n_wait[1]++;
+                    c->last_wait = 1;
                     return 0;
                 }
                 /* predicted too early: predict again from the progress now (a nap or another spin) */
@@ -378,6 +383,7 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
         if (__atomic_load_n(resp, __ATOMIC_ACQUIRE) == c->seq) {
             if (spins > 0) c->spin_score *= 0.9;   /* answered while the master slept: predicted too late */
             if (h > 0) c->n_wait[2]++;
+            c->last_wait = 2;
             return 0;
         }
         int status;
@@ -431,9 +437,11 @@ static fmi2Status exchange(Comp *c, uint32_t cmd, unsigned char *end, double tim
     memcpy(c->shm + O_REQLEN, &len, 8);
     memcpy(c->shm + O_CMD, &cmd, 4);
     double prog0 = cmd == C_STEP ? progress(c) : NAN;
+    double t_send = now();
     __atomic_store_n(word(c, O_REQ), ++c->seq, __ATOMIC_RELEASE);
     futex_wake(word(c, O_REQ));
     if (await(c, timeout, fname, cmd == C_STEP ? c->step_h : 0.0, prog0) != 0) return fmi2Error;
+    double t_seen = now();
     int32_t st;
     uint32_t mode;
     uint64_t rlen;
@@ -442,7 +450,12 @@ static fmi2Status exchange(Comp *c, uint32_t cmd, unsigned char *end, double tim
     memcpy(&rlen, c->shm + O_RESPLEN, 8);
     memcpy(&c->time, c->shm + O_TIME, 8);
     memcpy(&c->busy, c->shm + O_BUSY, 8);
-    if (cmd == C_STEP) c->step_expect = c->busy;
+    if (cmd == C_STEP) {
+        c->step_expect = c->busy;
+        double ex = (t_seen - t_send - c->busy) * 1e6;
+        int b = ex < 10 ? 0 : ex < 20 ? 1 : ex < 40 ? 2 : ex < 80 ? 3 : 4;
+        c->ex_hist[c->last_wait][b]++;
+    }
     c->mode = (int)mode;
     if (cmd != C_STEP) {
         const unsigned char *r = resp_area(c);
@@ -711,8 +724,13 @@ FMI2_EXPORT void fmi2FreeInstance(fmi2Component comp) {
     Comp *c = (Comp *)comp;
     if (!c || c->magic != MODEL_MAGIC) return;
     if (getenv("BEARING_FMU_WAIT_STATS"))   /* how the master saw the step answers (bench/bench_fmu.py) */
+    {
         fprintf(stderr, "BEARING_FMU_WAIT_STATS first_spin=%lu predicted_spin=%lu asleep=%lu tail_us=%.1f\n",
                 c->n_wait[0], c->n_wait[1], c->n_wait[2], c->tail * 1e6);
+        for (int k = 0; k < 3; k++)
+            fprintf(stderr, "BEARING_FMU_EXCHANGE_HIST %d %lu %lu %lu %lu %lu\n", k, c->ex_hist[k][0],
+                    c->ex_hist[k][1], c->ex_hist[k][2], c->ex_hist[k][3], c->ex_hist[k][4]);
+    }
     if (!c->dead && c->pid > 0) {
         unsigned char *p = req_begin(c);
         exchange(c, C_FREE, p, 30.0, "fmi2FreeInstance", NULL, NULL);
