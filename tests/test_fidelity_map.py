@@ -285,3 +285,28 @@ def test_oil_temperature_axis_is_read_at_the_parameter(tmp_path):
     assert s.outputs["temperature_oil"] == 318.15
     with pytest.raises(BearingInputError, match=r"oil_temperature = 340.*303.15 K <= value <= 323.15 K"):
         session(path, oil_temperature=340.0)
+
+
+def test_embedded_map_shares_the_code_folder_but_not_the_guid(smap, tmp_path):
+    """An FMU with an embedded map and one without: the same code hash (the model process's code copy and its
+    compiled kernels are shared; the copy leaves the map out), different GUIDs; the map sits at
+    resources/code/operating_map.nc, and the slave finds it in the FMU's resources folder."""
+    import zipfile
+    from bearing_cosim.fmu_build import build
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "bearing_cosim" / "fmu_src"))
+    from bearing_fmu import embedded_map
+    plain = build(tmp_path / "plain")
+    with_map = build(tmp_path / "map", map_file=smap)
+    cfg, guid = {}, {}
+    for tag, path in (("plain", plain), ("map", with_map)):
+        with zipfile.ZipFile(path) as z:
+            cfg[tag] = json.loads(z.read("resources/model.json"))
+            guid[tag] = cfg[tag]["guid"]
+            if tag == "map":
+                assert z.read("resources/code/operating_map.nc") == Path(smap).read_bytes()
+                z.extractall(tmp_path / "unz")
+    assert cfg["plain"]["code_hash"] == cfg["map"]["code_hash"]
+    assert guid["plain"] != guid["map"]
+    assert cfg["map"]["data_files"] == ["operating_map.nc"] and cfg["plain"]["data_files"] == []
+    assert embedded_map(str(tmp_path / "unz" / "resources")) == str(tmp_path / "unz" / "resources" / "code" /
+                                                                     "operating_map.nc")

@@ -46,7 +46,11 @@ def build(tmp_path_factory):
     import build_examples
     d = tmp_path_factory.mktemp("ssp_build")
     fmus = build_examples.build_fmus(d)
-    env = dict(os.environ, BEARING_FMU_CACHE=str(tmp_path_factory.mktemp("ssp_fmu_cache")))
+    # the numba cache of the other FMU tests: the examples' bearing FMU has their code (plus an operating map,
+    # which does not enter the code's hash), so its kernels are compiled once per session
+    cache = tmp_path_factory.getbasetemp() / "fmu_numba_cache"
+    cache.mkdir(exist_ok=True)
+    env = dict(os.environ, BEARING_FMU_CACHE=str(cache))
     return {"dir": d, "fmus": fmus, "env": env}
 
 
@@ -180,7 +184,8 @@ def test_helper_fmus_run_on_the_project_fmi_layer(build):
 
 
 def test_examples_exit_normally_in_fresh_processes(build, tmp_path):
-    """Each example briefly (10 steps) in a fresh master process, 5 times per example and master (20 runs):
+    """Each example briefly (10 steps) in a fresh master process, 3 times per example and master (12 runs; 200
+    runs per host kind: bench/fmu_exit_check.py):
     every run exits with status 0 and prints its result, with nothing on stderr about a crash at exit."""
     ssps = {"rotor": rotor_make.make(tmp_path / "rotor.ssp", rotor_make.RotorDesign(stop_time=1e-3),
                                      fmu_dir=build["fmus"]),
@@ -190,7 +195,7 @@ def test_examples_exit_normally_in_fresh_processes(build, tmp_path):
     codes = []
     for name, ssp in ssps.items():
         for master in ("fmpy", "libcosim"):
-            for k in range(5):
+            for k in range(3):
                 cmd = [sys.executable, str(SSP / "masters.py"), master, str(ssp), str(tmp_path / f"{name}{k}.npz")]
                 r = subprocess.run(cmd, capture_output=True, text=True, env=build["env"], timeout=300)
                 codes.append((name, master, r.returncode))
@@ -198,4 +203,4 @@ def test_examples_exit_normally_in_fresh_processes(build, tmp_path):
                 assert "RESULT " in r.stdout
                 for bad in ("corrupted", "double free", "Segmentation", "Aborted"):
                     assert bad not in r.stderr, f"{name} / {master}: {r.stderr[-2000:]}"
-    assert len(codes) == 20 and all(c == 0 for _, _, c in codes)
+    assert len(codes) == 12 and all(c == 0 for _, _, c in codes)

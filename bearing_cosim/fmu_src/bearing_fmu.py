@@ -80,12 +80,16 @@ EMBEDDED_MAP = "operating_map.nc"
 module), used at fidelity 'map' when map_file is empty."""
 
 
-def embedded_map() -> str:
-    """Path of the FMU's embedded operating map ('' if it has none): beside this module (the model process runs
-    a copy of resources/code/)."""
+def embedded_map(resources: str | None = None) -> str:
+    """Path of the FMU's embedded operating map ('' if it has none): resources/code/operating_map.nc of the
+    FMU's resources folder, else beside this module (the model process runs a copy of resources/code/
+    without the data files)."""
     import os
-    p = os.path.join(os.path.dirname(os.path.abspath(__file__)), EMBEDDED_MAP)
-    return p if os.path.isfile(p) else ""
+    for d in ((os.path.join(resources, "code"),) if resources else ()) + (os.path.dirname(os.path.abspath(__file__)),):
+        p = os.path.join(d, EMBEDDED_MAP)
+        if os.path.isfile(p):
+            return p
+    return ""
 
 
 _ENUM_DESC = {
@@ -330,7 +334,7 @@ class BearingFMU(Fmi2Slave):
         self._resolve_choices()
         params = CoSimParameters(**{name: getattr(self, name) for name, *_ in _PARAMS + _GEOMETRY_PARAMS})
         if params.fidelity == "map" and not params.map_file:
-            params.map_file = embedded_map()
+            params.map_file = embedded_map(self.resources)
             if not params.map_file:
                 from bearing_core.errors import BearingInputError
                 raise BearingInputError("map_file", "", "an operating-map file (bearing build-map) for fidelity "

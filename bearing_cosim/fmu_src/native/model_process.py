@@ -84,8 +84,9 @@ def _futex_wake(addr: int):
 
 
 # ---- the model code ----------------------------------------------------------------------------------
-def _writable_copy(src: Path, name: str) -> Path | None:
-    """A copy of the code folder, named by its content hash, in the first writable cache base; None if none."""
+def _writable_copy(src: Path, name: str, skip=()) -> Path | None:
+    """A copy of the code folder, named by its content hash, in the first writable cache base; None if none.
+    skip: names of data files at the top of src that are not copied (their hash is not in the name)."""
     bases = []
     if os.environ.get("BEARING_FMU_CACHE"):
         bases.append(Path(os.environ["BEARING_FMU_CACHE"]))
@@ -105,6 +106,8 @@ def _writable_copy(src: Path, name: str) -> Path | None:
                 out = tmp / Path(d).relative_to(src)
                 out.mkdir(exist_ok=True)
                 for f in files:
+                    if d == str(src) and f in skip:
+                        continue
                     shutil.copyfile(Path(d, f), out / f)   # contents only: the modes of a read-only unpack stay behind
                     st = os.stat(Path(d, f))
                     os.utime(out / f, ns=(st.st_atime_ns, st.st_mtime_ns))
@@ -183,7 +186,8 @@ class CompileLock:
 
 def load_slave_class(res: Path, cfg: dict):
     target = _use_shipped_kernels(cfg)
-    root = _writable_copy(res / "code", f"code-{cfg['code_hash']}" + (f"-{target}" if target else ""))
+    root = _writable_copy(res / "code", f"code-{cfg['code_hash']}" + (f"-{target}" if target else ""),
+                          skip=set(cfg.get("data_files", ())))
     lock = CompileLock(root)
     if root is None:
         root = res / "code"
@@ -232,8 +236,8 @@ class Profile:
 class Model:
     """The checks and modes of the FMI calls around one pythonfmu slave."""
 
-    def __init__(self, cls, name, visible, logging_on):
-        self.cls, self.name, self.visible = cls, name, visible
+    def __init__(self, cls, name, visible, logging_on, resources=None):
+        self.cls, self.name, self.visible, self.resources = cls, name, visible, resources
         self.logging_on = logging_on
         self.categories = None
         self.logs = []
@@ -244,7 +248,8 @@ class Model:
         self.new_slave()
 
     def new_slave(self):
-        self.slave = self.cls(instance_name=self.name, resources=None, visible=self.visible)
+        # pythonfmu's convention: resources is the FMU's resources folder (the slave reads its data there)
+        self.slave = self.cls(instance_name=self.name, resources=self.resources, visible=self.visible)
         self.vars = self.slave.vars
         self.fast_set = {}
         self.mode = "instantiated"
@@ -547,7 +552,7 @@ def serve(res: Path, fd: int, master_pid: int):
                 if guid and guid != cfg["guid"]:
                     raise FmiError(f"fmi2Instantiate: GUID {guid} does not match this FMU's {cfg['guid']}")
                 cls, lock = load_slave_class(res, cfg)
-                model = Model(cls, name, bool(visible), bool(logging_on))
+                model = Model(cls, name, bool(visible), bool(logging_on), str(res))
                 slave = model.slave
                 if hasattr(slave, "_out"):
                     from bearing_core.session.cosim_spec import INT_OUTPUT_SPEC, OUTPUT_SPEC
