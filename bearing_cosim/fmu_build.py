@@ -176,11 +176,15 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, r
     dest.mkdir(parents=True, exist_ok=True)
     files = _code_files(slave_sources)
     resources = dict(resources or {})
-    # the code's hash names the model process's copy of the code and its numba cache: data files (an embedded
-    # operating map) are left out, so FMUs that differ only in their data share the compiled kernels; the GUID
-    # covers both
-    code_hash = _content_hash(files + [(f"native/{f.name}", f.read_bytes()) for f in sorted(NATIVE.glob("*"))
-                                       if f.suffix in (".py", ".sh")])
+    # the code's hash names the model process's copy of the code and its numba cache: the slave modules and
+    # the data files (an embedded operating map) are left out, so FMUs that differ only in their slave or
+    # their data share the compiled kernels (the model process imports the slave from the FMU's own
+    # resources/code/); the GUID covers all three
+    slave_files = sorted(f"{m}.py" for m in slave_sources)
+    code_hash = _content_hash([f for f in files if f[0] not in slave_files]
+                              + [(f"native/{f.name}", f.read_bytes()) for f in sorted(NATIVE.glob("*"))
+                                 if f.suffix in (".py", ".sh")])
+    slave_hash = _content_hash([f for f in files if f[0] in slave_files])
     data_hash = _content_hash([(f"resources/{k}", v) for k, v in sorted(resources.items())])
     with tempfile.TemporaryDirectory(prefix="bearing_fmu_build_") as td:
         stage = Path(td)
@@ -207,7 +211,8 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, r
         # the same sources carry the same GUID
         xml.set("guid", "")
         date = xml.attrib.pop("generationDateAndTime", None)
-        digest = hashlib.sha256(tostring(xml, "UTF-8") + code_hash.encode() + data_hash.encode()).hexdigest()
+        digest = hashlib.sha256(tostring(xml, "UTF-8") + code_hash.encode() + slave_hash.encode()
+                                + data_hash.encode()).hexdigest()
         guid = "{" + str(uuid.UUID(digest[:32])) + "}"
         xml.set("guid", guid)
         if date:
@@ -216,8 +221,9 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, r
 
         cfg = {"guid": guid, "code_hash": code_hash, "slave_module": main_module, "class_name": class_name,
                "python_version": f"{sys.version_info.major}.{sys.version_info.minor}",
-               # data files in resources/code/: read there by the slave, not copied with the code
-               "data_files": sorted(resources)}
+               # slave modules and data files in resources/code/: imported and read there, not copied with the
+               # code (whose hash does not cover them)
+               "slave_files": slave_files, "data_files": sorted(resources)}
         if precompile:
             cfg["precompiled"] = _precompile(code)
             _scrub(code)   # numba's cached objects name the build's source paths (locations for messages)

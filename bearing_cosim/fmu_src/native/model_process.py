@@ -186,12 +186,15 @@ class CompileLock:
 
 def load_slave_class(res: Path, cfg: dict):
     target = _use_shipped_kernels(cfg)
-    root = _writable_copy(res / "code", f"code-{cfg['code_hash']}" + (f"-{target}" if target else ""),
-                          skip=set(cfg.get("data_files", ())))
+    own = set(cfg.get("slave_files", ())) | set(cfg.get("data_files", ()))
+    root = _writable_copy(res / "code", f"code-{cfg['code_hash']}" + (f"-{target}" if target else ""), skip=own)
     lock = CompileLock(root)
     if root is None:
         root = res / "code"
         os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="bearing_fmu_numba_")
+    # the copy first (bearing_core, pythonfmu with their kernel cache), then this FMU's own code folder for
+    # its slave modules, which the copy leaves out (FMUs of other slaves share the copy)
+    sys.path.insert(0, str(res / "code"))
     sys.path.insert(0, str(root))
     import importlib
     mod = importlib.import_module(cfg["slave_module"])
