@@ -184,8 +184,8 @@ def _run_worker(fmu, t_end, cache):
         res["wait_stats"] = {k: float(v) for k, v in (kv.split("=") for kv in stats[-1])}
         # the native layer's own exchange time (request sent to answer seen, less the model's busy time) per
         # way the answer was seen, in bins < 10, < 20, < 40, < 80, >= 80 us
-        kinds = ("first_spin", "predicted_spin", "asleep")
-        hist = [ln.split() for ln in p.stderr.splitlines() if ln.startswith("BEARING_FMU_EXCHANGE_HIST ")][-3:]
+        kinds = ("first_spin", "predicted_spin", "asleep", "spun_through")
+        hist = [ln.split() for ln in p.stderr.splitlines() if ln.startswith("BEARING_FMU_EXCHANGE_HIST ")][-4:]
         res["exchange_hist"] = {kinds[int(w[1])]: [int(x) for x in w[2:]] for w in hist}
     return res
 

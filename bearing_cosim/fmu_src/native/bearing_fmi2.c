@@ -40,6 +40,7 @@
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <math.h>
+#include <sched.h>
 #include <time.h>
 #include <unistd.h>
 #include <dlfcn.h>
@@ -99,10 +100,14 @@ typedef struct {
     double spin_score;  /* running share of steps whose answer came during a predicted spin */
     double short_score; /* the same for the spin through a short step */
     double tail;        /* running mean of the time from the integration's end to the answer [s] */
-    unsigned long n_wait[3]; /* step answers seen by: the first spin, a predicted spin, the futex (asleep) */
+    unsigned long n_wait[4]; /* step answers seen by: the first spin, a predicted spin, the futex (asleep),
+                                a spin through the step */
     int last_wait;           /* which of them saw the last answer */
-    unsigned long ex_hist[3][5]; /* exchange time (request to answer seen, less the model's busy time) per kind,
+    unsigned long ex_hist[4][5]; /* exchange time (request to answer seen, less the model's busy time) per kind,
                                     in bins < 10, < 20, < 40, < 80, >= 80 us (BEARING_FMU_WAIT_STATS) */
+    int wait_mode;           /* WAIT_AUTO, WAIT_SLEEP, WAIT_SPIN (BEARING_FMU_WAIT) */
+    int hold;                /* steps left without spinning through (the model process waited for a processor) */
+    double delay_prev, t_prev; /* the model process's run delay [s] (/proc/<pid>/schedstat) and when read */
     double init_timeout, step_timeout;
     Var *vars;
     int nvars;
@@ -310,6 +315,69 @@ static int spin_step(Comp *c, volatile uint32_t *resp, double t_end, double prog
     }
 }
 
+/* Waiting through a whole step. While the master sleeps its processor goes idle, and on a virtual machine an
+ * idle processor halts: the master then resumes on cold caches, and its own code after the answer (fmpy's
+ * doStep return and getReal) costs 30-50 us more per step than when it stays awake (measured, docs/fmu.md).
+ * So by default (BEARING_FMU_WAIT=auto) the master spins through a step while a processor is idle: the
+ * machine's running threads (/proc/loadavg, this one included) are no more than the processors it may use,
+ * and the model process has not been kept waiting for a processor (its run delay, /proc/<pid>/schedstat,
+ * grew by less than 5 % of the wall time since the last step; else no spinning for HOLD_STEPS steps). It
+ * never takes a processor another thread wants. BEARING_FMU_WAIT=sleep: never spin through a step (the
+ * predicted spin only); spin: always. */
+#define WAIT_AUTO 0
+#define WAIT_SLEEP 1
+#define WAIT_SPIN 2
+#define HOLD_STEPS 32
+#define SPIN_THROUGH_MAX 0.05 /* [s] beyond twice the expected step: then the predicted spin and the futex */
+#define SPIN_THROUGH_STEP 0.2 /* [s] longer steps are not spun through (the saving is nothing against them) */
+
+static int idle_cpu(void) {
+    cpu_set_t set;
+    int ncpu = sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : (int)sysconf(_SC_NPROCESSORS_ONLN);
+    char buf[128];
+    int fd = open("/proc/loadavg", O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return 0;
+    ssize_t n = read(fd, buf, sizeof buf - 1);
+    close(fd);
+    if (n <= 0) return 0;
+    buf[n] = '\0';
+    double l1, l5, l15;
+    int running = 0, total = 0;
+    if (sscanf(buf, "%lf %lf %lf %d/%d", &l1, &l5, &l15, &running, &total) != 5) return 0;
+    return running <= ncpu;
+}
+
+/* Time [s] the process pid has waited on a run queue (schedstat's second field), NAN if unknown. */
+static double run_delay(pid_t pid) {
+    char path[64], buf[128];
+    snprintf(path, sizeof path, "/proc/%d/schedstat", (int)pid);
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return NAN;
+    ssize_t n = read(fd, buf, sizeof buf - 1);
+    close(fd);
+    if (n <= 0) return NAN;
+    buf[n] = '\0';
+    unsigned long long run, delay;
+    if (sscanf(buf, "%llu %llu", &run, &delay) != 2) return NAN;
+    return (double)delay * 1e-9;
+}
+
+/* Whether to spin through the step now being waited for (see above). */
+static int spin_through(Comp *c) {
+    if (c->wait_mode == WAIT_SPIN) return 1;
+    if (c->wait_mode == WAIT_SLEEP) return 0;
+    double d = run_delay(c->pid), t = now();
+    if (isfinite(d) && isfinite(c->delay_prev) && t > c->t_prev && d - c->delay_prev > 0.05 * (t - c->t_prev))
+        c->hold = HOLD_STEPS;
+    c->delay_prev = d;
+    c->t_prev = t;
+    if (c->hold > 0) {
+        c->hold--;
+        return 0;
+    }
+    return idle_cpu();
+}
+
 /* How long the master spins past the predicted end of an integration [s]. */
 static double spin_late(const Comp *c) {
     double late = 2.0 * c->tail + 50e-6;
@@ -347,6 +415,14 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
         if (h > 0) c->n_wait[0]++;
         c->last_wait = 0;
         return 0;
+    }
+    if (h > 0 && c->step_expect < SPIN_THROUGH_STEP && spin_through(c)) {
+        double lim = now() + (c->step_expect > 0 ? 2.0 * c->step_expect : 0.0) + SPIN_THROUGH_MAX;
+        if (spin_step(c, resp, lim, prog0, h)) {
+            c->n_wait[3]++;
+            c->last_wait = 3;
+            return 0;
+        }
     }
     /* predicted spins only while they pay: on a machine with more runnable threads than cores the progress
      * is erratic and a spinning master takes a core from the model process; then every 16th step probes */
@@ -687,6 +763,11 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
     c->spin_score = 1.0;
     c->short_score = 1.0;
     c->tail = 100e-6;
+    {
+        const char *w = getenv("BEARING_FMU_WAIT");
+        c->wait_mode = w && !strcmp(w, "sleep") ? WAIT_SLEEP : w && !strcmp(w, "spin") ? WAIT_SPIN : WAIT_AUTO;
+        c->delay_prev = NAN;
+    }
     c->init_timeout = env_seconds("BEARING_FMU_INIT_TIMEOUT", 900.0);
     c->step_timeout = env_seconds("BEARING_FMU_STEP_TIMEOUT", 600.0);
     char err[4600];
@@ -725,9 +806,9 @@ FMI2_EXPORT void fmi2FreeInstance(fmi2Component comp) {
     if (!c || c->magic != MODEL_MAGIC) return;
     if (getenv("BEARING_FMU_WAIT_STATS"))   /* how the master saw the step answers (bench/bench_fmu.py) */
     {
-        fprintf(stderr, "BEARING_FMU_WAIT_STATS first_spin=%lu predicted_spin=%lu asleep=%lu tail_us=%.1f\n",
-                c->n_wait[0], c->n_wait[1], c->n_wait[2], c->tail * 1e6);
-        for (int k = 0; k < 3; k++)
+        fprintf(stderr, "BEARING_FMU_WAIT_STATS first_spin=%lu predicted_spin=%lu asleep=%lu spun_through=%lu "
+                "tail_us=%.1f\n", c->n_wait[0], c->n_wait[1], c->n_wait[2], c->n_wait[3], c->tail * 1e6);
+        for (int k = 0; k < 4; k++)
             fprintf(stderr, "BEARING_FMU_EXCHANGE_HIST %d %lu %lu %lu %lu %lu\n", k, c->ex_hist[k][0],
                     c->ex_hist[k][1], c->ex_hist[k][2], c->ex_hist[k][3], c->ex_hist[k][4]);
     }
