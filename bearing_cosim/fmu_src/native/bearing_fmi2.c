@@ -318,12 +318,13 @@ static int spin_step(Comp *c, volatile uint32_t *resp, double t_end, double prog
 /* Waiting through a whole step. While the master sleeps its processor goes idle, and on a virtual machine an
  * idle processor halts: the master then resumes on cold caches, and its own code after the answer (fmpy's
  * doStep return and getReal) costs 30-50 us more per step than when it stays awake (measured, docs/fmu.md).
- * So by default (BEARING_FMU_WAIT=auto) the master spins through a step while a processor is idle: the
- * machine's running threads (/proc/loadavg, this one included) are no more than the processors it may use,
- * and the model process has not been kept waiting for a processor (its run delay, /proc/<pid>/schedstat,
- * grew by less than 5 % of the wall time since the last step; else no spinning for HOLD_STEPS steps). It
- * never takes a processor another thread wants. BEARING_FMU_WAIT=sleep: never spin through a step (the
- * predicted spin only); spin: always. */
+ * With BEARING_FMU_WAIT=auto the master spins through a step while a processor is idle: the machine's
+ * running threads (/proc/loadavg, this one included) are no more than the processors it may use, and the
+ * model process has not been kept waiting for a processor (its run delay, /proc/<pid>/schedstat, grew by
+ * less than 5 % of the wall time since the last step; else no spinning for HOLD_STEPS steps); it never takes
+ * a processor another thread wants. spin: always. The default, sleep, never spins through a step (the
+ * predicted spin only): the saving is 1 % of a 1 ms step of the full model at most, and a master spinning
+ * through every step keeps a processor busy for the whole run (docs/fmu.md). */
 #define WAIT_AUTO 0
 #define WAIT_SLEEP 1
 #define WAIT_SPIN 2
@@ -765,7 +766,7 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
     c->tail = 100e-6;
     {
         const char *w = getenv("BEARING_FMU_WAIT");
-        c->wait_mode = w && !strcmp(w, "sleep") ? WAIT_SLEEP : w && !strcmp(w, "spin") ? WAIT_SPIN : WAIT_AUTO;
+        c->wait_mode = w && !strcmp(w, "auto") ? WAIT_AUTO : w && !strcmp(w, "spin") ? WAIT_SPIN : WAIT_SLEEP;
         c->delay_prev = NAN;
     }
     c->init_timeout = env_seconds("BEARING_FMU_INIT_TIMEOUT", 900.0);
