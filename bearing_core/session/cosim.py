@@ -31,7 +31,7 @@ from ..bearing.geometry import load_preset
 from ..models import dynamics_kernels as K
 from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # noqa: F401 (re-export)
 from .cosim_spec import INT_OUTPUT_NAMES, INT_OUTPUT_SPEC  # noqa: F401 (re-export)
-from .cosim_spec import STEP_AVERAGED_NAMES
+from .cosim_spec import STEP_AVERAGED_NAMES, parse_inputs
 from . import session_kernels as SK
 from ..models.skid import SKID_MIN_SPEED, SKID_OVERSKIDDING, SKID_PURE_ROLLING, SKID_SKIDDING, SKID_TOL
 HEAT_CHANNELS = {"race_inner": "P_race_inner", "race_outer": "P_race_outer", "pocket": "P_pocket",
@@ -326,17 +326,7 @@ class CoSimSession:
 
     @staticmethod
     def _inputs(inputs: dict) -> dict:
-        u = {n: 0.0 for n in INPUT_NAMES}
-        for k, v in inputs.items():
-            if k not in u:
-                raise BearingInputError("input", k, ", ".join(INPUT_NAMES))
-            try:
-                v = float(v)
-            except (TypeError, ValueError):
-                raise BearingInputError(k, v, "a finite number")
-            if not math.isfinite(v):
-                raise BearingInputError(k, v, "a finite number")
-            u[k] = v
+        u = parse_inputs(inputs)
         check_range("shaft_speed", u["shaft_speed"], -2.0e4, 2.0e4, unit="rad/s")
         check_range("outer_ring_speed", u["outer_ring_speed"], -2.0e4, 2.0e4, unit="rad/s")
         for k in ("Fx", "Fy", "Fz"):

@@ -99,3 +99,23 @@ INT_OUTPUT_SPEC = (
                              "then discarded), else 0"),
 )
 INT_OUTPUT_NAMES = tuple(n for n, _, _ in INT_OUTPUT_SPEC)
+
+
+def parse_inputs(inputs: dict) -> dict:
+    """The inputs by name (INPUT_NAMES; missing ones 0.0) as finite floats, in their units (INPUT_UNITS);
+    raises bearing_core.errors.BearingInputError naming an unknown input or a value that is not a finite
+    number."""
+    import math
+    from ..errors import BearingInputError
+    u = {n: 0.0 for n in INPUT_NAMES}
+    for k, v in inputs.items():
+        if k not in u:
+            raise BearingInputError("input", k, ", ".join(INPUT_NAMES))
+        try:
+            v = float(v)
+        except (TypeError, ValueError):
+            raise BearingInputError(k, v, "a finite number")
+        if not math.isfinite(v):
+            raise BearingInputError(k, v, "a finite number")
+        u[k] = v
+    return u

@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import BearingInputError
-from .cosim_spec import INPUT_NAMES, INT_OUTPUT_NAMES, OUTPUT_NAMES
+from .cosim_spec import INPUT_NAMES, INT_OUTPUT_NAMES, OUTPUT_NAMES, parse_inputs
 # map_kernels (numba) is imported where a level is built, so that the names here (FIDELITIES) load without numba
 # (the FMU's slave class reads them when it is constructed)
 
@@ -363,7 +363,6 @@ class SteadySession:
         self._temps = np.array([T, T, T, T, 0.0, 0.0, 0.0])
         self._consts = (CSR_MIN_SPEED, SKID_TOL, SKID_MIN_SPEED)
         self._in_key = self._in_x = None
-        self._zero = {n: 0.0 for n in INPUT_NAMES}
         # the cavity oil fraction: the oil_fraction parameter (steady levels take no oil supply)
         self._i_oil = OUTPUT_INDEX.get("oil_fraction_used", -1)
         self._oil = float(params.oil_fraction)
@@ -379,17 +378,7 @@ class SteadySession:
             same = False
         if same:
             return self._in_x
-        u = dict(self._zero)
-        for k, v in inputs.items():
-            if k not in u:
-                raise BearingInputError("input", k, ", ".join(INPUT_NAMES))
-            try:
-                v = float(v)
-            except (TypeError, ValueError):
-                raise BearingInputError(k, v, "a finite number")
-            if not math.isfinite(v):
-                raise BearingInputError(k, v, "a finite number")
-            u[k] = v
+        u = parse_inputs(inputs)
         x, cs, sn = self.level.query(u)
         self._in_key, self._in_x = dict(inputs), (x.copy(), cs, sn, u["shaft_speed"])
         return self._in_x
