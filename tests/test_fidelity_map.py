@@ -143,6 +143,41 @@ def test_out_of_range_inputs_are_refused_naming_input_and_range(smap):
     s.step(0.0, 1e-3, inputs(2000, 500.0, 2500.0))
 
 
+def test_one_call_step_equals_the_checked_path(smap):
+    """The map level's one-call step kernel (query, interpolation, outputs and lag: map_kernels.map_step) gives
+    the outputs, cage lag, warnings and refusals of the checked path (MapLevel.query, steady_into and
+    steady_level_outputs from Python) bit for bit, over random inputs in and around the map's range, radial
+    loads in any direction included."""
+    rng = np.random.default_rng(7)
+    fast, checked = session(smap), session(smap)
+    checked.steady._fast = None
+    assert fast.steady._fast is not None
+    for s in (fast, checked):
+        s.initialize(0.0, inputs(2000, 500.0, 2500.0))
+    t, refused = 0.0, 0
+    for k in range(300):
+        rpm, fz, fr, ang = rng.uniform(900, 4100), rng.uniform(900, 3100), rng.uniform(0, 2100), rng.uniform(0, 6.3)
+        u = inputs(rpm, fr * math.cos(ang), fz, Fy=fr * math.sin(ang))
+        if k % 50 == 7:
+            u["Mx"] = 1.0
+        if k % 50 == 11:
+            u["Fz"] = float("nan")
+        res = []
+        for s in (fast, checked):
+            try:
+                s.step(t, 1e-3, u)
+                res.append(None)
+            except StepRejected as e:
+                res.append(str(e))
+        assert res[0] == res[1]
+        refused += res[0] is not None
+        assert np.array_equal(fast.values, checked.values) and fast.steady.wc == checked.steady.wc
+        if res[0] is None:
+            t += 1e-3
+    assert fast.warnings == checked.warnings and len(fast.warnings) > 0
+    assert 10 < refused < 200
+
+
 def test_parameters_the_map_was_not_built_for_are_refused(smap):
     with pytest.raises(BearingInputError, match=r"traction_model = 'kalker'.*'lubricated', the value the operating map"):
         session(smap, traction_model="kalker")

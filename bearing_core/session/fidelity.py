@@ -16,6 +16,10 @@ is a class constructed from the CoSimParameters (raising BearingInputError for p
                              the level is weak (a warning is logged on entry)
     point_text(x), describe()      words for messages
 
+and optionally a one-call step: step_kernel (map_kernels.map_step's signature), its level arguments step_args
+and the query point x_fast it fills; SteadySession takes it while the inputs pass and the checked path above
+(query, steady_into) otherwise, which names the reason of a refusal.
+
 Levels (FIDELITY_LEVELS): 'map', an operating map of the dynamic model's steady windows built by
 ``bearing build-map`` and read here (MapLevel). A steady level is added with one entry in FIDELITY_LEVELS.
 
@@ -204,6 +208,21 @@ class MapLevel:
         self._interp = MK.interp_multilinear
         self._interp(self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags,
                      np.array([v[0] for v in self.axes]), self._idx, self._w, np.zeros(len(MAP_OUTPUTS)))
+        # the same query as arrays, for the one-call step (map_kernels.map_step)
+        ix = {n: i for i, n in enumerate(INPUT_NAMES)}
+        zero_in = [ix[name] for name, axis in (("Fy", "fy_N"), ("Mx", None), ("My", "my_Nm"))
+                   if not ((axis is not None and axis in self.axis_names) or (name == "Fy" and self.rotate))]
+        self.step_kernel = MK.map_step
+        self.x_fast = np.zeros(len(shape))
+        self.step_args = (ix["shaft_speed"], ix["Fx"], ix["Fy"], ix["outer_ring_speed"],
+                          np.array(zero_in, dtype=np.int64), self.rotate, RPM,
+                          np.array([q[0] for q in self._q], dtype=np.int64),
+                          np.array([ix[q[1]] if q[0] == 3 else -1 for q in self._q], dtype=np.int64),
+                          np.array([float(q[1]) if q[0] == 0 else 0.0 for q in self._q]),
+                          np.array([q[2] for q in self._q]), np.array([q[3] for q in self._q]),
+                          np.array([q[4] for q in self._q]),
+                          self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags,
+                          self.x_fast, np.zeros(len(shape), dtype=np.int64), np.zeros(len(shape)))
 
     def _check_parameters(self, p):
         try:
@@ -258,7 +277,7 @@ class MapLevel:
         cs, sn = 1.0, 0.0
         fx = u["Fx"]
         if self.rotate:
-            fr = math.hypot(u["Fx"], u["Fy"])
+            fr = math.sqrt(u["Fx"] * u["Fx"] + u["Fy"] * u["Fy"])   # as map_kernels.map_step (bit for bit)
             if fr > 0.0:
                 cs, sn = u["Fx"] / fr, u["Fy"] / fr
             fx = fr
@@ -316,6 +335,9 @@ class MapLevel:
         return f"operating map {self.path} ({self.attrs.get('level', '?')} level, {self.attrs.get('bearing', '?')})"
 
 
+_INPUT_SET = frozenset(INPUT_NAMES)
+_ZEROS = (0.0,) * len(INPUT_NAMES)
+
 FIDELITY_LEVELS = {"map": MapLevel}
 """Steady levels by name (CoSimParameters.fidelity); 'dynamic' is the full model (CoSimSession itself)."""
 FIDELITIES = ("dynamic",) + tuple(FIDELITY_LEVELS)
@@ -366,6 +388,10 @@ class SteadySession:
         # the cavity oil fraction: the oil_fraction parameter (steady levels take no oil supply)
         self._i_oil = OUTPUT_INDEX.get("oil_fraction_used", -1)
         self._oil = float(params.oil_fraction)
+        # a level with a one-call step kernel (query, values, outputs: MapLevel.step_kernel) takes it while its
+        # inputs pass; anything refused goes through the checked path, which names the reason
+        self._fast = getattr(level, "step_kernel", None)
+        self._res = np.zeros(2)
 
     def _validated(self, inputs: dict):
         """(x, cos, sin, shaft speed) of the inputs; checked again only when they changed (a NaN never compares
@@ -383,6 +409,25 @@ class SteadySession:
         self._in_key, self._in_x = dict(inputs), (x.copy(), cs, sn, u["shaft_speed"])
         return self._in_x
 
+    def _step_fast(self, inputs: dict, h: float) -> bool:
+        """The step in one kernel call (the level's step_kernel: query, interpolation, outputs and lag) with the
+        inputs taken in INPUT_NAMES order; False (nothing changed) if the kernel refuses anything, and the
+        checked path (_validated, _evaluate) then names the reason. Same arithmetic as that path."""
+        try:
+            u = np.fromiter(map(inputs.get, INPUT_NAMES, _ZEROS), np.float64, len(INPUT_NAMES))
+        except (TypeError, ValueError):
+            return False
+        c0, c1, c2 = self._consts
+        if self._fast(u, *self.level.step_args, self._ss, self.level.i_tau, self._src, self._rot, self.wc, h,
+                      self._temps, c0, c1, c2, self._ib, self._new, self._res) != 0:
+            return False
+        self._note_flags(int(self._res[1]), self.level.x_fast, h)
+        if self._i_oil >= 0:
+            self._new[self._i_oil] = self._oil
+        self.wc = float(self._res[0])
+        np.copyto(self.values, self._new)
+        return True
+
     def _evaluate(self, q, h):
         x, cs, sn, w = q
         fl = self.level.steady_into(x, self._ss)
@@ -395,6 +440,13 @@ class SteadySession:
             raise BearingInputError("inputs", self.level.point_text(x),
                                     "an operating point where the map has values",
                                     f"{self.level.describe()} has no value for {bad[:4]} there (a failed grid point)")
+        self._note_flags(fl, x, h)
+        if self._i_oil >= 0:
+            self._new[self._i_oil] = self._oil
+        return wc
+
+    def _note_flags(self, fl: int, x, h: float):
+        """A warning when the operating point enters a cell with other validity flags (fl != 0)."""
         if fl and fl != self._flags:
             what = []
             if fl & FLAG_GROSS_SKID:
@@ -405,9 +457,6 @@ class SteadySession:
                                  f"a region of {' and '.join(what)}, where fidelity '{self.level.name}' is least "
                                  "accurate (docs/fidelity.md); use fidelity 'dynamic' for this operation")
         self._flags = fl
-        if self._i_oil >= 0:
-            self._new[self._i_oil] = self._oil
-        return wc
 
     def initialize(self, t0: float, inputs: dict):
         q = self._validated(inputs)
@@ -421,6 +470,9 @@ class SteadySession:
             raise StepRejected(f"communication step h = {h!r} is invalid; allowed: h > 0")
         if abs(t - self.t) > 1e-9 * max(1.0, abs(t)):
             raise StepRejected(f"step starts at t = {t!r} but the bearing is at t = {self.t!r}")
+        if self._fast is not None and _INPUT_SET.issuperset(inputs) and self._step_fast(inputs, h):
+            self.t = t + h
+            return Outputs(self.values.copy())
         try:
             q = self._validated(inputs)
             wc = self._evaluate(q, h)

@@ -130,3 +130,64 @@ def steady_level_outputs(ss, src, rot, cs, sn, wc0, h, tau, shaft, temps, csr_mi
         if not math.isfinite(out[i]):
             ok = False
     return wc if ok else math.nan
+
+
+@_exact
+def map_step(u, i_speed, i_fx, i_fy, i_oring, zero_in, rotate, rpm, qkind, qidx, qval, qlo, qhi, qtol,
+             axes, ptr, strides, values, speed_scaled, flags, x, idx, w, ss, i_tau,
+             src, rot, wc0, h, temps, csr_min, skid_tol, skid_min, ib, out, res):
+    """One communication point of the map level in one call: the query of the inputs, the interpolation
+    (interp_multilinear) and the outputs with the cage lag (steady_level_outputs), the arithmetic of
+    fidelity.MapLevel.query and SteadySession._evaluate.
+
+    u: the inputs in cosim_spec.INPUT_NAMES order [SI]; i_speed, i_fx, i_fy, i_oring: their indices of shaft
+    speed, Fx, Fy and outer ring speed; zero_in: indices of inputs the map does not vary (must be 0); rotate:
+    the map is read at the radial load hypot(Fx, Fy) and its x-y outputs turned; rpm: rad/s per rpm. Per map
+    axis d: qkind[d] 0 the fixed value qval[d], 1 the shaft speed in rpm, 2 the radial load (Fx unless
+    rotate), 3 the input qidx[d]; range [qlo[d], qhi[d]] with tolerance qtol[d] (values within it are
+    clamped). Returns 0 with res = (cage speed at the end of the step [rad/s], validity flags of the cell)
+    and the outputs in out; 1 if anything is refused or not finite (an input not finite or not allowed,
+    outside the map, a failed grid point): the caller then takes the checked path, which names the
+    reason."""
+    for i in range(u.shape[0]):
+        if not math.isfinite(u[i]):
+            return 1
+    if u[i_oring] != 0.0:
+        return 1
+    cs = 1.0
+    sn = 0.0
+    fx = u[i_fx]
+    if rotate:
+        fr = math.sqrt(u[i_fx] * u[i_fx] + u[i_fy] * u[i_fy])   # as MapLevel.query (bit for bit)
+        if fr > 0.0:
+            cs = u[i_fx] / fr
+            sn = u[i_fy] / fr
+        fx = fr
+    for k in range(zero_in.shape[0]):
+        if u[zero_in[k]] != 0.0:
+            return 1
+    for d in range(x.shape[0]):
+        kind = qkind[d]
+        if kind == 0:
+            v = qval[d]
+        elif kind == 1:
+            v = u[i_speed] / rpm
+        elif kind == 2:
+            v = fx
+        else:
+            v = u[qidx[d]]
+        lo = qlo[d]
+        hi = qhi[d]
+        if not (lo - qtol[d] <= v and v <= hi + qtol[d]):
+            return 1
+        x[d] = lo if v < lo else (hi if v > hi else v)
+    d, fl = interp_multilinear(axes, ptr, strides, values, speed_scaled, flags, x, idx, w, ss)
+    if d >= 0:
+        return 1
+    wc = steady_level_outputs(ss, src, rot, cs, sn, wc0, h, ss[i_tau], u[i_speed], temps, csr_min, skid_tol,
+                              skid_min, ib, out)
+    if not math.isfinite(wc):
+        return 1
+    res[0] = wc
+    res[1] = fl
+    return 0

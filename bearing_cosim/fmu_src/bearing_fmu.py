@@ -216,10 +216,13 @@ class BearingFMU(Fmi2Slave):
             if unit:
                 self._units[name] = unit
             self._ranges[name] = rng
+        # the inputs live in one dict, handed to the session as it is at every step (no per-step rebuild; the
+        # session compares it with its own copy of the last inputs)
+        self._in = {name: float(INPUT_START.get(name, 0.0)) for name in INPUT_NAMES}
         for name, unit in zip(INPUT_NAMES, INPUT_UNITS):
-            setattr(self, name, INPUT_START.get(name, 0.0))
             self.register_variable(Real(name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
-                                        description=_INPUT_DESC[name]))
+                                        description=_INPUT_DESC[name], getter=lambda n=name: self._in[n],
+                                        setter=lambda v, n=name: self._in.__setitem__(n, v)))
             self._units[name] = unit
         self._ranges["shaft_speed"] = self._ranges["outer_ring_speed"] = (-2.0e4, 2.0e4)
         # outputs: read from the session's output array (bearing_core.session.cosim.CoSimSession.values, in the order
@@ -327,7 +330,7 @@ class BearingFMU(Fmi2Slave):
 
     # ---- FMI calls -----------------------------------------------------------------------------
     def _inputs(self):
-        return {n: getattr(self, n) for n in INPUT_NAMES}
+        return self._in
 
     def exit_initialization_mode(self):
         from bearing_core.session.cosim import CoSimParameters, CoSimSession
