@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import datetime
 import json
+import math
 
 import numpy as np
 
@@ -112,18 +113,41 @@ class _MapRun(S._WindowRun):
         super().take(rec)
 
     def time_constant(self) -> float:
-        """Relaxation time of the cage speed from its start to the steady value [s]: the integral of the
-        deviation over the initial deviation; 0 where the start deviates by less than 0.2 % (no measurable
-        lag) or the estimate is not positive."""
+        """Time constant [s] of the cage speed's first-order lag at this point: the decay rate of the cage
+        speed's deviation from its steady value after the Jones-Harris start, once the deviation is small,
+        tau = (t_b - t_a) / ln(d_a / d_b), where t_a and t_b are the first times the deviation falls to d_a = 1/2
+        of its start and to d_b = max(1/20 of its start, 3 standard deviations of the cage speed over the last
+        window). A first-order lag is the linearisation about the steady state, so its constant is the decay of
+        small deviations, not the area of the large initial transient (which the skid's nonlinear start
+        dominates). 0 where the start deviates by less than 0.2 % or no more than the cage speed's own
+        fluctuation (d_b >= 0.8 d_a): no lag is measurable above it. Where the deviation does not fall that far
+        within the run, the relaxation time of the whole run (the integral of the deviation over its start)."""
         h = np.concatenate(self.hist)
         t, wc = h[:, 0], h[:, 1]
         wss = self.s["cage"]
         w0 = self.w0
-        if not abs(w0 - wss) > 2e-3 * abs(wss):
+        d0 = abs(w0 - wss)
+        if not d0 > 2e-3 * abs(wss):
             return 0.0
-        dev = np.concatenate([[w0 - wss], wc - wss])
+        da, db = 0.5 * d0, max(0.05 * d0, 3.0 * self.cage_sd)
+        if db >= 0.8 * da:
+            return 0.0
         tt = np.concatenate([[self.t0], t])
-        tau = float(np.sum(0.5 * (dev[1:] + dev[:-1]) * np.diff(tt)) / (w0 - wss))
+        dev = np.abs(np.concatenate([[w0], wc]) - wss)
+
+        def first_below(level, start=0):
+            k = np.nonzero(dev[start:] <= level)[0]
+            if not k.size or start + k[0] == 0:
+                return None, None
+            i = start + k[0]            # interpolated between the samples around the crossing
+            f = (dev[i - 1] - level) / (dev[i - 1] - dev[i]) if dev[i - 1] > dev[i] else 1.0
+            return tt[i - 1] + f * (tt[i] - tt[i - 1]), i
+        ta, ia = first_below(da)
+        tb, _ = first_below(db, ia) if ia is not None else (None, None)
+        if ta is not None and tb is not None and tb > ta:
+            return float((tb - ta) / math.log(da / db))
+        sdev = np.concatenate([[w0 - wss], wc - wss])
+        tau = float(np.sum(0.5 * (sdev[1:] + sdev[:-1]) * np.diff(tt)) / (w0 - wss))
         return tau if tau > 0 else 0.0
 
     def outputs(self) -> dict:
