@@ -125,6 +125,35 @@ def test_cage_speed_follows_a_first_order_lag(smap):
     assert s.t == 0.0 and s.outputs["cage_speed"] == w0
 
 
+def test_map_lag_constant_is_the_decay_of_small_deviations():
+    """The map's cage lag constant (build_map._MapRun.time_constant) from a relaxation history: a pure exponential
+    gives its own constant; a relaxation whose large start is faster or slower than its small-deviation decay
+    gives the decay's constant, not the area of the whole relaxation; a deviation within the cage speed's own
+    fluctuation gives 0; a start within 0.2 % of the steady value gives 0."""
+    from bearing_core.maps.build_map import _MapRun
+
+    def run(dev_fn, d0, sd=0.0, wss=400.0, dt=1e-5, t_end=0.2):
+        r = object.__new__(_MapRun)
+        t = np.arange(1, int(round(t_end / dt)) + 1) * dt
+        r.hist = [np.column_stack([t, wss + dev_fn(t)])]
+        r.s, r.w0, r.t0, r.cage_sd = {"cage": wss}, wss + d0, 0.0, sd
+        return r.time_constant()
+
+    tau = 4e-3
+    assert run(lambda t: 20.0 * np.exp(-t / tau), 20.0) == pytest.approx(tau, rel=1e-3)
+    assert run(lambda t: -20.0 * np.exp(-t / tau), -20.0) == pytest.approx(tau, rel=1e-3)
+    # a fast drop of 3/4 within 0.2 ms, then the 4 ms decay: the decay's constant (the area would give ~1.0 ms)
+    two = lambda t: 15.0 * np.exp(-t / 5e-5) + 5.0 * np.exp(-t / tau)
+    assert run(two, 20.0) == pytest.approx(tau, rel=1e-3)
+    # a slow start (a plateau of 10 ms), then the decay: the decay's constant (the area would give ~14 ms)
+    slow = lambda t: np.where(t < 0.01, 20.0, 20.0 * np.exp(-(t - 0.01) / tau))
+    assert run(slow, 20.0) == pytest.approx(tau, rel=1e-3)
+    assert run(lambda t: 3.0 * np.exp(-t / tau), 3.0, sd=1.0) == 0.0       # within 3 standard deviations
+    assert run(lambda t: 10.0 * np.exp(-t / tau), 10.0, sd=1.0) == 0.0     # not 4 x 3 standard deviations
+    assert run(lambda t: 20.0 * np.exp(-t / tau), 20.0, sd=1.0) == pytest.approx(tau, rel=1e-3)
+    assert run(lambda t: 0.5 * np.exp(-t / tau), 0.5) == 0.0               # start within 0.2 % of 400
+
+
 def test_out_of_range_inputs_are_refused_naming_input_and_range(smap):
     s = session(smap)
     with pytest.raises(BearingInputError, match=r"shaft_speed.*1000-4000 rpm.*never extrapolates"):

@@ -114,14 +114,14 @@ class _MapRun(S._WindowRun):
 
     def time_constant(self) -> float:
         """Time constant [s] of the cage speed's first-order lag at this point: the decay rate of the cage
-        speed's deviation from its steady value after the Jones-Harris start, once the deviation is small,
-        tau = (t_b - t_a) / ln(d_a / d_b), where t_a and t_b are the first times the deviation falls to d_a = 1/2
-        of its start and to d_b = max(1/20 of its start, 3 standard deviations of the cage speed over the last
-        window). A first-order lag is the linearisation about the steady state, so its constant is the decay of
-        small deviations, not the area of the large initial transient (which the skid's nonlinear start
-        dominates). 0 where the start deviates by less than 0.2 % or no more than the cage speed's own
-        fluctuation (d_b >= 0.8 d_a): no lag is measurable above it. Where the deviation does not fall that far
-        within the run, the relaxation time of the whole run (the integral of the deviation over its start)."""
+        speed's deviation from its steady value after the Jones-Harris start, where the deviation is smallest
+        and still measurable, tau = (t_b - t_a) / ln(d_a / d_b): t_a and t_b are the first times the deviation
+        falls to d_a = 4 d_b and to d_b = max(1/20 of its start, 3 standard deviations of the cage speed over
+        the last window). A first-order lag is the linearisation about the steady state, so its constant is
+        the decay of small deviations, not the area of the whole relaxation, which the skid's nonlinear start
+        dominates. 0 where the start deviates by less than 0.2 % or by less than d_a (no lag measurable above
+        the cage speed's own fluctuation). Where the deviation does not fall that far within the run, the
+        relaxation time of the whole run (the integral of the deviation over its start)."""
         h = np.concatenate(self.hist)
         t, wc = h[:, 0], h[:, 1]
         wss = self.s["cage"]
@@ -129,8 +129,9 @@ class _MapRun(S._WindowRun):
         d0 = abs(w0 - wss)
         if not d0 > 2e-3 * abs(wss):
             return 0.0
-        da, db = 0.5 * d0, max(0.05 * d0, 3.0 * self.cage_sd)
-        if db >= 0.8 * da:
+        db = max(0.05 * d0, 3.0 * self.cage_sd)
+        da = 4.0 * db
+        if da >= d0:
             return 0.0
         tt = np.concatenate([[self.t0], t])
         dev = np.abs(np.concatenate([[w0], wc]) - wss)
