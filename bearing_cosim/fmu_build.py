@@ -113,7 +113,8 @@ def _model_description(code: Path, slave_modules, main_module: str, class_name: 
 
 
 # The sessions the precompilation runs: every kernel an FMU instance can call (integrators, traction models,
-# thermal network and churning, displacement coupling, elastic outer ring, a four-point-contact bearing, ring growth).
+# thermal network and churning, displacement coupling, elastic outer ring, a four-point-contact bearing, ring growth,
+# the quasi-static level).
 _PRECOMPILE = r"""
 import sys
 sys.path.insert(0, sys.argv[1])
@@ -123,7 +124,8 @@ from bearing_fmu import INPUT_START
 cases = [{}, {"integrator": "adaptive"}, {"integrator": "implicit"}, {"integrator": "rk4"},
          {"traction_model": "coulomb"}, {"traction_model": "kalker"}, {"traction_model": "lubricated-curve"},
          {"thermal": True, "churning": True, "oil_fraction": 0.05},
-         {"outer_mounting": "elastic"}, {"bearing": "QJ1044"}, {"fixed_tilt": True}]
+         {"outer_mounting": "elastic"}, {"bearing": "QJ1044"}, {"fixed_tilt": True},
+         {"fidelity": "quasi-static", "oil_fraction": 0.05}]
 done = 0
 for kw in cases:
     inputs = {k: INPUT_START.get(k, 0.0) for k in INPUT_NAMES}

@@ -1,17 +1,20 @@
-"""Accuracy of the 'map' fidelity level against the dynamic model (docs/fidelity.md).
+"""Accuracy of a steady fidelity level ('map' or 'quasi-static') against the dynamic model (docs/fidelity.md).
 
 1. Steady state: at --points random operating points (uniform in speed, Fx, Fz over the map's validity range,
-   seeded) the session at fidelity 'map' (initialised at the point: its steady values) against the dynamic
+   seeded) the session at fidelity --fidelity (initialised at the point: its steady values) against the dynamic
    model's window means (the map's own evaluator, bearing_core.maps.build_map.MapDynamicWindow with the map's
    options, run on Dask through the sweep machinery with its cache). Tolerances: cage speed 1 %, friction
    torque 5 %, heat 5 %, reactions 0.5 % (of the applied load's magnitude), mean contact angles 0.5 deg.
 2. --ramp: the seed 000 speed profile (1000 rpm, 10,000 rpm/s to 10,000 rpm, Fx 1 kN, Fz 3 kN) at 1 ms steps
-   through the session at fidelity 'dynamic' and 'map': the largest relative cage speed difference over the ramp.
+   through the session at fidelity 'dynamic' and the level: the largest relative cage speed difference over the ramp.
 
-    python bench/fidelity_accuracy.py --map maps/7218B_oil.nc [--points 30] [--seed 1] [--ramp] [--json OUT]
+    python bench/fidelity_accuracy.py --map maps/7218B_oil.nc [--fidelity quasi-static] [--points 30] [--seed 1]
+        [--ramp] [--json OUT]
 
 The map's build parameters (traction, oil ...) are those of the reference runs; its grid's ranges bound the
-random points (--speed-range, --fx-range, --fz-range narrow them).
+random points (--speed-range, --fx-range, --fz-range narrow them); at --fidelity quasi-static the level runs at the
+map's parameters and is compared at the same points with the same references (the '_map' columns are then the
+level's).
 """
 from __future__ import annotations
 
@@ -33,13 +36,14 @@ RPM = math.pi / 30.0
 TOL = {"cage_speed": 0.01, "friction_torque": 0.05, "heat_flux_total": 0.05, "reaction": 0.005, "alpha_deg": 0.5}
 
 
-def _map_session(path, params):
+def _level_session(fidelity, path, params):
+    """A session at a steady level: 'map' reads the map; 'quasi-static' solves at the map's parameters."""
     from bearing_core.session.cosim import CoSimParameters, CoSimSession
-    kw = dict(params, fidelity="map", map_file=str(path))
+    kw = dict(params, fidelity=fidelity, map_file=str(path) if fidelity == "map" else "")
     return CoSimSession(CoSimParameters(**kw))
 
 
-def steady_comparison(map_path, n, seed, ranges, cache, workers, progress=True):
+def steady_comparison(map_path, n, seed, ranges, cache, workers, progress=True, fidelity="map"):
     import xarray as xr
     from bearing_core.maps import sweep as S
     from bearing_core.maps.build_map import level_model
@@ -57,7 +61,7 @@ def steady_comparison(map_path, n, seed, ranges, cache, workers, progress=True):
     t0 = time.perf_counter()
     df = S.run_sweep(spec, cache_dir=cache, workers=workers, progress=progress)
     ref_wall = time.perf_counter() - t0
-    sess = _map_session(map_path, {k: v for k, v in params.items()})
+    sess = _level_session(fidelity, map_path, {k: v for k, v in params.items()})
     rows = []
     for p, (_, r) in zip(pts, df.iterrows()):
         row = dict(p, status=r["status"])
@@ -65,7 +69,14 @@ def steady_comparison(map_path, n, seed, ranges, cache, workers, progress=True):
             row["error"] = r["error"]
             rows.append(row)
             continue
-        sess.initialize(0.0, {"shaft_speed": p["speed_rpm"] * RPM, "Fx": p["fx_N"], "Fz": p["fz_N"]})
+        t1 = time.perf_counter()
+        try:
+            sess.initialize(0.0, {"shaft_speed": p["speed_rpm"] * RPM, "Fx": p["fx_N"], "Fz": p["fz_N"]})
+        except Exception as e:      # a level that finds no steady state there says so
+            row.update(status="level-error", error=f"{type(e).__name__}: {e}"[:300])
+            rows.append(row)
+            continue
+        row["level_wall_s"] = time.perf_counter() - t1
         o = sess.outputs
         F = math.hypot(p["fx_N"], p["fz_N"])
         row.update(
@@ -88,7 +99,7 @@ def steady_comparison(map_path, n, seed, ranges, cache, workers, progress=True):
     ok = [r for r in rows if r["status"] == "ok"]
     summary = _summary(ok)
     summary_unflagged = _summary([r for r in ok if not r["flagged"]])
-    return {"map": str(map_path), "map_attrs": {k: attrs[k] for k in ("bearing", "traction", "level", "grid",
+    return {"fidelity": fidelity, "map": str(map_path), "map_attrs": {k: attrs[k] for k in ("bearing", "traction", "level", "grid",
                                                                          "code_version", "created")},
             "points": rows, "summary": summary, "summary_unflagged": summary_unflagged,
             "flagged": sum(1 for r in ok if r["flagged"]), "reference_wall_s": ref_wall, "failed": len(rows) - len(ok)}
@@ -106,8 +117,8 @@ def _summary(ok):
     return summary
 
 
-def ramp_comparison(map_path, params, fx=1000.0, fz=3000.0, h=1e-3):
-    """Cage speed through the seed 000 profile at fidelity 'dynamic' and 'map' (session, h steps)."""
+def ramp_comparison(map_path, params, fx=1000.0, fz=3000.0, h=1e-3, fidelity="map"):
+    """Cage speed through the seed 000 profile at fidelity 'dynamic' and a steady level (session, h steps)."""
     from bearing_core.models.dynamics import SEED000_PROFILE
     from bearing_core.session.cosim import OUTPUT_INDEX, CoSimParameters, CoSimSession
     ic = OUTPUT_INDEX["cage_speed"]
@@ -115,7 +126,7 @@ def ramp_comparison(map_path, params, fx=1000.0, fz=3000.0, h=1e-3):
     npf = np.array([p[1] for p in SEED000_PROFILE])
     n = int(round(tp[-1] / h))
     out = {}
-    for fid in ("map", "dynamic"):
+    for fid in (fidelity, "dynamic"):
         kw = dict(params, fidelity=fid, map_file=str(map_path) if fid == "map" else "")
         s = CoSimSession(CoSimParameters(**kw))
         u = {"shaft_speed": float(npf[0]) * RPM, "Fx": fx, "Fz": fz}
@@ -128,21 +139,23 @@ def ramp_comparison(map_path, params, fx=1000.0, fz=3000.0, h=1e-3):
             s.step(tk, h, u)
             t.append(tk + h)
             cage.append(s.values[ic])
-        out[fid] = {"t": np.array(t), "cage": np.array(cage), "wall_s": time.perf_counter() - t0}
-    t = out["map"]["t"]
+        out["level" if fid == fidelity else fid] = {"t": np.array(t), "cage": np.array(cage), "wall_s": time.perf_counter() - t0}
+    t = out["level"]["t"]
     ramp = (t >= 0.5) & (t <= 1.4)
-    rel = np.abs(out["map"]["cage"] / out["dynamic"]["cage"] - 1.0)
+    rel = np.abs(out["level"]["cage"] / out["dynamic"]["cage"] - 1.0)
     hold = (t > 0.05) & ~ramp
     return {"fx_N": fx, "fz_N": fz, "step_s": h, "max_rel_cage_ramp": float(rel[ramp].max()),
             "mean_rel_cage_ramp": float(rel[ramp].mean()), "max_rel_cage_holds": float(rel[hold].max()),
-            "wall_s_map": out["map"]["wall_s"], "wall_s_dynamic": out["dynamic"]["wall_s"],
-            "series": {"t": t[::10].tolist(), "cage_map": out["map"]["cage"][::10].tolist(),
+            "fidelity": fidelity, "wall_s_level": out["level"]["wall_s"], "wall_s_dynamic": out["dynamic"]["wall_s"],
+            "series": {"t": t[::10].tolist(), "cage_level": out["level"]["cage"][::10].tolist(),
                        "cage_dynamic": out["dynamic"]["cage"][::10].tolist()}}
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--map", required=True, help="operating map (bearing build-map)")
+    ap.add_argument("--map", required=True, help="operating map (bearing build-map); at --fidelity quasi-static its "
+                    "parameters, ranges and reference points are used")
+    ap.add_argument("--fidelity", default="map", choices=("map", "quasi-static"), help="the level compared")
     ap.add_argument("--points", type=int, default=30)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--speed-range", default=None, metavar="LO:HI", help="rpm (default: the map's)")
@@ -162,7 +175,7 @@ def main(argv=None):
             ranges[k] = (lo, hi)
     res = {"machine": machine_info(), "tolerances": TOL}
     if not a.no_steady:
-        r = steady_comparison(a.map, a.points, a.seed, ranges, a.cache, a.workers)
+        r = steady_comparison(a.map, a.points, a.seed, ranges, a.cache, a.workers, fidelity=a.fidelity)
         res["steady"] = r
         print(f"{r['map_attrs']['bearing']} {r['map_attrs']['traction']}: {len(r['points'])} points, {r['failed']} "
               f"reference runs failed; reference wall {r['reference_wall_s']:.0f} s")
@@ -183,11 +196,11 @@ def main(argv=None):
         import xarray as xr
         with xr.open_dataset(a.map, engine="scipy") as ds:
             params = json.loads(ds.attrs["parameters"])
-        r = ramp_comparison(a.map, params)
+        r = ramp_comparison(a.map, params, fidelity=a.fidelity)
         res["ramp"] = r
-        print(f"seed 000 profile (Fx 1 kN, Fz 3 kN, 1 ms steps): cage speed map / dynamic over the ramp: max "
+        print(f"seed 000 profile (Fx 1 kN, Fz 3 kN, 1 ms steps): cage speed {a.fidelity} / dynamic over the ramp: max "
               f"{100 * r['max_rel_cage_ramp']:.2f} %, mean {100 * r['mean_rel_cage_ramp']:.2f} %; at the holds max "
-              f"{100 * r['max_rel_cage_holds']:.2f} %; session wall {r['wall_s_map']:.2f} s (map), "
+              f"{100 * r['max_rel_cage_holds']:.2f} %; session wall {r['wall_s_level']:.2f} s ({a.fidelity}), "
               f"{r['wall_s_dynamic']:.1f} s (dynamic) for 2 s")
     if a.json:
         Path(a.json).parent.mkdir(parents=True, exist_ok=True)

@@ -33,60 +33,9 @@ from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # n
 from .cosim_spec import INT_OUTPUT_NAMES, INT_OUTPUT_SPEC  # noqa: F401 (re-export)
 from .cosim_spec import STEP_AVERAGED_NAMES, parse_inputs
 from . import session_kernels as SK
-from ..models.skid import SKID_MIN_SPEED, SKID_OVERSKIDDING, SKID_PURE_ROLLING, SKID_SKIDDING, SKID_TOL
-HEAT_CHANNELS = {"race_inner": "P_race_inner", "race_outer": "P_race_outer", "pocket": "P_pocket",
-                 "land": "P_land", "drag": "P_drag", "damping": "P_damping", "churn_cage": "P_churn_cage",
-                 "churn_ring": "P_churn_ring"}
-STEP_AVERAGED = (
-    ("friction_torque", "friction_torque"), ("friction_torque_outer", "friction_torque_outer"),
-    ("drive_power", "P_drive"), ("heat_flux_total", tuple(HEAT_CHANNELS.values())),
-    *((f"heat_flux_{k}", v) for k, v in HEAT_CHANNELS.items()),
-    ("heat_flux_race_slide", "P_race_slide"), ("heat_flux_race_spin", "P_race_spin"),
-    ("heat_flux_race_diffslip", "P_race_diffslip"),
-)
-"""(output name, dynamics channel or channels summed): outputs averaged over each communication step."""
-assert tuple(n for n, _ in STEP_AVERAGED) == STEP_AVERAGED_NAMES
-CSR_MIN_SPEED = 1.0   # rad/s (9.5 rpm): below it |shaft speed| the cage/shaft ratios are reported as 0
-ALL_OUTPUT_NAMES = OUTPUT_NAMES + INT_OUTPUT_NAMES
-"""The session's output array (CoSimSession.values): the Real outputs, then the Integer ones."""
-OUTPUT_INDEX = {n: i for i, n in enumerate(ALL_OUTPUT_NAMES)}
-
-
-def _output_map():
-    """(ptr, idx) of session_kernels.assemble_outputs: each output as the sum of entries of [instantaneous
-    channels | step-averaged channels | session_kernels.EXTRA_NAMES]."""
-    n = K.NOUT
-    inst = {"reaction_Fx": "Fx", "reaction_Fy": "Fy", "reaction_Fz": "Fz", "reaction_Mx": "Mx", "reaction_My": "My",
-            "cage_speed": "cage_speed", "heat_flux_race_slide": "P_race_slide", "heat_flux_race_spin": "P_race_spin",
-            "heat_flux_race_diffslip": "P_race_diffslip", "ir_x": "ir_x", "ir_y": "ir_y", "ir_z": "ir_z",
-            "ir_tx": "ir_tx", "ir_ty": "ir_ty", "ir_ax": "ir_ax", "max_contact_pressure": "p_max",
-            "alpha_i_mean": "alpha_i_mean", "alpha_o_mean": "alpha_o_mean", "Q_i_max": "Q_i_max",
-            "Q_o_max": "Q_o_max", "ball0_omega_r": "ball0_wr", "ball0_omega_t": "ball0_wt",
-            "ball0_omega_z": "ball0_wz", "ball0_slide_roll_i": "ball0_slide_roll_i",
-            "ball0_slide_roll_o": "ball0_slide_roll_o", "ball0_spin_roll_i": "ball0_spin_roll_i",
-            "ball0_spin_roll_o": "ball0_spin_roll_o", "ball0_traction_i": "ball0_Ft_i",
-            "ball0_traction_o": "ball0_Ft_o", "cage_speed_pure_rolling_outer": "cage_speed_pure_rolling_outer",
-            "cage_speed_pure_rolling_inner": "cage_speed_pure_rolling_inner"}
-    src = {name: [K.OUT_INDEX[c]] for name, c in inst.items()}
-    for name, chans in STEP_AVERAGED:
-        chans = chans if isinstance(chans, tuple) else (chans,)
-        src["instantaneous_" + name] = [K.OUT_INDEX[c] for c in chans]
-        src[name] = [n + K.OUT_INDEX[c] for c in chans]
-    for k, name in enumerate(SK.EXTRA_NAMES):
-        src[name] = [2 * n + k]
-    missing = set(ALL_OUTPUT_NAMES) - set(src)
-    assert not missing, f"outputs without a source: {sorted(missing)}"
-    ptr = np.zeros(len(ALL_OUTPUT_NAMES) + 1, dtype=np.int64)
-    idx = []
-    for i, name in enumerate(ALL_OUTPUT_NAMES):
-        idx += src[name]
-        ptr[i + 1] = len(idx)
-    ch = np.array([K.OUT_INDEX[c] for c in ("shaft_speed", "cage_speed", "pure_rolling_cage_speed",
-                                            "cage_speed_pure_rolling_outer", "outer_ring_speed")], dtype=np.int64)
-    return ptr, np.array(idx, dtype=np.int64), ch
-
-
-_OUT_PTR, _OUT_IDX, _OUT_CH = _output_map()
+from ..models.skid import SKID_OVERSKIDDING, SKID_PURE_ROLLING, SKID_SKIDDING
+from .output_map import (ALL_OUTPUT_NAMES, CSR_MIN_SPEED, HEAT_CHANNELS, OUTPUT_INDEX,  # noqa: F401 E402
+                         STEP_AVERAGED, point_outputs)
 assert (SKID_SKIDDING, SKID_PURE_ROLLING, SKID_OVERSKIDDING) == (1, 0, -1)   # the codes assemble_outputs writes
 _I_RUNAWAY = OUTPUT_INDEX["thermal_runaway"]
 _I_PMAX = OUTPUT_INDEX["max_contact_pressure"]
@@ -192,7 +141,8 @@ class CoSimSession:
         if params.fidelity != "dynamic":
             from .fidelity import ALL_NAMES as FIDELITY_NAMES, SteadySession
             assert ALL_OUTPUT_NAMES == FIDELITY_NAMES
-            self.steady = SteadySession(params, FIDELITY_LEVELS[params.fidelity](params), self.values, Outputs,
+            level = FIDELITY_LEVELS[params.fidelity](params, self._geometry, self._options)
+            self.steady = SteadySession(params, level, self.values, Outputs,
                                         StepRejected, CSR_MIN_SPEED)
             self.warnings = self.steady.warnings
         self.thermal_runaway = False
@@ -509,16 +459,9 @@ class CoSimSession:
             self._ext_isothermal = m.thermal is None
         ext[6] = 1.0 if self.thermal_runaway else 0.0
         ext[7] = m.oil_fraction_used()
-        if q0 is None:
-            q1 = q0 = diag
-            h = 0.0
-        else:
-            q1 = m.quad
         # films and outputs in one kernel call: the Python here runs on caches the integration has evicted
-        g = m.g
-        ok = SK.films_and_outputs(bd, g.D, g.dm, g.fi, g.fo, *m.film_parameters(), self._films, diag, q1, q0, h,
-                                  ext, _OUT_CH, CSR_MIN_SPEED, SKID_TOL, SKID_MIN_SPEED, _OUT_PTR, _OUT_IDX,
-                                  self._x, self._new)
+        ok = point_outputs(bd, m.g, m.film_parameters(), diag, ext, self._films, self._x, self._new,
+                           None if q0 is None else m.quad, q0, h)
         if not ok:
             bad = [n for n, v in zip(ALL_OUTPUT_NAMES, self._new) if not math.isfinite(v)]
             raise StepRejected(f"non-finite outputs {bad} (solver failure)")

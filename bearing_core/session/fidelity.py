@@ -20,8 +20,12 @@ and optionally a one-call step: step_kernel (map_kernels.map_step's signature), 
 and the query point x_fast it fills; SteadySession takes it while the inputs pass and the checked path above
 (query, steady_into) otherwise, which names the reason of a refusal.
 
-Levels (FIDELITY_LEVELS): 'map', an operating map of the dynamic model's steady windows built by
-``bearing build-map`` and read here (MapLevel). A steady level is added with one entry in FIDELITY_LEVELS.
+Levels (FIDELITY_LEVELS, in the order of the FMU's Enumeration after 'dynamic'): 'map', an operating map of the
+dynamic model's steady windows built by ``bearing build-map`` and read here (MapLevel); 'quasi-static', the
+steady state of the whole bearing with its cage solved at the inputs and followed along them
+(QuasiStaticLevel). A steady level is added with one entry in FIDELITY_LEVELS; its class is constructed as
+Level(params, geometry, options), the last two callables giving the session's BearingGeometry and
+DynamicsOptions.
 
 What a steady level gives (docs/fidelity.md): every step-averaged output is the steady value at the step's
 held inputs (its 'instantaneous_' twin the same); the cage speed follows its steady value through a first-order
@@ -127,7 +131,7 @@ class MapLevel:
 
     name = "map"
 
-    def __init__(self, params):
+    def __init__(self, params, geometry=None, options=None):
         path = params.map_file
         if not path:
             raise BearingInputError("map_file", path, "an operating-map file (bearing build-map) for fidelity "
@@ -335,10 +339,183 @@ class MapLevel:
         return f"operating map {self.path} ({self.attrs.get('level', '?')} level, {self.attrs.get('bearing', '?')})"
 
 
+class QuasiStaticLevel:
+    """The 'quasi-static' level: the steady state of the whole bearing, cage included, solved on the dynamics'
+    own forces (bearing_core.models.quasistatic_cage; docs/fidelity_quasistatic.md) at the held inputs, and
+    followed along them by warm re-solves and first-order updates (QuasiStaticTracker: re-solve where the
+    inputs leave a trust region set by the model's sensitivity and the measured error of its linear update).
+
+    Each solution's outputs are evaluated through the dynamic session's own output path (output_map.
+    point_outputs on the solution's right-hand-side channels and per-ball details): the same conventions,
+    films and film parameter as at 'dynamic'. Between re-solves the outputs the solver differentiates (cage
+    speed, torque, drive power, heat by source, reactions, ring pose, mean contact angles, largest loads and
+    pressure) follow the linear update; the pure-rolling cage speeds scale with the shaft speed, the race
+    losses' slide/spin split and the outer-ring torque with their totals; the films are those of the last
+    solution. Load coupling: the loads are inputs; displacement coupling: the ring pose (dx..ty) is, and the
+    outputs are the forces of that pose (the velocities vx..wy are not used: a steady level has no damping
+    forces). Outer ring fixed, isothermal at oil_temperature. A point where no steady state is found raises
+    ConvergenceError naming it (the FMU: fmi2Error with the message)."""
+
+    name = "quasi-static"
+    rotate = False
+    MIN_SPEED = 10.0     # rad/s: the solver's lower bound of the shaft speed (QuasiStaticCageModel.solve)
+    #: outputs of the solver's linear update (session name, solver output name)
+    PREDICTED = (("cage_speed", "cage_speed"), ("friction_torque", "friction_torque"), ("drive_power", "P_drive"),
+                 ("heat_flux_total", "heat"), ("heat_flux_race_inner", "P_race_inner"),
+                 ("heat_flux_race_outer", "P_race_outer"), ("heat_flux_pocket", "P_pocket"),
+                 ("heat_flux_land", "P_land"), ("heat_flux_drag", "P_drag"), ("heat_flux_churn_cage", "P_churn_cage"),
+                 ("heat_flux_churn_ring", "P_churn_ring"), ("reaction_Fx", "Fx"), ("reaction_Fy", "Fy"),
+                 ("reaction_Fz", "Fz"), ("reaction_Mx", "Mx"), ("reaction_My", "My"), ("ir_x", "dx"),
+                 ("ir_y", "dy"), ("ir_z", "dz"), ("ir_tx", "tx"), ("ir_ty", "ty"), ("alpha_i_mean", "alpha_i_mean"),
+                 ("alpha_o_mean", "alpha_o_mean"), ("Q_i_max", "Q_i_max"), ("Q_o_max", "Q_o_max"),
+                 ("max_contact_pressure", "p_max"))
+
+    def __init__(self, params, geometry=None, options=None):
+        """params: CoSimParameters; geometry, options: callables giving the session's BearingGeometry and
+        DynamicsOptions (CoSimSession._geometry, _options)."""
+        if params.thermal:
+            raise BearingInputError("thermal", params.thermal, "False at fidelity 'quasi-static' (an isothermal "
+                                    "steady model at oil_temperature)", "use fidelity 'dynamic' for the thermal network")
+        if params.outer_mounting != "fixed":
+            raise BearingInputError("outer_mounting", params.outer_mounting, "'fixed' at fidelity 'quasi-static'",
+                                    "use fidelity 'dynamic' for an elastic outer-ring mounting")
+        if params.oil_fraction == 0.0 and (params.oil_flow_rate > 0.0 or params.lubrication_method in ("bath", "grease")):
+            raise BearingInputError("oil_flow_rate" if params.oil_flow_rate > 0.0 else "lubrication_method",
+                                    params.oil_flow_rate if params.oil_flow_rate > 0.0 else params.lubrication_method,
+                                    "an explicit oil_fraction (> 0) at fidelity 'quasi-static'",
+                                    "the steady level takes the cavity oil content as the oil_fraction parameter; "
+                                    "use fidelity 'dynamic' for an oil supply")
+        if geometry is None or options is None:
+            raise BearingInputError("fidelity", self.name, "a level built by CoSimSession (geometry and options)")
+        from ..models.quasistatic_cage import OUTPUT_NAMES as QS_NAMES, QuasiStaticCageModel, QuasiStaticTracker
+        from ..models import dynamics_kernels as K
+        from .output_map import ALL_OUTPUT_NAMES
+        from . import session_kernels as SK
+        g = geometry()
+        opt = options()
+        self.geometry = g
+        self.model = QuasiStaticCageModel(g, opt)      # refuses four-point and ball-guided bearings, naming them
+        self.tracker = QuasiStaticTracker(self.model)
+        self.disp = params.coupling == "displacement"
+        self.T_oil = float(opt.oil_temperature)
+        self.bearing = params.bearing
+        held = ("ir_ax",)
+        self.names = tuple(n for n in ALL_OUTPUT_NAMES if not (n.startswith("instantaneous_") or
+                                                                n.startswith("ball0_") or n in held)) \
+            + ("cage_speed_eq26", "cage_time_constant")
+        self.i_tau = len(self.names) - 1
+        ix = {n: i for i, n in enumerate(self.names)}
+        self._pred = np.array([[ix[a], QS_NAMES.index(b)] for a, b in self.PREDICTED], dtype=np.int64)
+        self._speed_scaled = np.array([ix[n] for n in ("cage_speed_pure_rolling_outer", "cage_speed_pure_rolling_inner",
+                                                       "cage_speed_eq26")], dtype=np.int64)
+        self._race_split = np.array([ix[n] for n in ("heat_flux_race_slide", "heat_flux_race_spin",
+                                                     "heat_flux_race_diffslip")], dtype=np.int64)
+        self._i_race = (ix["heat_flux_race_inner"], ix["heat_flux_race_outer"])
+        self._i_torque, self._i_torque_outer = ix["friction_torque"], ix["friction_torque_outer"]
+        self._i_all = np.array([ALL_OUTPUT_NAMES.index(n) for n in self.names[:-2]], dtype=np.int64)
+        self._i_cage, self._i_pure = ix["cage_speed"], ix["cage_speed_pure_rolling_outer"]
+        self._ext = np.zeros(SK.N_EXT)
+        self._work = np.zeros(2 * K.NOUT + len(SK.EXTRA_NAMES))
+        self._i_eq26 = K.OUT_INDEX["pure_rolling_cage_speed"]
+        self._full = np.zeros(len(ALL_OUTPUT_NAMES))
+        self._ss0 = np.zeros(len(self.names))     # the steady values at the last solution
+        self._out0 = None                          # the solver's outputs there
+        self._w0 = 0.0
+        self._flags0 = 0
+        self._last = None                          # (x, ss, flags) of the last query point
+
+    def query(self, u: dict):
+        """(x, 1, 0): x = (shaft speed, Fx, Fy, Fz, Mx, My or dx, dy, dz, tx, ty, oil temperature) [rad/s, N,
+        N m or m, rad, K]. Raises BearingInputError for an input the level cannot take."""
+        if u["outer_ring_speed"] != 0.0:
+            raise BearingInputError("outer_ring_speed", u["outer_ring_speed"], "0 rad/s at fidelity 'quasi-static' "
+                                    "(the steady model's outer ring is fixed)")
+        w = u["shaft_speed"]
+        if not self.MIN_SPEED <= w <= 2.0e4:
+            raise BearingInputError("shaft_speed", w, f"{self.MIN_SPEED:g} rad/s <= value <= 20000 rad/s at fidelity "
+                                    "'quasi-static' (a steady state needs a turning shaft; use fidelity 'dynamic' "
+                                    "through standstill and reversal)")
+        if self.disp:
+            ring = [u[k] for k in ("dx", "dy", "dz", "tx", "ty")]
+        else:
+            if not u["Fz"] > 0.0:
+                raise BearingInputError("Fz", u["Fz"], "Fz > 0 N (the axial load that seats the bearing)",
+                                        "a single angular-contact bearing has no equilibrium without it")
+            ring = [u[k] for k in ("Fx", "Fy", "Fz", "Mx", "My")]
+        return np.array([w, *ring, self.T_oil]), 1.0, 0.0
+
+    def restart(self):
+        """The next point starts the inputs afresh (SteadySession.initialize): solved with its derivatives."""
+        self.tracker.restart()
+        self._last = None
+
+    def steady_into(self, x, ss) -> int:
+        """The steady values at x into ss (one per name); returns FLAG_GROSS_SKID where the cage skids grossly.
+        Raises ConvergenceError naming the point where no steady state is found."""
+        last = self._last
+        if last is not None and np.array_equal(last[0], x):
+            ss[:] = last[1]
+            return last[2]
+        y, solved = self.tracker.at(x)
+        res = self.tracker.res
+        if solved:
+            self._evaluate_solution(res)
+        ss[:] = self._ss0
+        if not solved:
+            o0 = self._out0
+            for i, k in self._pred:
+                ss[i] = self._ss0[i] + (y[k] - o0[k])
+            f = x[0] / self._w0
+            for i in self._speed_scaled:
+                ss[i] = self._ss0[i] * f
+            r0 = self._ss0[self._i_race[0]] + self._ss0[self._i_race[1]]
+            if r0 > 0.0:
+                fr = (ss[self._i_race[0]] + ss[self._i_race[1]]) / r0
+                for i in self._race_split:
+                    ss[i] = self._ss0[i] * fr
+            if self._ss0[self._i_torque] != 0.0:
+                ss[self._i_torque_outer] = self._ss0[self._i_torque_outer] * ss[self._i_torque] / self._ss0[self._i_torque]
+        tau = res.tau_cage
+        ss[self.i_tau] = tau if math.isfinite(tau) and tau > 0.0 else 0.0
+        pure = ss[self._i_pure]
+        fl = FLAG_GROSS_SKID if pure > 0.0 and 1.0 - ss[self._i_cage] / pure > GROSS_SKID_SLIP else 0
+        self._last = (np.array(x, dtype=float), ss.copy(), fl)
+        return fl
+
+    def _evaluate_solution(self, res):
+        """The session's outputs at a solution (the dynamic session's output path), kept as the base of the
+        linear updates."""
+        from .output_map import point_outputs
+        s = self.model.dynamic_setup(res.omega, res.T_oil)
+        ext = self._ext
+        ext[:] = 0.0
+        ext[0:4] = res.T_oil
+        ext[7] = s.oil_fraction_used()
+        films = np.zeros((4, res.bd.shape[0]))
+        if not point_outputs(res.bd, self.geometry, s.film_parameters(), res.diag, ext, films, self._work, self._full):
+            from ..errors import ConvergenceError
+            raise ConvergenceError(f"quasi-static level: non-finite outputs at {self.point_text(res.inputs())}")
+        self._ss0[:-2] = self._full[self._i_all]
+        self._ss0[-2] = res.diag[self._i_eq26]
+        self._out0 = res.outputs.copy()
+        self._w0 = res.omega
+
+    def point_text(self, x) -> str:
+        x = np.asarray(x, dtype=float)
+        if self.disp:
+            ring = f"pose dx {x[1]:.4g} m, dy {x[2]:.4g} m, dz {x[3]:.4g} m, tx {x[4]:.4g} rad, ty {x[5]:.4g} rad"
+        else:
+            ring = f"Fx {x[1]:.5g} N, Fy {x[2]:.5g} N, Fz {x[3]:.5g} N, Mx {x[4]:.4g} N.m, My {x[5]:.4g} N.m"
+        return f"shaft speed {x[0] / RPM:.5g} rpm, {ring}, oil {x[6] - 273.15:.4g} degC"
+
+    def describe(self) -> str:
+        return f"quasi-static cage model ({self.bearing})"
+
+
 _INPUT_SET = frozenset(INPUT_NAMES)
 _ZEROS = (0.0,) * len(INPUT_NAMES)
 
-FIDELITY_LEVELS = {"map": MapLevel}
+FIDELITY_LEVELS = {"map": MapLevel, "quasi-static": QuasiStaticLevel}
 """Steady levels by name (CoSimParameters.fidelity); 'dynamic' is the full model (CoSimSession itself)."""
 FIDELITIES = ("dynamic",) + tuple(FIDELITY_LEVELS)
 
@@ -459,6 +636,9 @@ class SteadySession:
         self._flags = fl
 
     def initialize(self, t0: float, inputs: dict):
+        restart = getattr(self.level, "restart", None)
+        if restart is not None:      # a level that follows its inputs starts afresh
+            restart()
         q = self._validated(inputs)
         self.wc = self._evaluate(q, 0.0)
         np.copyto(self.values, self._new)

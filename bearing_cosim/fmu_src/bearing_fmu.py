@@ -100,7 +100,8 @@ _ENUM_DESC = {
     "integrator": ("per 5 ms (or communication step) the cheaper of an adaptive RK4 and implicit", "Dormand-Prince 5(4)", "Rosenbrock-W",
                    "fixed-step RK4 (1e-5 s)"),
     "fidelity": ("the full tribo-dynamic model", "operating map of steady outputs (map_file or the embedded map) with "
-                 "a first-order lag of the cage speed"),
+                 "a first-order lag of the cage speed", "steady state of the whole bearing with its cage, solved at "
+                 "the inputs and followed along them, with a first-order lag of the cage speed"),
 }
 # Geometry of the bearing as parameters (0: keep the value of the bearing definition); applied by
 # bearing_core.session.cosim over the loaded bearing. name, type, unit, description, (min, max)
@@ -167,7 +168,9 @@ _PARAMS = (
     # fidelity level (docs/fidelity.md)
     ("fidelity", str, "dynamic", None, "model fidelity: dynamic (the full tribo-dynamic model) | map (operating map "
      "of steady outputs from bearing build-map, interpolated, with a first-order lag of the cage speed; real-time "
-     "capable; same inputs and outputs, per-ball outputs ball0_* and ir_ax hold 0)", None),
+     "capable) | quasi-static (the steady state of the whole bearing with its cage, solved at the inputs, any "
+     "bearing file, load or displacement coupling, shaft speed >= 10 rad/s); same inputs and outputs, per-ball "
+     "outputs ball0_* and ir_ax hold 0 at the steady levels", None),
     ("map_file", str, "", None, "operating map (NetCDF from bearing build-map) for fidelity map; empty: the map "
      "embedded in the FMU (bearing build-fmu --map FILE)", None),
 )

@@ -1,0 +1,149 @@
+"""The 'quasi-static' fidelity level of the co-simulation session (bearing_core.session.fidelity.QuasiStaticLevel):
+the library's steady solution through the session's own output path, tracking moving inputs, displacement
+coupling, and the inputs and parameters it refuses (docs/fidelity_quasistatic.md).
+
+The refusals run in the default suite (no solve, nothing compiled). The tests that solve compile the quasi-static
+cage kernels, about two CPU minutes from an empty numba cache: they run with BEARING_TEST_QS_CAGE=1, like
+tests/test_quasistatic_cage.py."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+from bearing_core.errors import BearingInputError, ConvergenceError
+from bearing_core.session.cosim import CoSimParameters, CoSimSession, StepRejected
+
+RPM = math.pi / 30.0
+SOLVES = os.environ.get("BEARING_TEST_QS_CAGE") == "1"
+needs_solves = pytest.mark.skipif(not SOLVES, reason="solves with the quasi-static cage kernels: set "
+                                  "BEARING_TEST_QS_CAGE=1 (they compile for ~2 CPU minutes)")
+OIL = dict(bearing="7218B", traction_model="lubricated", lubrication="oil", fidelity="quasi-static")
+
+
+def inputs(rpm, fx=1000.0, fz=3000.0, **kw):
+    return dict({"shaft_speed": rpm * RPM, "Fx": fx, "Fz": fz}, **kw)
+
+
+def test_parameters_the_level_cannot_take_are_refused():
+    for kw, match in ((dict(thermal=True), r"thermal = True.*isothermal steady model"),
+                      (dict(outer_mounting="elastic"), r"outer_mounting = 'elastic'.*'fixed' at fidelity 'quasi-static'"),
+                      (dict(oil_flow_rate=1e-5), r"oil_flow_rate = 1e-05.*explicit oil_fraction"),
+                      (dict(bearing="QJ1044"), r"four-point|two-point|gothic")):
+        with pytest.raises(BearingInputError, match=match):
+            CoSimSession(CoSimParameters(**dict(OIL, **kw)))
+
+
+def test_inputs_the_level_cannot_take_are_refused_before_any_solve():
+    """A standing or reversed shaft, no seating axial load, a turning outer ring, NaN: BearingInputError at
+    initialisation naming the input and the allowed range, before the solver runs."""
+    s = CoSimSession(CoSimParameters(**OIL))
+    for u, match in ((inputs(50.0), r"shaft_speed = 5\.23.*10 rad/s <= value <= 20000 rad/s at fidelity 'quasi-static'"),
+                     (inputs(-3000.0), r"shaft_speed = -314"),
+                     (inputs(3000.0, fz=0.0), r"Fz = 0\.0.*Fz > 0 N"),
+                     (inputs(3000.0, outer_ring_speed=10.0), r"outer_ring_speed = 10\.0.*0 rad/s"),
+                     (inputs(3000.0, fx=float("nan")), r"Fx")):
+        with pytest.raises(BearingInputError, match=match):
+            s.initialize(0.0, u)
+
+
+@pytest.fixture(scope="module")
+def oil_session():
+    s = CoSimSession(CoSimParameters(**OIL))
+    s.initialize(0.0, inputs(3000.0))
+    return s
+
+
+@needs_solves
+def test_outputs_are_the_library_solution_through_the_session_output_path(oil_session):
+    """At initialisation the outputs are those of QuasiStaticCageModel.solve at the inputs (solved anew here),
+    evaluated through the dynamic session's output path: cage speed, torque, heat, reactions, films. Per-ball
+    outputs and the ring acceleration hold 0; the instantaneous twins equal the step values; all finite."""
+    from bearing_core import load_bearing
+    from bearing_core.models.dynamics import DynamicsOptions
+    from bearing_core.models.quasistatic_cage import QuasiStaticCageModel
+    r = QuasiStaticCageModel(load_bearing("7218B"), DynamicsOptions(traction="lubricated", lubrication="oil")) \
+        .solve(3000 * RPM, (1000.0, 0.0, 3000.0, 0.0, 0.0), sensitivity=False)
+    o = oil_session.outputs
+    assert o["cage_speed"] == pytest.approx(r.cage_speed, rel=1e-9)
+    assert o["friction_torque"] == pytest.approx(r.friction_torque, rel=1e-9)
+    assert o["heat_flux_total"] == pytest.approx(r.heat["total"], rel=1e-9)
+    np.testing.assert_allclose([o[f"reaction_{k}"] for k in ("Fx", "Fy", "Fz", "Mx", "My")], r.reaction, rtol=1e-9,
+                               atol=1e-9)
+    assert o["film_parameter_min"] == pytest.approx(r.film["Lambda_min"], rel=1e-9)
+    # the load balance: the reactions are the applied loads within the solver's acceptance (1e-3 of the load)
+    assert abs(o["reaction_Fx"] + 1000.0) < 3.0 and abs(o["reaction_Fz"] + 3000.0) < 3.0
+    assert o["instantaneous_friction_torque"] == o["friction_torque"]
+    assert o["ball0_omega_r"] == 0.0 and o["ir_ax"] == 0.0
+    assert np.all(np.isfinite(oil_session.values))
+    assert 0.0 < o["cage_shaft_ratio"] < 0.5
+
+
+@needs_solves
+def test_follows_a_speed_ramp_like_cold_solves(oil_session):
+    """3000 -> 3400 rpm in 0.1 s at 1 ms steps (4000 rpm/s): fewer re-solves than steps, no step in the torque
+    larger than 2 % (the updates are continuous), and the torque at the end within 1 % (twice the tracker's
+    rel) of a cold solve there; the cage speed follows its steady value through the lag."""
+    from bearing_core import load_bearing
+    from bearing_core.models.dynamics import DynamicsOptions
+    from bearing_core.models.quasistatic_cage import QuasiStaticCageModel
+    s = oil_session
+    s.initialize(0.0, inputs(3000.0))
+    tr = s.steady.level.tracker
+    n0 = tr.resolves
+    tq = []
+    for k in range(100):
+        s.step(k * 1e-3, 1e-3, inputs(3000.0 + 400.0 * (k + 1) / 100))
+        tq.append(s.outputs["friction_torque"])
+    assert tr.resolves - n0 < 60
+    tq = np.array(tq)
+    assert np.max(np.abs(np.diff(tq)) / tq[1:]) < 0.02
+    cold = QuasiStaticCageModel(load_bearing("7218B"), DynamicsOptions(traction="lubricated", lubrication="oil")) \
+        .solve(3400 * RPM, (1000.0, 0.0, 3000.0, 0.0, 0.0), sensitivity=False)
+    assert tq[-1] == pytest.approx(cold.friction_torque, rel=1e-2)
+    # held: the cage speed relaxes to its steady value with the level's time constant
+    tau = tr.res.tau_cage
+    wc0 = s.outputs["cage_speed"]
+    s.step(0.1, 1e-3, inputs(3400.0))
+    wss = s.steady._ss[s.steady.level.names.index("cage_speed")]
+    assert s.outputs["cage_speed"] == pytest.approx(wss + (wc0 - wss) * math.exp(-1e-3 / tau), rel=1e-12)
+    assert wss == pytest.approx(cold.cage_speed, rel=5e-3)
+
+
+@needs_solves
+def test_displacement_coupling_gives_the_forces_of_the_pose(oil_session):
+    """Displacement coupling at the ring pose of the load-driven solution: the reactions are the loads that
+    pose carries (0.5 % of the load), the cage speed the same within 0.2 %."""
+    oil_session.initialize(0.0, inputs(3000.0))
+    r = oil_session.steady.level.tracker.res
+    d = CoSimSession(CoSimParameters(**dict(OIL, coupling="displacement")))
+    pose = dict(zip(("dx", "dy", "dz", "tx", "ty"), map(float, r.displacement)))
+    d.initialize(0.0, dict(pose, shaft_speed=3000 * RPM))
+    o = d.outputs
+    assert abs(o["reaction_Fx"] - r.reaction[0]) < 15.0 and abs(o["reaction_Fz"] - r.reaction[2]) < 15.0
+    assert o["cage_speed"] == pytest.approx(r.cage_speed, rel=2e-3)
+
+
+@needs_solves
+def test_a_step_the_level_refuses_is_discarded_and_the_next_runs(oil_session):
+    s = oil_session
+    s.initialize(0.0, inputs(3000.0))
+    before = s.values.copy()
+    with pytest.raises(StepRejected, match="shaft_speed"):
+        s.step(0.0, 1e-3, inputs(10.0))
+    with pytest.raises(StepRejected, match="Fx"):
+        s.step(0.0, 1e-3, inputs(3000.0, fx=float("inf")))
+    np.testing.assert_array_equal(s.values, before)
+    s.step(0.0, 1e-3, inputs(3000.0))
+    assert np.all(np.isfinite(s.values))
+
+
+@needs_solves
+def test_no_steady_state_raises_naming_the_operating_point():
+    """Where the solver finds no steady state the session raises ConvergenceError naming speed, loads and oil
+    temperature (the FMU: fmi2Error with this message), never a value."""
+    s = CoSimSession(CoSimParameters(**OIL))
+    s.steady.level.model.budget = s.steady.level.model.sub_budget = 2
+    with pytest.raises(ConvergenceError, match=r"3000 rpm.*loads.*oil temperature"):
+        s.initialize(0.0, inputs(3000.0))
+    assert np.all(s.values == 0.0)
