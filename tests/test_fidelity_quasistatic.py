@@ -13,6 +13,7 @@ import pytest
 
 from bearing_core.errors import BearingInputError, ConvergenceError
 from bearing_core.session.cosim import CoSimParameters, CoSimSession, StepRejected
+from test_fmu import fmu  # noqa: E402,F401  (session fixture: the FMU built once, its kernel cache shared)
 
 RPM = math.pi / 30.0
 SOLVES = os.environ.get("BEARING_TEST_QS_CAGE") == "1"
@@ -147,3 +148,30 @@ def test_no_steady_state_raises_naming_the_operating_point():
     with pytest.raises(ConvergenceError, match=r"3000 rpm.*loads.*oil temperature"):
         s.initialize(0.0, inputs(3000.0))
     assert np.all(s.values == 0.0)
+
+
+def test_fmu_at_fidelity_quasi_static_through_fmpy(fmu, tmp_path):
+    """The FMU at fidelity 'quasi-static' (set by its Enumeration) in fmpy: initialised at 3000 rpm, Fx 1 kN,
+    Fz 3 kN, held, then a speed ramp: every step OK, the reactions balance the loads (0.1 % of the load, the
+    solver's acceptance), the cage runs between 0.35 and 0.5 of the shaft speed (Jones-Harris outer-raceway
+    control gives 0.43 here), per-ball outputs hold 0; a shaft speed below the level's range is discarded with
+    the reason in the log and the next step runs. Compiles the quasi-static kernels in the FMU's model process
+    (about 35 s here beside the dynamic kernels the other FMU tests compile into the same cache)."""
+    from test_fmu import drive
+    names = ["cage_speed", "friction_torque", "heat_flux_total", "reaction_Fx", "reaction_Fz", "ball0_omega_r"]
+    u = inputs(3000.0)
+    ramp = [[1e-3, inputs(3000.0 + 20.0 * k)] for k in range(1, 11)]
+    spec = {"params": {"fidelity_choice": "quasi-static"}, "start_inputs": u,
+            "steps": [[1e-3, u]] * 3 + ramp + [[1e-3, inputs(50.0)], [1e-3, inputs(3200.0)]], "outputs": names}
+    res = drive(fmu, spec, tmp_path)
+    assert res["init_error"] is None, res["log"][-2000:]
+    rows = res["rows"]
+    assert [r["status"] for r in rows[:13]] == [0] * 13, res["log"][-2000:]
+    for r, (_, ui) in zip(rows[:13], [[1e-3, u]] * 3 + ramp):
+        v = dict(zip(names, r["values"]))
+        assert abs(v["reaction_Fx"] + ui["Fx"]) < 1e-3 * 3000.0 and abs(v["reaction_Fz"] + ui["Fz"]) < 1e-3 * 3000.0
+        assert 0.35 < v["cage_speed"] / ui["shaft_speed"] < 0.5
+        assert v["friction_torque"] > 0.0 and v["heat_flux_total"] > 0.0 and v["ball0_omega_r"] == 0.0
+    assert rows[13]["status"] != 0 and "10 rad/s <= value <= 20000 rad/s at fidelity 'quasi-static'" in res["log"]
+    assert rows[14]["status"] == 0
+
