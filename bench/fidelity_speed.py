@@ -1,13 +1,17 @@
-"""Wall time per simulated second of the 'map' fidelity level at 1 ms communication steps (docs/fidelity.md).
+"""Wall time per simulated second of a steady fidelity level ('map' or 'quasi-static') at 1 ms communication steps
+(docs/fidelity.md).
 
-  * session: bearing_core.session.cosim.CoSimSession at fidelity 'map' in this process, through the seed 000
+  * session: bearing_core.session.cosim.CoSimSession at the level (--fidelity, default map) in this process, through the seed 000
     profile (the speed input changes every step) and with held inputs;
   * fmu: the FMU with the map embedded (bearing build-fmu --map, or --fmu) driven by fmpy's FMU2Slave: per step
     setReal of the inputs, doStep, getReal of --outputs outputs (the master's own calls included), the first
     0.1 s left out (start-up); the time in doStep and in the get/set calls reported apart.
 
-    python bench/fidelity_speed.py --map maps/7218B_oil.nc [--fmu dist/BearingFMU.fmu] [--t-end 2] [--json OUT]
-"""
+    python bench/fidelity_speed.py --map maps/7218B_oil.nc [--fidelity quasi-static] [--fmu dist/BearingFMU.fmu]
+        [--t-end 2] [--json OUT]
+
+At --fidelity quasi-static the map gives only the parameters (the level solves at them; an FMU built here embeds
+the map all the same)."""
 from __future__ import annotations
 
 import argparse
@@ -39,9 +43,10 @@ def profile_speed(t):
     return float(np.interp(t, tp, n)) * RPM
 
 
-def session_speed(map_file, params, t_end, fx=1000.0, fz=3000.0):
+def session_speed(map_file, params, t_end, fx=1000.0, fz=3000.0, fidelity="map"):
     from bearing_core.session.cosim import CoSimParameters, CoSimSession
-    s = CoSimSession(CoSimParameters(**dict(params, fidelity="map", map_file=map_file)))
+    s = CoSimSession(CoSimParameters(**dict(params, fidelity=fidelity,
+                                            map_file=map_file if fidelity == "map" else "")))
     s.initialize(0.0, {"shaft_speed": profile_speed(0.0), "Fx": fx, "Fz": fz})
     n = int(round(t_end / H))
     speeds = [profile_speed(k * H) for k in range(n)]
@@ -63,7 +68,7 @@ def session_speed(map_file, params, t_end, fx=1000.0, fz=3000.0):
     return out
 
 
-def fmu_speed(fmu, params, t_end, n_out, fx=1000.0, fz=3000.0, profile=None):
+def fmu_speed(fmu, params, t_end, n_out, fx=1000.0, fz=3000.0, profile=None, fidelity="map"):
     """profile: a file for the model process's own time per doStep (BEARING_FMU_PROFILE of the native layer)."""
     from fmpy import extract, read_model_description
     if profile:
@@ -79,7 +84,7 @@ def fmu_speed(fmu, params, t_end, n_out, fx=1000.0, fz=3000.0, profile=None):
     t0 = time.perf_counter()
     f.instantiate()
     f.setupExperiment(startTime=0.0)
-    f.setString([vr["fidelity"]], ["map"])
+    f.setString([vr["fidelity"]], [fidelity])
     for k, v in params.items():
         if k in vr and isinstance(v, str) and k not in ("fidelity", "map_file"):
             f.setString([vr[k]], [v])
@@ -123,6 +128,7 @@ def fmu_speed(fmu, params, t_end, n_out, fx=1000.0, fz=3000.0, profile=None):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--map", required=True)
+    ap.add_argument("--fidelity", default="map", choices=("map", "quasi-static"))
     ap.add_argument("--fmu", default=None, help="an FMU embedding the map (default: built here with --map)")
     ap.add_argument("--t-end", type=float, default=2.0)
     ap.add_argument("--outputs", type=int, default=10, help="outputs read per step through getReal")
@@ -133,9 +139,9 @@ def main(argv=None):
     with xr.open_dataset(a.map, engine="scipy") as ds:
         params = json.loads(ds.attrs["parameters"])
     params = {k: v for k, v in params.items()}
-    res = {"machine": machine_info(), "step_s": H, "t_end_s": a.t_end}
-    res["session"] = session_speed(a.map, params, a.t_end)
-    print(f"session, fidelity map: {res['session']['ramp']['wall_per_sim_s']:.4f} s per simulated s (speed ramp), "
+    res = {"machine": machine_info(), "step_s": H, "t_end_s": a.t_end, "fidelity": a.fidelity}
+    res["session"] = session_speed(a.map, params, a.t_end, fidelity=a.fidelity)
+    print(f"session, fidelity {a.fidelity}: {res['session']['ramp']['wall_per_sim_s']:.4f} s per simulated s (speed ramp), "
           f"{res['session']['held']['wall_per_sim_s']:.4f} (held inputs); median step "
           f"{res['session']['ramp']['median_step_us']:.1f} us (ramp), {res['session']['held']['median_step_us']:.1f} us (held)")
     fmu = a.fmu
@@ -143,11 +149,11 @@ def main(argv=None):
         from bearing_cosim.fmu_build import build
         fmu = str(build(Path(tempfile.mkdtemp(prefix="fidelity_speed_")), map_file=a.map))
     os.environ.setdefault("BEARING_FMU_CACHE", str(Path(tempfile.gettempdir()) / "fidelity_speed_fmu_cache"))
-    fmu_speed(fmu, params, 0.3, a.outputs)            # warm-up: the code copy and its compiled kernels
-    res["fmu"] = fmu_speed(fmu, params, a.t_end, a.outputs,
+    fmu_speed(fmu, params, 0.3, a.outputs, fidelity=a.fidelity)   # warm-up: the code copy and its compiled kernels
+    res["fmu"] = fmu_speed(fmu, params, a.t_end, a.outputs, fidelity=a.fidelity,
                            profile=Path(tempfile.mkdtemp(prefix="fidelity_speed_")) / "profile.json")
     r = res["fmu"]
-    print(f"FMU through fmpy, fidelity map: {r['wall_per_sim_s']:.4f} s per simulated s (doStep "
+    print(f"FMU through fmpy, fidelity {a.fidelity}: {r['wall_per_sim_s']:.4f} s per simulated s (doStep "
           f"{r['doStep_per_sim_s']:.4f}, setReal + getReal of {r['outputs_read']} outputs "
           f"{r['get_set_per_sim_s']:.4f}); initialisation {r['init_wall_s']:.2f} s")
     if "model_process_per_sim_s" in r:

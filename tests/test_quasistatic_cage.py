@@ -1,9 +1,10 @@
 """Quasi-static cage model (bearing_core.models.quasistatic_cage): convergence, balances, the free-ball limit of a
 lossless cage, displacement coupling, sensitivity and agreement with the dynamic model's window means.
 
-The solver is not yet a fidelity level of the session or the FMU (docs/fidelity_quasistatic.md: its accuracy
-against the dynamic model). Compiling its kernels from an empty numba cache takes about two CPU minutes, more than
-the suite's budget for a model no product path runs: these tests run with BEARING_TEST_QS_CAGE=1."""
+The solver runs the session's 'quasi-static' fidelity level (tests/test_fidelity_quasistatic.py; its accuracy
+against the dynamic model in docs/fidelity_quasistatic.md). Compiling its kernels from an empty numba cache takes
+about two CPU minutes (35 s beside the dynamic kernels the suite compiles anyway), and these library checks repeat
+solves the level's FMU test already runs: they run with BEARING_TEST_QS_CAGE=1."""
 import math
 import os
 
