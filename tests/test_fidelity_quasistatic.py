@@ -36,14 +36,15 @@ def test_parameters_the_level_cannot_take_are_refused():
 
 
 def test_inputs_the_level_cannot_take_are_refused_before_any_solve():
-    """A standing or reversed shaft, no seating axial load, a turning outer ring, NaN: BearingInputError at
-    initialisation naming the input and the allowed range, before the solver runs."""
+    """A standing or reversed shaft, no seating axial load, a turning outer ring, NaN, a load beyond the static
+    capacity: BearingInputError at initialisation naming the input and the allowed range, before the solver runs."""
     s = CoSimSession(CoSimParameters(**OIL))
     for u, match in ((inputs(50.0), r"shaft_speed = 5\.23.*10 rad/s <= value <= 20000 rad/s at fidelity 'quasi-static'"),
                      (inputs(-3000.0), r"shaft_speed = -314"),
                      (inputs(3000.0, fz=0.0), r"Fz = 0\.0.*Fz > 0 N"),
                      (inputs(3000.0, outer_ring_speed=10.0), r"outer_ring_speed = 10\.0.*0 rad/s"),
-                     (inputs(3000.0, fx=float("nan")), r"Fx")):
+                     (inputs(3000.0, fx=float("nan")), r"Fx"),
+                     (inputs(3000.0, fz=1e7), r"loads = .*static limit of ball bearings")):
         with pytest.raises(BearingInputError, match=match):
             s.initialize(0.0, u)
 

@@ -31,7 +31,7 @@ from ..bearing.geometry import load_preset
 from ..models import dynamics_kernels as K
 from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # noqa: F401 (re-export)
 from .cosim_spec import INT_OUTPUT_NAMES, INT_OUTPUT_SPEC  # noqa: F401 (re-export)
-from .cosim_spec import STEP_AVERAGED_NAMES, parse_inputs
+from .cosim_spec import P_LIMIT, STEP_AVERAGED_NAMES, parse_inputs
 from . import session_kernels as SK
 from ..models.skid import SKID_OVERSKIDDING, SKID_PURE_ROLLING, SKID_SKIDDING
 from .output_map import (ALL_OUTPUT_NAMES, CSR_MIN_SPEED, HEAT_CHANNELS, OUTPUT_INDEX,  # noqa: F401 E402
@@ -62,7 +62,6 @@ class Outputs(Mapping):
 
     def __repr__(self):
         return f"Outputs({dict(self)!r})"
-P_LIMIT = 4.2e9   # Pa: ISO 76 static-capacity contact stress of ball bearings; beyond it the model refuses
 
 
 class StepRejected(RuntimeError):
@@ -141,7 +140,7 @@ class CoSimSession:
         if params.fidelity != "dynamic":
             from .fidelity import ALL_NAMES as FIDELITY_NAMES, SteadySession
             assert ALL_OUTPUT_NAMES == FIDELITY_NAMES
-            level = FIDELITY_LEVELS[params.fidelity](params, self._geometry, self._options)
+            level = FIDELITY_LEVELS[params.fidelity](params, self._geometry, self._options, self._check_loads)
             self.steady = SteadySession(params, level, self.values, Outputs,
                                         StepRejected, CSR_MIN_SPEED)
             self.warnings = self.steady.warnings
@@ -301,6 +300,11 @@ class CoSimSession:
             raise BearingInputError("Fz", u["Fz"], "Fz > 0 N (the axial load that seats the bearing)",
                                     f"{what} on a single angular-contact bearing: its balls can only push the inner "
                                     "ring axially in one direction, so there is no equilibrium")
+
+    def _check_loads(self, u: dict, g):
+        """_check_seated and _check_capacity: the load checks every fidelity level applies before it solves."""
+        self._check_seated(u, g)
+        self._check_capacity(u, g)
 
     def _check_capacity(self, u: dict, g):
         """Load-driven coupling: refuse at once loads whose equilibrium surely exceeds the P_LIMIT contact

@@ -101,6 +101,11 @@ INT_OUTPUT_SPEC = (
 INT_OUTPUT_NAMES = tuple(n for n, _, _ in INT_OUTPUT_SPEC)
 
 
+P_LIMIT = 4.2e9
+"""Pa: the ISO 76 static-capacity contact stress of ball bearings; beyond it every fidelity level refuses the
+loads."""
+
+
 def parse_inputs(inputs: dict) -> dict:
     """The inputs by name (INPUT_NAMES; missing ones 0.0) as finite floats, in their units (INPUT_UNITS);
     raises bearing_core.errors.BearingInputError naming an unknown input or a value that is not a finite

@@ -24,8 +24,8 @@ Levels (FIDELITY_LEVELS, in the order of the FMU's Enumeration after 'dynamic'):
 dynamic model's steady windows built by ``bearing build-map`` and read here (MapLevel); 'quasi-static', the
 steady state of the whole bearing with its cage solved at the inputs and followed along them
 (QuasiStaticLevel). A steady level is added with one entry in FIDELITY_LEVELS; its class is constructed as
-Level(params, geometry, options), the last two callables giving the session's BearingGeometry and
-DynamicsOptions.
+Level(params, geometry, options, check_loads), callables giving the session's BearingGeometry and
+DynamicsOptions and running its load checks (a seating axial load, the static capacity).
 
 What a steady level gives (docs/fidelity.md): every step-averaged output is the steady value at the step's
 held inputs (its 'instantaneous_' twin the same); the cage speed follows its steady value through a first-order
@@ -43,7 +43,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import BearingInputError
-from .cosim_spec import INPUT_NAMES, INT_OUTPUT_NAMES, OUTPUT_NAMES, parse_inputs
+from .cosim_spec import INPUT_NAMES, INT_OUTPUT_NAMES, OUTPUT_NAMES, P_LIMIT, parse_inputs
 # map_kernels (numba) is imported where a level is built, so that the names here (FIDELITIES) load without numba
 # (the FMU's slave class reads them when it is constructed)
 
@@ -131,7 +131,7 @@ class MapLevel:
 
     name = "map"
 
-    def __init__(self, params, geometry=None, options=None):
+    def __init__(self, params, geometry=None, options=None, check_loads=None):
         path = params.map_file
         if not path:
             raise BearingInputError("map_file", path, "an operating-map file (bearing build-map) for fidelity "
@@ -370,9 +370,10 @@ class QuasiStaticLevel:
                  ("alpha_o_mean", "alpha_o_mean"), ("Q_i_max", "Q_i_max"), ("Q_o_max", "Q_o_max"),
                  ("max_contact_pressure", "p_max"))
 
-    def __init__(self, params, geometry=None, options=None):
+    def __init__(self, params, geometry=None, options=None, check_loads=None):
         """params: CoSimParameters; geometry, options: callables giving the session's BearingGeometry and
-        DynamicsOptions (CoSimSession._geometry, _options)."""
+        DynamicsOptions (CoSimSession._geometry, _options); check_loads(u, geometry): the session's load checks
+        (a seating axial load, the static capacity), raising BearingInputError."""
         if params.thermal:
             raise BearingInputError("thermal", params.thermal, "False at fidelity 'quasi-static' (an isothermal "
                                     "steady model at oil_temperature)", "use fidelity 'dynamic' for the thermal network")
@@ -399,6 +400,7 @@ class QuasiStaticLevel:
         self.disp = params.coupling == "displacement"
         self.T_oil = float(opt.oil_temperature)
         self.bearing = params.bearing
+        self._check_loads = check_loads
         held = ("ir_ax",)
         self.names = tuple(n for n in ALL_OUTPUT_NAMES if not (n.startswith("instantaneous_") or
                                                                 n.startswith("ball0_") or n in held)) \
@@ -414,6 +416,7 @@ class QuasiStaticLevel:
         self._i_torque, self._i_torque_outer = ix["friction_torque"], ix["friction_torque_outer"]
         self._i_all = np.array([ALL_OUTPUT_NAMES.index(n) for n in self.names[:-2]], dtype=np.int64)
         self._i_cage, self._i_pure = ix["cage_speed"], ix["cage_speed_pure_rolling_outer"]
+        self._i_pmax = ix["max_contact_pressure"]
         self._ext = np.zeros(SK.N_EXT)
         self._work = np.zeros(2 * K.NOUT + len(SK.EXTRA_NAMES))
         self._i_eq26 = K.OUT_INDEX["pure_rolling_cage_speed"]
@@ -435,12 +438,11 @@ class QuasiStaticLevel:
             raise BearingInputError("shaft_speed", w, f"{self.MIN_SPEED:g} rad/s <= value <= 20000 rad/s at fidelity "
                                     "'quasi-static' (a steady state needs a turning shaft; use fidelity 'dynamic' "
                                     "through standstill and reversal)")
+        if self._check_loads is not None:
+            self._check_loads(u, self.geometry)
         if self.disp:
             ring = [u[k] for k in ("dx", "dy", "dz", "tx", "ty")]
         else:
-            if not u["Fz"] > 0.0:
-                raise BearingInputError("Fz", u["Fz"], "Fz > 0 N (the axial load that seats the bearing)",
-                                        "a single angular-contact bearing has no equilibrium without it")
             ring = [u[k] for k in ("Fx", "Fy", "Fz", "Mx", "My")]
         return np.array([w, *ring, self.T_oil]), 1.0, 0.0
 
@@ -475,6 +477,11 @@ class QuasiStaticLevel:
                     ss[i] = self._ss0[i] * fr
             if self._ss0[self._i_torque] != 0.0:
                 ss[self._i_torque_outer] = self._ss0[self._i_torque_outer] * ss[self._i_torque] / self._ss0[self._i_torque]
+        if ss[self._i_pmax] > P_LIMIT:
+            raise BearingInputError("loads" if not self.disp else "ring pose", self.point_text(x),
+                                    f"loads the bearing can carry: maximum contact pressure <= {P_LIMIT / 1e9:.1f} GPa "
+                                    "(the static limit of ball bearings, ISO 76)",
+                                    f"{ss[self._i_pmax] / 1e9:.2f} GPa in the steady state")
         tau = res.tau_cage
         ss[self.i_tau] = tau if math.isfinite(tau) and tau > 0.0 else 0.0
         pure = ss[self._i_pure]
