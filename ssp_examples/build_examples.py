@@ -62,6 +62,8 @@ def make_ssps(dest: Path, fmus: Path) -> list:
         sys.modules[spec.name] = mod
         spec.loader.exec_module(mod)
         out.append(mod.make(Path(dest) / f"{example}.ssp", fmu_dir=fmus))
+        if example == "rotor_bearings":
+            out.append(mod.make(Path(dest) / "rotor_bearings_qs.ssp", mod.QS_RUNUP, fmu_dir=fmus))
         if example == "drivetrain" and SHIPPED_MAP.is_file():
             out.append(mod.make(Path(dest) / "drivetrain_map.ssp", mod.MAP_CYCLE, fmu_dir=fmus))
     return out

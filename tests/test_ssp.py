@@ -204,3 +204,29 @@ def test_examples_exit_normally_in_fresh_processes(build, tmp_path):
                 for bad in ("corrupted", "double free", "Segmentation", "Aborted"):
                     assert bad not in r.stderr, f"{name} / {master}: {r.stderr[-2000:]}"
     assert len(codes) == 12 and all(c == 0 for _, _, c in codes)
+
+
+def test_rotor_bearings_at_quasi_static_statics(build, tmp_path):
+    """The rotor of test_rotor_bearings_two_masters_statics with both bearings at fidelity 'quasi-static'
+    (displacement coupling: each bearing's steady forces at the pose the rotor gives), run by libcosim at a
+    constant 150 rad/s for 0.12 s: the radial reactions sum to the weight within 1 %, the axial ones to minus the
+    axial load within 20 N, each radial reaction within 2 % of the system statics (make_ssp.py)."""
+    w = 150.0
+    d = rotor_make.RotorDesign(speed_start=w, speed_end=w, ramp_start=0.0, ramp_end=0.0, stop_time=0.12,
+                               fidelity="quasi-static")
+    ssp = rotor_make.make(tmp_path / "rotor_qs.ssp", d, fmu_dir=build["fmus"])
+    meta = json.loads(Path(str(ssp) + ".json").read_text())
+    summary, r, code = run_subprocess("libcosim", ssp, tmp_path / "libcosim.npz", env=build["env"], timeout=900)
+    assert code == 0 and all(np.all(np.isfinite(v)) for v in r.values())
+    t = r["time"]
+    assert abs(t[-1] - 0.12) < 2e-4
+    win = t > t[-1] - 2 * 2 * math.pi / w
+    W = d.disk_mass * d.gravity
+    fy = (r["bearing_A.reaction_Fy"] + r["bearing_B.reaction_Fy"])[win].mean()
+    fz = (r["bearing_A.reaction_Fz"] - r["bearing_B.reaction_Fz"])[win].mean()
+    assert abs(fy / W - 1) < 0.01, (fy, W)
+    assert abs(fz + d.axial_load) < 20.0, fz
+    for b in "AB":
+        mean = r[f"bearing_{b}.reaction_Fy"][win].mean()
+        assert abs(mean / meta[f"reaction_{b}"][1] - 1) < 0.02, (b, mean, meta[f"reaction_{b}"][1])
+        assert 0.35 < r[f"bearing_{b}.cage_speed"][win].mean() / w < 0.5

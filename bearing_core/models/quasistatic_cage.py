@@ -773,10 +773,10 @@ class QuasiStaticTracker:
     """The steady state along moving inputs (a co-simulation's communication points): a warm re-solve where the
     inputs have left the trust region of the last solution, the first-order update (predict) inside it.
 
-    Trust region: max_k |p_k - p0_k| / t_k <= radius, with t = res.input_tolerance(rel) the input changes that
-    move the cage speed, the friction torque or the heat by rel on the linear update (the model's own
-    sensitivity). At each re-solve the update's error e = max over those outputs of |predicted - solved| /
-    (rel |solved|) is measured; a first-order update errs by O(dp^2), so the radius that would have met e = 1 is
+    Trust region: max_k |p_k - p0_k| / t_k <= radius, with t_k the input change that moves the cage speed, the
+    friction torque or the heat by rel of its value, or a reaction force by rel of the load scale, on the linear
+    update (the model's own sensitivity). At each re-solve the update's error e = max over those outputs of
+    |predicted - solved| / (that scale) is measured; a first-order update errs by O(dp^2), so the radius that would have met e = 1 is
     d / sqrt(e), d the normalised step taken; the new radius is 0.8 of it, at most twice the old and within
     [radius_min, radius_max] (the step-size control of an error-per-step integrator; Hairer, Norsett & Wanner,
     Solving ODEs I, Sec. II.4).
@@ -809,6 +809,9 @@ class QuasiStaticTracker:
     refresh_every = 8
     max_bisect = 6
     KEYS = ("cage_speed", "friction_torque", "heat")
+    #: also held to rel, of the load scale (the largest reaction force, at least 100 N): the reactions, which a
+    #: rotor model takes from the bearing (displacement coupling) and a load-driven bearing balances
+    FORCE_KEYS = ("Fx", "Fy", "Fz")
 
     def __init__(self, model: QuasiStaticCageModel, rel: float | None = None):
         self.model = model
@@ -821,7 +824,8 @@ class QuasiStaticTracker:
         self.last_error = float("nan")
         self._tol = None
         self._since_refresh = 0
-        self._keys = np.array([OUTPUT_NAMES.index(k) for k in self.KEYS])
+        self._keys = np.array([OUTPUT_NAMES.index(k) for k in self.KEYS + self.FORCE_KEYS])
+        self._nforce = len(self.FORCE_KEYS)
         self._fresh = True
 
     def restart(self):
@@ -859,7 +863,7 @@ class QuasiStaticTracker:
         new = self._resolve(res, p)
         y = new.outputs
         k = self._keys
-        e = float(np.max(np.abs(pred[k] - y[k]) / (self.rel * np.maximum(np.abs(y[k]), 1e-12))))
+        e = float(np.max(np.abs(pred[k] - y[k]) / self._scales(y)))
         self.last_error = e
         moved = tuple(int(i) for i in np.nonzero(dp != 0.0)[0])
         self._since_refresh += 1
@@ -913,4 +917,18 @@ class QuasiStaticTracker:
     def _accept(self, res):
         self.res = res
         self.resolves += 1
-        self._tol = res.input_tolerance(self.rel, self.KEYS)
+        # per input, the change that moves any key output by its scale on the linear update (inf: none depends
+        # on it)
+        s = np.abs(res.sensitivity[self._keys])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.where(s > 0.0, self._scales(res.outputs)[:, None] / s, np.inf)
+        self._tol = np.min(t, axis=0)
+
+    def _scales(self, y):
+        """The accuracy the linear update is held to, per key output: rel of its value, the forces rel of the
+        load scale."""
+        k = self._keys
+        sc = np.maximum(np.abs(y[k]), 1e-12)
+        nf = self._nforce
+        sc[-nf:] = max(float(np.max(np.abs(y[k[-nf:]]))), 100.0)
+        return self.rel * sc

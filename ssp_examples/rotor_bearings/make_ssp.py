@@ -55,6 +55,7 @@ class RotorDesign:
     stop_time: float = 2.2              # s
     step: float = 1e-4                  # s, communication step
     interface_stiffness_factor: float = 2.0   # rotor's interface stiffness / quasi-static bearing stiffness
+    fidelity: str = "dynamic"           # the bearings' fidelity level (docs/fidelity.md)
 
     @property
     def shaft_stiffness(self):
@@ -118,6 +119,10 @@ def statics(d: RotorDesign) -> dict:
     return out
 
 
+QS_RUNUP = RotorDesign(fidelity="quasi-static")
+"""The same run-up with both bearings at fidelity 'quasi-static' (the map level takes no displacement coupling)."""
+
+
 def make(dest, design: RotorDesign | None = None, fmu_dir=None) -> Path:
     d = design or RotorDesign()
     fmu_dir = Path(fmu_dir or HERE.parent / "build" / "fmus")
@@ -167,13 +172,16 @@ def make(dest, design: RotorDesign | None = None, fmu_dir=None) -> Path:
               ("coupling_choice", enumeration_value(bfmu, "coupling_choice", "displacement"), None),
               ("coupling", "displacement", None),
               ("shaft_speed", d.speed_start, "rad/s")]
+        if d.fidelity != "dynamic":
+            bp += [("fidelity_choice", enumeration_value(bfmu, "fidelity_choice", d.fidelity), None),
+                   ("fidelity", d.fidelity, None)]
         bp += [(p, float(v), "rad" if p[0] == "t" else "m") for p, v in zip(POSE, pose)]
         comps.append(Component(f"bearing_{b}", "resources/BearingFMU.fmu", bc, bp))
         conns.append(("speed", "shaft_speed", f"bearing_{b}", "shaft_speed"))
         conns += [("rotor", f"{b}_{p}", f"bearing_{b}", p) for p in POSE + RATE]
         conns += [(f"bearing_{b}", f"reaction_{r}", "rotor", f"{b}_{r}") for r in REAC]
     desc = (f"Jeffcott rotor ({d.disk_mass:g} kg disk at {d.disk_position:g} m of a {L:g} m span) on two {d.bearing} "
-            f"bearings (displacement-driven, B mirrored), run-up {d.speed_start * 30 / math.pi:.0f} -> "
+            f"bearings (displacement-driven, B mirrored, fidelity {d.fidelity}), run-up {d.speed_start * 30 / math.pi:.0f} -> "
             f"{d.speed_end * 30 / math.pi:.0f} rpm")
     ssd = ssd_xml("rotor_bearings", desc, comps, conns, 0.0, d.stop_time, d.step,
                   "ssp_examples/rotor_bearings/make_ssp.py")
@@ -189,8 +197,9 @@ def make(dest, design: RotorDesign | None = None, fmu_dir=None) -> Path:
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=str(HERE.parent / "build" / "rotor_bearings.ssp"))
+    ap.add_argument("--quasi-static", action="store_true", help="both bearings at fidelity 'quasi-static' (QS_RUNUP)")
     a = ap.parse_args(argv)
-    p = make(a.out)
+    p = make(a.out, QS_RUNUP if a.quasi_static else None)
     print(f"wrote {p}")
 
 
