@@ -33,9 +33,9 @@ from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # n
 from .cosim_spec import INT_OUTPUT_NAMES, INT_OUTPUT_SPEC  # noqa: F401 (re-export)
 from .cosim_spec import P_LIMIT, STEP_AVERAGED_NAMES, parse_inputs
 from . import session_kernels as SK
-from ..models.skid import SKID_OVERSKIDDING, SKID_PURE_ROLLING, SKID_SKIDDING
+from ..models.skid import SKID_MIN_SPEED, SKID_OVERSKIDDING, SKID_PURE_ROLLING, SKID_SKIDDING, SKID_TOL
 from .output_map import (ALL_OUTPUT_NAMES, CSR_MIN_SPEED, HEAT_CHANNELS, OUTPUT_INDEX,  # noqa: F401 E402
-                         STEP_AVERAGED, point_outputs)
+                         OUT_CH, OUT_IDX, OUT_PTR, STEP_AVERAGED)
 assert (SKID_SKIDDING, SKID_PURE_ROLLING, SKID_OVERSKIDDING) == (1, 0, -1)   # the codes assemble_outputs writes
 _I_RUNAWAY = OUTPUT_INDEX["thermal_runaway"]
 _I_PMAX = OUTPUT_INDEX["max_contact_pressure"]
@@ -463,9 +463,17 @@ class CoSimSession:
             self._ext_isothermal = m.thermal is None
         ext[6] = 1.0 if self.thermal_runaway else 0.0
         ext[7] = m.oil_fraction_used()
-        # films and outputs in one kernel call: the Python here runs on caches the integration has evicted
-        ok = point_outputs(bd, m.g, m.film_parameters(), diag, ext, self._films, self._x, self._new,
-                           None if q0 is None else m.quad, q0, h)
+        if q0 is None:
+            q1 = q0 = diag
+            h = 0.0
+        else:
+            q1 = m.quad
+        # films and outputs in one kernel call (output_map.point_outputs, inlined: the Python here runs on caches
+        # the integration has evicted)
+        g = m.g
+        ok = SK.films_and_outputs(bd, g.D, g.dm, g.fi, g.fo, *m.film_parameters(), self._films, diag, q1, q0, h,
+                                  ext, OUT_CH, CSR_MIN_SPEED, SKID_TOL, SKID_MIN_SPEED, OUT_PTR, OUT_IDX,
+                                  self._x, self._new)
         if not ok:
             bad = [n for n, v in zip(ALL_OUTPUT_NAMES, self._new) if not math.isfinite(v)]
             raise StepRejected(f"non-finite outputs {bad} (solver failure)")
