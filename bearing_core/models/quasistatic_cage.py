@@ -189,12 +189,6 @@ class QuasiStaticCageModel:
     _tol_factor = 1.0
     #: residual evaluations of one continuation step
     sub_budget = 500
-    #: steps on fresh Jacobians that lower the residual by less than 5 % each before a solve stops on the
-    #: floor the contact laws' kinks leave (QuasiStaticTracker lowers it for its re-solves)
-    stall_steps = 6
-    #: a carried (chord or Broyden) Jacobian is rebuilt after a step that lowered the max-norm residual by less
-    #: than this factor
-    carry_contraction = 0.25
     #: step caps of the damped Newton solve: positions [um], tilts [10 urad]
     cap_position = 10.0
     cap_tilt = 10.0
@@ -266,7 +260,7 @@ class QuasiStaticCageModel:
         errors = []
         if start is not None:
             res = self._solve_from(omega, ring, T_oil, self._start("warm", start, omega, ring, T_oil), sensitivity,
-                                   J0=self._rescaled_jacobian(start, omega))
+                                   J0=start.jacobian)
             if isinstance(res, QuasiStaticCageResult):
                 return res
             errors.append(f"warm start: {res}")
@@ -529,22 +523,6 @@ class QuasiStaticCageModel:
             res.jacobian = J
         return res
 
-    def _rescaled_jacobian(self, start, omega):
-        """start's Jacobian in the scaled unknowns of shaft speed omega (_problem's scales: the speed-like
-        unknowns are in units of omega), or None."""
-        J = start.jacobian
-        if J is None:
-            return None
-        f = omega / start.omega
-        if f == 1.0:
-            return J
-        Z = self.g.Z
-        c = np.ones(J.shape[1])
-        for k in (2, 3, 4, 6):                  # xs_l: ball angular velocities and orbit speed
-            c[k:Z * NL:NL] = f
-        c[Z * NL + CK.G_WC] = f                 # xs_g: cage speed
-        return J * c[None, :]
-
     def _jacobian(self, v, omega, P, U, act, tabs, xs_l, xs_g):
         """Dense Jacobian of the scaled residual at v (quasistatic_cage_kernels.cage_jacobian, 17 rhs calls)."""
         Z = self.g.Z
@@ -569,11 +547,10 @@ class QuasiStaticCageModel:
         """Damped Newton on the scaled unknowns v (overwritten): the Newton step scaled down to the caps, then
         halved until the residual's 2-norm falls (Armijo-free backtracking, down to 1/64); when no fraction
         of it lowers the residual, Levenberg-Marquardt steps (J^T J + mu diag(J^T J)) dv = -J^T R with mu
-        growing ten-fold until one does. The Jacobian is carried by Broyden updates over the steps: rebuilt
-        after a step on a carried one that lowered the max-norm residual by less than carry_contraction, or one
-        on a fresh one that contracted it less than 5 %; J0, if given, is the first one (rebuilt as soon as a step on
-        it fails). Stops at max |R| <= ftol, after the budget, or when stall_steps steps on fresh Jacobians in a
-        row lowered the max-norm residual by less than 5 % each (the floor that the kinks of the contact laws
+        growing ten-fold until one does. The Jacobian is kept over steps that contract the max-norm
+        residual at least four-fold (chord steps); J0, if given, is the first one (rebuilt as soon as a step on
+        it fails). Stops at max |R| <= ftol, after the budget, or when six steps on fresh Jacobians in a row
+        lowered the max-norm residual by less than 5 % each (the floor that the kinks of the contact laws
         leave). Returns (max |R|, rhs evaluations, the last Jacobian or None)."""
         budget = self.budget
         R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)[-1]
@@ -583,7 +560,7 @@ class QuasiStaticCageModel:
         J = J0
         J_last = J0
         stall = 0
-        while nfev < budget and not r <= ftol and stall < self.stall_steps:
+        while nfev < budget and not r <= ftol and stall < 6:
             fresh = J is None
             if fresh:
                 J = self._jacobian(v, omega, P, U, act, tabs, xs_l, xs_g)
@@ -629,16 +606,9 @@ class QuasiStaticCageModel:
             r_new = float(np.max(np.abs(R2)))
             contract = r_new / r if r > 0 else 0.0
             stall = stall + 1 if (fresh and contract > 0.95) else 0
-            if contract > (0.95 if fresh else self.carry_contraction):
-                J = None                      # a kept Jacobian that stopped contracting, or a floor: rebuild
-            else:
-                # Broyden's rank-one update along the step taken (Dennis & Schnabel 1983, Sec. 8.1): the next
-                # step costs one evaluation instead of a new Jacobian (17)
-                sv = v2 - v
-                den = float(sv @ sv)
-                if den > 0.0:
-                    J = J + np.outer((R2 - R) - J @ sv, sv / den)
             v[:], R, r, r2n = v2, R2, r_new, float(R2 @ R2)
+            if contract > 0.25:
+                J = None
         return r, nfev, J_last
 
     # ---- result ---------------------------------------------------------------------------------------
