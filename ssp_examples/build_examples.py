@@ -3,12 +3,13 @@
     python ssp_examples/build_examples.py [--dest ssp_examples/build]
 
 -> build/fmus/BearingFMU.fmu (= dist/BearingFMU.fmu, with the 7218B oil map maps/7218B_oil.nc embedded for
-fidelity 'map' when this checkout has it; the SSDs choose bearing preset and
-coupling through its Enumeration parameters, so every master that sets Integer values can run them), the helper FMUs
-(JeffcottRotor, SpeedRamp, InductionMotor, ShaftInertia, FanLoad; pythonfmu slaves in <example>/fmus/) built on the
-bearing FMU's own FMI layer (each instance's model in a process of its own, so no master hosts their Python), and
-build/rotor_bearings.ssp, build/drivetrain.ssp (by each example's make_ssp.py) and build/drivetrain_map.ssp (the
-drivetrain for 60 s at fidelity 'map', with the map). Nothing here is committed.
+fidelity 'map' when this checkout has it; the SSDs choose bearing preset and coupling through its Enumeration
+parameters, so every master that sets Integer values can run them), the helper FMUs (JeffcottRotor, SpeedRamp,
+InductionMotor, ShaftInertia, FanLoad, DutyCycle; pythonfmu slaves in <example>/fmus/) built on the bearing FMU's own
+FMI layer (each instance's model in a process of its own, so no master hosts their Python), and
+build/rotor_bearings.ssp, build/drivetrain.ssp (by each example's make_ssp.py), build/drivetrain_map.ssp (the
+drivetrain for 60 s at fidelity 'map', with the map) and build/drivetrain_cycle_map.ssp (the 60 s drive cycle:
+run-up, load steps, coast-down, idle, at fidelity 'map'). Nothing here is committed.
 """
 from __future__ import annotations
 
@@ -23,7 +24,7 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(HERE))
 
 HELPERS = {"rotor_bearings": ("jeffcott_rotor.py", "speed_ramp.py"),
-           "drivetrain": ("induction_motor.py", "shaft_inertia.py", "fan_load.py")}
+           "drivetrain": ("induction_motor.py", "shaft_inertia.py", "fan_load.py", "duty_cycle.py")}
 
 
 def slave_class(source: str) -> str:
@@ -66,6 +67,7 @@ def make_ssps(dest: Path, fmus: Path) -> list:
             out.append(mod.make(Path(dest) / "rotor_bearings_qs.ssp", mod.QS_RUNUP, fmu_dir=fmus))
         if example == "drivetrain" and SHIPPED_MAP.is_file():
             out.append(mod.make(Path(dest) / "drivetrain_map.ssp", mod.MAP_CYCLE, fmu_dir=fmus))
+            out.append(mod.make(Path(dest) / "drivetrain_cycle_map.ssp", mod.MAP_DRIVE_CYCLE, fmu_dir=fmus))
     return out
 
 

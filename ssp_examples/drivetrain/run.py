@@ -1,9 +1,12 @@
 """Run the drivetrain SSP with fmpy and with libcosim, check the energy balance, compare, plot.
 
-    python ssp_examples/drivetrain/run.py [--stop-time T] [--out out/ssp_drivetrain]
+    python ssp_examples/drivetrain/run.py [--ssp SSP] [--masters fmpy,libcosim] [--stop-time T]
+                                          [--out out/ssp_drivetrain]
 
-Builds the FMUs and the SSP first if ssp_examples/build/drivetrain.ssp is missing. Writes results_<master>.npz,
-drivetrain.png (run-up, torques, bearing losses, energy) and summary.json.
+Builds the FMUs and the SSPs first if the archive is missing. Writes results_<master>.npz, drivetrain.png
+(run-up, torques, bearing losses, energy) and summary.json; for a drive cycle (build/drivetrain_cycle_*.ssp)
+also phases_<master>.csv (per phase: speeds, loads, torques, heat) and a plot of the cycle
+(speed, loads and reactions, friction torque and heat of both bearings, energy).
 """
 from __future__ import annotations
 
@@ -42,7 +45,61 @@ def energy_balance(r, h, design):
     e["shaft_side_residual_J"] = (e["shaft_side_motor_work_J"] - e["shaft_side_load_work_J"]
                                   - e["shaft_side_friction_work_J"] - e["kinetic_energy_change_J"])
     e["bearing_friction_work_vs_heat_rel"] = (e["shaft_side_friction_work_J"] - q) / q
+    e["coupling_lag_estimate_J"] = coupling_lag(r, h, design)
+    e["residual_after_lag_rel"] = (e["residual_J"] - e["coupling_lag_estimate_J"]) / e["motor_work_J"]
     return e
+
+
+def coupling_lag(r, h, design):
+    """First-order estimate [J] of the energy residual that the explicit (Jacobi) coupling itself makes: every
+    torque reaches the shaft one step after its source computed it at the speed it was given, so each change dT
+    of a torque shifts h w dT between the source's work and the shaft's, and a torque held over a step meets the
+    shaft's mean speed rather than the step's start speed, -(J h / 2) a^2 h per step. Both vanish as h -> 0 and
+    are computed from the recorded torques, speed and acceleration (row i holds the values at the end of step
+    i; the components computed it with the speed of row i - 1)."""
+    w = r["shaft.shaft_speed"]
+    w_in = np.concatenate([[design["speed0"]], w[:-1]])
+    net = r["motor.torque"] - r["load.torque"] - r["bearing_A.friction_torque"] - r["bearing_B.friction_torque"]
+    d_net = np.diff(np.concatenate([net[:1], net]))
+    a = r["shaft.shaft_accel"]
+    return float(h * np.sum(d_net * w_in) - 0.5 * design["inertia"] * h * h * np.sum(a * a))
+
+
+def load_tracking(r):
+    """Largest relative deviation of each bearing's reaction from minus the load the duty cycle commanded (the
+    bearing sees the duty cycle's output one step later: reaction row i against load row i - 1)."""
+    out = {}
+    for b in "AB":
+        for k in ("Fx", "Fz"):
+            cmd = r[f"duty.{k}_{b}"][:-1]
+            out[f"{k}_{b}"] = float(np.max(np.abs(r[f"bearing_{b}.reaction_{k}"][1:] + cmd) / np.abs(cmd)))
+    return out
+
+
+def phase_table(r, h, design):
+    """Per phase of the duty cycle in force: start and end time [s], shaft speed at its start and end and mean
+    [rpm], mean motor and fan torque [N.m], commanded loads [N], mean friction torque [N.m] and heat [W] of each
+    bearing."""
+    names = [p["name"] for p in design["duty_cycle"]]
+    t, ph, w = r["time"], r["duty.phase"], r["shaft.shaft_speed"] * RPM
+    # the bearings' and shaft's row i ran with the duty cycle's row i - 1
+    ph_in = np.concatenate([ph[:1], ph[:-1]])
+    rows = []
+    for k in sorted({int(round(x)) for x in ph_in}):
+        m = np.round(ph_in) == k
+        i = np.flatnonzero(m)
+        row = {"phase": k, "name": names[k - 1], "t_start_s": float(t[i[0]] - h), "t_end_s": float(t[i[-1]]),
+               "speed_start_rpm": float(w[i[0] - 1] if i[0] > 0 else design["speed0"] * RPM),
+               "speed_end_rpm": float(w[i[-1]]), "speed_mean_rpm": float(w[m].mean()),
+               "motor_torque_Nm": float(r["motor.torque"][m].mean()),
+               "fan_torque_Nm": float(r["load.torque"][m].mean())}
+        for b in "AB":
+            row[f"Fx_{b}_N"] = float(r[f"duty.Fx_{b}"][i[-1] - 1] if i[-1] > 0 else r[f"duty.Fx_{b}"][0])
+            row[f"Fz_{b}_N"] = float(r[f"duty.Fz_{b}"][i[-1] - 1] if i[-1] > 0 else r[f"duty.Fz_{b}"][0])
+            row[f"friction_torque_{b}_Nm"] = float(r[f"bearing_{b}.friction_torque"][m].mean())
+            row[f"heat_{b}_W"] = float(r[f"bearing_{b}.heat_flux_total"][m].mean())
+        rows.append(row)
+    return rows
 
 
 def smooth(x, n):
@@ -57,7 +114,8 @@ def main(argv=None):
     ap.add_argument("--stop-time", type=float, default=None)
     ap.add_argument("--out", default=str(ROOT / "out" / "ssp_drivetrain"))
     ap.add_argument("--masters", default="fmpy,libcosim",
-                    help="comma list (the drive at fidelity 'map', build/drivetrain_map.ssp, runs with libcosim only: "
+                    help="comma list (the drives at fidelity 'map' or 'quasi-static', build/drivetrain_map.ssp and "
+                         "build/drivetrain_cycle_*.ssp, run with libcosim only: "
                          "fmpy's simulate_ssp holds every connected input at 0 during the first step, and a shaft "
                          "speed of 0 is outside the map, which is never extrapolated)")
     a = ap.parse_args(argv)
@@ -96,6 +154,16 @@ def main(argv=None):
         lm = summary[m]["last_0.2s_mean"]
         lm["bearing_loss_share_of_motor_power"] = (lm["heat_flux_A_W"] + lm["heat_flux_B_W"]) / (
             lm["motor_torque_Nm"] * lm["shaft_speed_rpm"] / RPM)
+        if d.get("duty_cycle"):
+            rows = phase_table(r, h, d)
+            summary[m]["phases"] = rows
+            summary[m]["reaction_vs_load_max_rel"] = load_tracking(r)
+            summary[m]["min_speed_after_run_up_rpm"] = float(w[t >= d["duty_cycle"][1]["time"]
+                                                              + d["duty_cycle"][1]["ramp"]].min() * RPM)
+            with open(out / f"phases_{m}.csv", "w") as f:
+                f.write(",".join(rows[0]) + "\n")
+                for row in rows:
+                    f.write(",".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in row.values()) + "\n")
     if "fmpy" in R and "libcosim" in R:
         f, l = summary["fmpy"]["last_0.2s_mean"], summary["libcosim"]["last_0.2s_mean"]
         summary["agreement_rel"] = {k: abs(f[k] - l[k]) / max(abs(f[k]), abs(l[k]), 1e-12) for k in f}
@@ -142,11 +210,77 @@ def main(argv=None):
                  f"h = {h:g} s")
     fig.tight_layout()
     fig.savefig(out / "drivetrain.png", dpi=110)
+    if d.get("duty_cycle"):
+        plot_cycle(R, summary, d, h, out / "drivetrain_cycle.png")
     for m in R:
         print(m, json.dumps(summary[m], indent=1))
     if "agreement_rel" in summary:
         print("agreement", json.dumps(summary["agreement_rel"], indent=1))
-    print(f"wrote {out}/drivetrain.png, summary.json")
+    print(f"wrote {out}/drivetrain.png, summary.json" + (", drivetrain_cycle.png, phases_*.csv"
+                                                          if d.get("duty_cycle") else ""))
+
+
+def plot_cycle(R, summary, d, h, path):
+    """The drive cycle over time: speed and supply frequency, commanded loads and the bearings' reactions,
+    friction torque and heat of both bearings (50 ms means), motor and fan torque, energy per phase."""
+    import matplotlib.pyplot as plt
+    m = "libcosim" if "libcosim" in R else next(iter(R))
+    r = R[m]
+    t = r["time"]
+    n = int(round(0.05 / h))
+    fig, ax = plt.subplots(3, 2, figsize=(14, 11), sharex=True)
+    ax[0, 0].plot(t, r["shaft.shaft_speed"] * RPM, color="k", label="shaft")
+    for b, col in (("A", "C0"), ("B", "C1")):
+        ax[0, 0].plot(t, r[f"bearing_{b}.cage_speed"] * RPM, color=col, lw=0.8, label=f"cage {b}")
+    if d["fidelity"] == "map":
+        ax[0, 0].axhline(500.0, color="r", lw=0.7, ls=":", label="lowest shaft speed of the map, 500 rpm")
+    tw = ax[0, 0].twinx()
+    tw.plot(t, r["duty.frequency_ratio"] * 50.0, color="C3", lw=0.8, ls="--")
+    tw.set_ylabel("supply frequency [Hz] (dashed, 50 Hz rated)", color="C3")
+    for b, col in (("A", "C0"), ("B", "C1")):
+        for k, ls in (("Fx", "-"), ("Fz", "--")):
+            ax[0, 1].plot(t, r[f"duty.{k}_{b}"] / 1e3, ls, color=col, lw=1.5, alpha=0.5, label=f"{k} {b} commanded")
+            ax[0, 1].plot(t, -r[f"bearing_{b}.reaction_{k}"] / 1e3, ls, color=col, lw=0.7,
+                          label=f"-reaction {k} {b}")
+    ax[1, 0].plot(t, r["motor.torque"], color="C3", label="motor")
+    ax[1, 0].plot(t, r["load.torque"], color="C2", label="fan")
+    for b, col in (("A", "C0"), ("B", "C1")):
+        ax[1, 1].plot(t, smooth(r[f"bearing_{b}.friction_torque"], n), color=col, label=f"bearing {b}")
+        ax[2, 0].plot(t, smooth(r[f"bearing_{b}.heat_flux_total"], n), color=col, label=f"bearing {b}")
+    rows = summary[m]["phases"]
+    for x in ax.flat[:5]:
+        for row in rows[1:]:
+            x.axvline(row["t_start_s"], color="0.6", lw=0.6)
+    for row in rows:
+        ax[0, 1].text(0.5 * (row["t_start_s"] + row["t_end_s"]), 1.02, row["name"], fontsize=8, ha="center",
+                      va="bottom", transform=ax[0, 1].get_xaxis_transform())
+    e = summary[m]["energy"]
+    names = ["motor work", "fan work", "bearing heat", "kinetic energy", "residual"]
+    vals = [e["motor_work_J"] / 1e3, e["load_work_J"] / 1e3, e["bearing_losses_J"] / 1e3,
+            e["kinetic_energy_change_J"] / 1e3, e["residual_J"] / 1e3]
+    ea = fig.add_subplot(3, 2, 6)
+    ax[2, 1].set_visible(False)
+    ea.bar(names, vals, color=["C3", "C2", "C4", "C0", "k"])
+    for i, v in enumerate(vals):
+        ea.text(i, v, f"{v:.2f} kJ", ha="center", va="bottom", fontsize=8)
+    ea.set(ylabel="energy [kJ]", title=f"energy over the cycle: residual {100 * e['residual_rel']:.3f}% of the motor "
+           f"work\n({100 * e['residual_after_lag_rel']:.3f}% after the coupling lag estimate)")
+    ax[0, 0].set(ylabel="speed [rpm]", title="shaft and cage speeds")
+    ax[0, 1].set(ylabel="load [kN]", title="loads: commanded (thick) and bearing reactions (thin)\n")
+    ax[1, 0].set(ylabel="torque [N.m]", title="motor and fan torque")
+    ax[1, 1].set(ylabel="friction torque [N.m] (50 ms mean)", title="bearing friction torque")
+    ax[2, 0].set(xlabel="time [s]", ylabel="heat flux [W] (50 ms mean)", title="bearing heat")
+    for x in list(ax.flat[:5]) + [ea]:
+        x.grid(True, alpha=0.3)
+    for x in ax.flat[:5]:
+        x.legend(fontsize=7, loc="lower center" if x is ax[0, 0] else "upper right")
+    ax[1, 1].tick_params(labelbottom=True)
+    ax[1, 1].set_xlabel("time [s]")
+    fig.suptitle(f"Drive cycle: induction motor, fan, two {d['bearing']} bearings at fidelity {d['fidelity']} "
+                 f"({m}, h = {h:g} s)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 
 if __name__ == "__main__":
