@@ -170,6 +170,7 @@ class QuasiStaticCageModel:
     #: share of the losses (7218B, oil, Fx 1 kN, Fz 3 kN); warm solves stalled on the floor were seen at 27-37 %
     power_balance_tol = 0.1
     power_balance_abs = 0.05
+    _balance_guard = True
     #: residual evaluations of one solve attempt
     budget = 1500
     #: derivatives of the outputs: 'secant' (central secants over warm re-solves at the inputs +- a step on the
@@ -373,6 +374,7 @@ class QuasiStaticCageModel:
         a, da = 0.0, 0.25
         lam_res = self.lam          # the orbit coupling of res
         self._tol_factor = self.path_tol_factor
+        self._balance_guard = False            # the path's intermediate points are solved loosely
         try:
             while a < 1.0:
                 a2 = min(a + da, 1.0)
@@ -398,6 +400,7 @@ class QuasiStaticCageModel:
         finally:
             self.lam = lam_res
             self._tol_factor = 1.0
+            self._balance_guard = True
 
     def _start(self, kind, st, omega, ring, T_oil):
         """Unknowns (xl, xg) to start from: a previous solution (speeds scaled to omega), the free-ball
@@ -529,7 +532,8 @@ class QuasiStaticCageModel:
         # fixed and does no work). A point accepted on the residual floor whose moment equations are still off
         # breaks this balance although its forces balance
         pd, hb = res.P_drive, res.heat["total"]
-        if not abs(pd - hb) <= self.power_balance_tol * max(abs(pd), abs(hb)) + self.power_balance_abs:
+        if self._balance_guard and not abs(pd - hb) <= self.power_balance_tol * max(abs(pd), abs(hb)) + \
+                self.power_balance_abs:
             return (f"residual {r:.3g} N after {nfev} evaluations, but the drive power {pd:.5g} W does not match "
                     f"the losses {hb:.5g} W (energy balance of a steady state)")
         if sensitivity:
@@ -818,6 +822,11 @@ class QuasiStaticTracker:
     #: tol the torque followed the cold solves (1.217 against 1.218 N m at 3200 rpm) without jumps, at 3.3x less
     #: wall time
     tol_factor = 5.0
+    #: the linear update also re-solves where it breaks the energy balance of a steady state (drive power =
+    #: losses) by more than this share beyond the last solution's own imbalance: torque and heat are updated
+    #: apart, and an update that drifts in one of them between re-solves shows here at every step (seen on a
+    #: drive cycle's run-up: torque x speed 30 % below the heat, then held for 12 s at constant inputs)
+    balance_rel = 2e-2
     radius_min = 0.5
     radius_max = 64.0
     refresh_error = 10.0
@@ -840,6 +849,8 @@ class QuasiStaticTracker:
         self._tol = None
         self._since_refresh = 0
         self._keys = np.array([OUTPUT_NAMES.index(k) for k in self.KEYS + self.FORCE_KEYS])
+        self._i_power, self._i_heat = OUTPUT_NAMES.index("P_drive"), OUTPUT_NAMES.index("heat")
+        self._imb0 = 0.0
         self._nforce = len(self.FORCE_KEYS)
         self._fresh = True
 
@@ -873,7 +884,7 @@ class QuasiStaticTracker:
             dn = np.where(np.isfinite(self._tol), np.abs(dp) / self._tol, 0.0)
         d = float(np.max(dn))
         pred = res.predict(p[0], p[1:6], p[6])
-        if d <= self.radius:
+        if d <= self.radius and abs(self._imbalance(pred) - self._imb0) <= self.balance_rel:
             return pred, False
         new = self._resolve(res, p)
         y = new.outputs
@@ -929,8 +940,14 @@ class QuasiStaticTracker:
             m._tol_factor = 1.0
         return m.solve(p[0], T_oil=p[6], start=res, sensitivity=False, **self._solve_args(p))
 
+    def _imbalance(self, y):
+        """(drive power - losses) / the larger of the two: 0 in an exact steady state."""
+        pd, hb = y[self._i_power], y[self._i_heat]
+        return (pd - hb) / max(abs(pd), abs(hb), 1e-9)
+
     def _accept(self, res):
         self.res = res
+        self._imb0 = self._imbalance(res.outputs)
         self.resolves += 1
         # per input, the change that moves any key output by its scale on the linear update (inf: none depends
         # on it)
