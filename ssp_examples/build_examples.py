@@ -9,7 +9,8 @@ InductionMotor, ShaftInertia, FanLoad, DutyCycle; pythonfmu slaves in <example>/
 FMI layer (each instance's model in a process of its own, so no master hosts their Python), and
 build/rotor_bearings.ssp, build/drivetrain.ssp (by each example's make_ssp.py), build/drivetrain_map.ssp (the
 drivetrain for 60 s at fidelity 'map', with the map) and build/drivetrain_cycle_map.ssp (the 60 s drive cycle:
-run-up, load steps, coast-down, idle, at fidelity 'map'). Nothing here is committed.
+run-up, load steps, coast-down, idle, at fidelity 'map'; build/drivetrain_cycle_qs.ssp the same at
+'quasi-static'). Nothing here is committed.
 """
 from __future__ import annotations
 
@@ -68,6 +69,7 @@ def make_ssps(dest: Path, fmus: Path) -> list:
         if example == "drivetrain" and SHIPPED_MAP.is_file():
             out.append(mod.make(Path(dest) / "drivetrain_map.ssp", mod.MAP_CYCLE, fmu_dir=fmus))
             out.append(mod.make(Path(dest) / "drivetrain_cycle_map.ssp", mod.MAP_DRIVE_CYCLE, fmu_dir=fmus))
+            out.append(mod.make(Path(dest) / "drivetrain_cycle_qs.ssp", mod.QS_DRIVE_CYCLE, fmu_dir=fmus))
     return out
 
 

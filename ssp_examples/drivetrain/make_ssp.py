@@ -85,6 +85,7 @@ MAP_CYCLE = DrivetrainDesign(fidelity="map", speed0=60.0, stop_time=60.0)
 operating speed and a minute of running; the bearing FMU must embed a map (bearing build-fmu --map)."""
 
 MAP_DRIVE_CYCLE = DrivetrainDesign(fidelity="map", speed0=60.0, stop_time=60.0, duty_cycle=CYCLE_60S)
+QS_DRIVE_CYCLE = replace(MAP_DRIVE_CYCLE, fidelity="quasi-static")
 """The 60 s drive cycle (drive_cycle) at fidelity 'map', from 573 rpm: run-up, two load steps, coast-down and
 idle; the bearing FMU must embed a map."""
 
