@@ -171,6 +171,16 @@ class QuasiStaticCageModel:
     power_balance_tol = 0.1
     power_balance_abs = 0.05
     _balance_guard = True
+    #: the oil-lubricated pocket's contact dashpot (DynamicsOptions.pocket_damping_ratio) in the steady
+    #: equations. Off: a linear (Kelvin-Voigt) dashpot switches on at first contact with a force step
+    #: C |d gap / dt|, and in the steady periodic motion a ball meets its pocket wall at the rate the orbit
+    #: coupling gives it, so the pocket force jumps there (22 N at the 7218B's ball 0, 3300 rpm, Fx 1 kN, Fz
+    #: 3 kN): the equations have no root where a pocket's force falls inside the step, and the solve stalls on
+    #: it (the residual floor). What it costs and gains is measured in docs/fidelity_quasistatic.md. The
+    #: dynamics keep their dashpot; so does a dry pocket here (without it the dry cage converges at 21 of 32
+    #: random points, but with torque 30-69 % below the dynamics' at most of them: its impacts' dissipation is
+    #: much of the dry loss)
+    pocket_dashpot = False
     #: residual evaluations of one solve attempt
     budget = 1500
     #: derivatives of the outputs: 'secant' (central secants over warm re-solves at the inputs +- a step on the
@@ -211,6 +221,7 @@ class QuasiStaticCageModel:
         self.opt = replace(opt, reduced="full", thermal=False)
         self.opt.validate()
         self._setups = {}
+        self._lu_last: _LU | None = None
 
     # ---- parameters -------------------------------------------------------------------------------
     def _setup(self, omega: float, T_oil: float):
@@ -471,6 +482,8 @@ class QuasiStaticCageModel:
         disp = self.opt.coupling == "displacement"
         P[K.P_COUPLING] = 1.0 if disp else 0.0
         P[K.P_CRX:K.P_CRTY + 1] = 0.0
+        if not self.pocket_dashpot and P[K.P_LUBE] > 0.5:
+            P[K.P_CPOCKETD] = 0.0
         U = np.zeros(K.NU)
         U[K.U_W0] = U[K.U_W1] = omega
         if disp:
@@ -579,14 +592,17 @@ class QuasiStaticCageModel:
         J = J0
         J_last = J0
         stall = 0
+        lu = None
         while nfev < budget and not r <= ftol and stall < 6:
             fresh = J is None
             if fresh:
                 J = self._jacobian(v, omega, P, U, act, tabs, xs_l, xs_g)
                 J_last = J
                 nfev += 17
+            if lu is None or lu.J is not J:
+                lu = self._lu(J)
             dv = np.empty(v.size)
-            if not CK.dense_solve(J, -R, dv):
+            if not lu.solve(-R, dv):
                 dv[:] = np.nan
             accepted = False
             if np.all(np.isfinite(dv)):
@@ -629,6 +645,14 @@ class QuasiStaticCageModel:
             if contract > 0.25:
                 J = None
         return r, nfev, J_last
+
+    def _lu(self, J):
+        """The LU factors of J, memoised for the last Jacobian (a warm start's J0 is its solution's)."""
+        lu = self._lu_last
+        if lu is None or lu.J is not J:
+            lu = _LU(J)
+            self._lu_last = lu
+        return lu
 
     # ---- result ---------------------------------------------------------------------------------------
     def _evaluate(self, v, P, U, act, tabs, xs_l, xs_g):
@@ -688,9 +712,10 @@ class QuasiStaticCageModel:
         r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)
         J = self._jacobian(v, float(res.omega), P, U, act, tabs, xs_l, xs_g)
         res.jacobian = J
+        lu = self._lu(J)
         def solve(rhs):            # J dv = rhs; the least-squares solution of smallest norm if J is singular
             dv = np.empty(n)       # (a dry cage whose balls all float: their common place in the pockets)
-            if CK.dense_solve(J, np.ascontiguousarray(rhs, dtype=float), dv):
+            if lu.solve(rhs, dv):
                 return dv
             from threadpoolctl import threadpool_limits
             with threadpool_limits(limits=1, user_api="blas"):
@@ -783,6 +808,24 @@ class QuasiStaticCageModel:
         R[:] = out[-1]
 
 
+class _LU:
+    """LU factors of one Jacobian (quasistatic_cage_kernels.lu_factor), for the chord steps and the
+    sensitivity's solves on it."""
+
+    def __init__(self, J: np.ndarray):
+        self.J = J
+        self.M = np.empty_like(J)
+        self.piv = np.empty(J.shape[0], dtype=np.int64)
+        self.ok = bool(CK.lu_factor(J, self.M, self.piv))
+
+    def solve(self, R, dv) -> bool:
+        """dv = J^-1 R; False if J is singular."""
+        if not self.ok:
+            return False
+        CK.lu_solve(self.M, self.piv, np.ascontiguousarray(R, dtype=float), dv)
+        return True
+
+
 def solve_quasistatic_cage(geometry: BearingGeometry, omega: float, loads, options=None, **kw) -> QuasiStaticCageResult:
     """Convenience wrapper: QuasiStaticCageModel(geometry, options).solve(omega, loads, **kw)."""
     return QuasiStaticCageModel(geometry, options).solve(omega, loads, **kw)
@@ -832,6 +875,10 @@ class QuasiStaticTracker:
     refresh_error = 10.0
     refresh_every = 8
     max_bisect = 6
+    #: a warm re-solve whose cage/shaft speed ratio moves by more than this from its start has left the branch
+    #: it follows (the steady problem has several roots; docs/fidelity_quasistatic.md): the step is halved, as
+    #: a failed one (QuasiStaticCageModel.path_jump for the cold solve's continuation)
+    path_jump = 0.05
     KEYS = ("cage_speed", "friction_torque", "heat")
     #: also held to rel, of the load scale (the largest reaction force, at least 100 N): the reactions, which a
     #: rotor model takes from the bearing (displacement coupling) and a load-driven bearing balances
@@ -926,8 +973,12 @@ class QuasiStaticTracker:
             while path:
                 q = path[-1]
                 try:
-                    start = m.solve(q[0], T_oil=q[6], start=start, sensitivity=False, cold=False,
-                                    **self._solve_args(q))
+                    out = m.solve(q[0], T_oil=q[6], start=start, sensitivity=False, cold=False,
+                                  **self._solve_args(q))
+                    ratio = (out.cage_speed / out.omega) / (start.cage_speed / start.omega)
+                    if not abs(ratio - 1.0) <= self.path_jump:
+                        raise ConvergenceError(f"cage speed ratio moved by {ratio - 1.0:+.1%} (another branch)")
+                    start = out
                     path.pop()
                 except ConvergenceError:
                     failed += 1

@@ -59,14 +59,19 @@ def pocket_tangential_force(dth, thb, wc, rbc, P, D, Wr, Wz):
 
 
 @hot
-def pocket_place(q, thb, wc, rbc, P, D, Wr, Wz):
+def pocket_place(q, thb, wc, rbc, P, D, Wr, Wz, guess):
     """Offset dth [rad] of the ball from its pocket centre (about the cage centre) at which the pocket's
     tangential force on the ball is -q [N] (q > 0: the ball leads its pocket and drives the cage): the
     root of pocket_tangential_force + q, decreasing in dth, bracketed by the penetrations that carry
     |q| + 1e3 N on the penalty stiffness alone, by false position with the Illinois modification (Dahlquist
     & Bjorck, Numerical Methods, Sec. 6.2) to 1e-9 N or 1e-14 rad. A dry pocket carries no force in its
     clearance: there |q| <= Q_GAP moves the ball linearly from the pocket centre to the wall, and beyond the
-    pocket's force is -(|q| - Q_GAP) sign(q), so that the place is continuous in q."""
+    pocket's force is -(|q| - Q_GAP) sign(q), so that the place is continuous in q.
+
+    guess [rad] (NaN: none): a nearby root (the same ball's place at a neighbouring state, e.g. the base
+    point of a finite difference); the bracket is then grown from it (steps 1e-6 of the clearance angle,
+    eight-fold each time) instead of spanning the whole pocket, the same root to the same tolerance in a few
+    evaluations."""
     cp = P[K.P_CPOCKET]
     kpk = P[K.P_KPOCKET]
     lim = (cp + (abs(q) + 1e3) / kpk) / rbc
@@ -81,8 +86,34 @@ def pocket_place(q, thb, wc, rbc, P, D, Wr, Wz):
         else:
             hi = -cp / rbc
             q = q + Q_GAP
-    flo = pocket_tangential_force(lo, thb, wc, rbc, P, D, Wr, Wz) + q
-    fhi = pocket_tangential_force(hi, thb, wc, rbc, P, D, Wr, Wz) + q
+    if lo < guess < hi:
+        f0 = pocket_tangential_force(guess, thb, wc, rbc, P, D, Wr, Wz) + q
+        if abs(f0) <= 1e-9:
+            return guess
+        step = 1e-6 * cp / rbc
+        if f0 > 0.0:                      # decreasing: the root lies above the guess
+            lo, flo = guess, f0
+            while True:
+                x = min(guess + step, hi)
+                fx = pocket_tangential_force(x, thb, wc, rbc, P, D, Wr, Wz) + q
+                if fx <= 0.0 or x >= hi:
+                    hi, fhi = x, fx
+                    break
+                lo, flo = x, fx
+                step *= 8.0
+        else:
+            hi, fhi = guess, f0
+            while True:
+                x = max(guess - step, lo)
+                fx = pocket_tangential_force(x, thb, wc, rbc, P, D, Wr, Wz) + q
+                if fx >= 0.0 or x <= lo:
+                    lo, flo = x, fx
+                    break
+                hi, fhi = x, fx
+                step *= 8.0
+    else:
+        flo = pocket_tangential_force(lo, thb, wc, rbc, P, D, Wr, Wz) + q
+        fhi = pocket_tangential_force(hi, thb, wc, rbc, P, D, Wr, Wz) + q
     side = 0
     x = 0.0
     for _ in range(100):
@@ -105,6 +136,24 @@ def pocket_place(q, thb, wc, rbc, P, D, Wr, Wz):
                 flo *= 0.5
             side = 1
     return x
+
+
+@hot
+def lu_factor(J, M, piv):
+    """M, piv = the LU factors of J with partial pivoting (quasistatic_tribo_kernels._lu6), for lu_solve;
+    False if J is exactly singular."""
+    for i in range(J.shape[0]):
+        for k in range(J.shape[1]):
+            M[i, k] = J[i, k]
+    return _lu6(M, piv) != 0.0
+
+
+@hot
+def lu_solve(M, piv, R, dv):
+    """dv = J^-1 R from lu_factor's factors (dynamics_kernels._lu_solve)."""
+    for i in range(R.size):
+        dv[i] = R[i]
+    K._lu_solve(M, piv, dv)
 
 
 @hot
@@ -147,12 +196,14 @@ def cage_centre(gx, gy, P, U):
 
 
 @hot
-def cage_state(y0, xl, xg, P, U, yy):
+def cage_state(y0, xl, xg, P, U, yy, dguess, dplace):
     """yy = y0 with the unknowns written into the dynamics state: ring pose (rates 0), cage angle 0, speed wc,
     centre from (gx, gy) (at rest); ball j at the azimuth whose offset from pocket j (the right-hand side's
     dth, measured about the cage centre) makes the pocket's tangential force -q_j (pocket_place), at (r, z),
     orbiting about the bearing axis at theta_dot_j, no radial or axial velocity, angular velocity
-    (Omega_r, Omega_t, Omega_z)."""
+    (Omega_r, Omega_t, Omega_z). dplace (Z, 2) receives each ball's pocket offsets of the two fixed-point
+    passes; dguess (Z, 2) holds those of a neighbouring state to start pocket_place from (NaN: none; the
+    second pass starts from the first)."""
     for i in range(y0.size):
         yy[i] = y0[i]
     for k in range(5):
@@ -177,14 +228,17 @@ def cage_state(y0, xl, xg, P, U, yy):
         # the rhs measures the offset about the cage centre, dth = th - psi + atan2(xc s - yc c, rb - xc c -
         # yc s), with the azimuth rate about it thb = thd rb (bx c + by s) / |b|^2; both change with th by
         # terms of order e / rb: two fixed-point passes
-        for _ in range(2):
+        d = math.nan
+        for ps in range(2):
             c = math.cos(th)
             s = math.sin(th)
             bx = rb * c - xc
             by = rb * s - yc
             rbc = math.sqrt(bx * bx + by * by)
             thb = thd * rb * (bx * c + by * s) / (rbc * rbc)
-            d = pocket_place(xl[j, 5], thb, wc, rbc, P, D, xl[j, 2], xl[j, 4])
+            g = dguess[j, ps]
+            d = pocket_place(xl[j, 5], thb, wc, rbc, P, D, xl[j, 2], xl[j, 4], g if math.isfinite(g) else d)
+            dplace[j, ps] = d
             th = psi + d - math.atan2(xc * s - yc * c, rb - xc * c - yc * s)
         yy[b] = th
         yy[b + 1] = rb
@@ -244,14 +298,14 @@ def orbit_coupling(xl, xg, yy, P, U, Rl, lam):
 
 @hot
 def cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                  yy, dy, diag, bd, Rl, Rg, share):
+                  yy, dy, diag, bd, Rl, Rg, share, dguess, dplace):
     """Residuals [N] at (xl, xg): per ball Rl (Z, 6) (F_r + m r th_d^2, F_z, (M_r + J th_d Omega_t) / (D/2),
     (M_t - J th_d Omega_r) / (D/2), M_z / (D/2), F_t: the steady equations of dynamics_kernels' ball in
     the frame orbiting with it), global Rg (8) (ring loads F_ext + sum F_ball, moments over dm/2; cage
     torque over dm/2; cage forces), each ball's share of the global residuals share (Z, 8). yy receives
     the dynamics state; dy, diag and bd the right-hand side, outputs and ball details there. act (8,
-    bool): active global unknowns (inactive ones have zero residual)."""
-    cage_state(y0, xl, xg, P, U, yy)
+    bool): active global unknowns (inactive ones have zero residual). dguess, dplace: cage_state."""
+    cage_state(y0, xl, xg, P, U, yy, dguess, dplace)
     K.rhs(t, yy, dy, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, diag, bd, True)
     mb = P[K.P_MB]
     Jb = P[K.P_JB]
@@ -309,8 +363,10 @@ def cage_scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, 
             xl[j, k] = v[j * NL + k] * xs_l[k]
     for k in range(NG):
         xg[k] = v[Z * NL + k] * xs_g[k]
+    dg = np.full((Z, 2), np.nan)
+    dpl = np.empty((Z, 2))
     cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                  yy, dy, diag, bd, Rl, Rg, share)
+                  yy, dy, diag, bd, Rl, Rg, share, dg, dpl)
     orbit_coupling(xl, xg, yy, P, U, Rl, lam)
     r = 0.0
     for j in range(Z):
@@ -350,9 +406,9 @@ def _steps(xl, xg, omega, hl, hg):
 
 @hot
 def _full_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy, diag, bd,
-                   Rl, Rg, share, lam):
+                   Rl, Rg, share, lam, dguess, dplace):
     cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                  yy, dy, diag, bd, Rl, Rg, share)
+                  yy, dy, diag, bd, Rl, Rg, share, dguess, dplace)
     orbit_coupling(xl, xg, yy, P, U, Rl, lam)
 
 
@@ -378,8 +434,10 @@ def cage_jacobian(t, y0, xl, xg, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, td
     Rl = np.empty((Z, NL))
     Rg = np.empty(NG)
     share = np.empty((Z, NG))
+    dbase = np.empty((Z, 2))            # the balls' places at the base point: the starts of the perturbed ones
+    dpl = np.empty((Z, 2))
     _full_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy, diag, bd,
-                   Rl, Rg, share, lam)
+                   Rl, Rg, share, lam, np.full((Z, 2), np.nan), dbase)
     xp = xl.copy()
     gp = xg.copy()
     Rl2 = np.empty((Z, NL))
@@ -399,7 +457,7 @@ def cage_jacobian(t, y0, xl, xg, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, td
                 if ball_colour(j, Z) == col:
                     xp[j, k] = xl[j, k] + hl[j, k]
             _full_residual(t, y0, xp, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy,
-                           diag, bd, Rl2, Rg2, sh2, lam)
+                           diag, bd, Rl2, Rg2, sh2, lam, dbase, dpl)
             for j in range(Z):
                 if ball_colour(j, Z) != col:
                     continue
@@ -415,7 +473,7 @@ def cage_jacobian(t, y0, xl, xg, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, td
         if act[k]:
             gp[k] = xg[k] + hg[k]
             _full_residual(t, y0, xl, gp, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy,
-                           diag, bd, Rl2, Rg2, sh2, lam)
+                           diag, bd, Rl2, Rg2, sh2, lam, dbase, dpl)
             gp[k] = xg[k]
             for j in range(Z):
                 for i in range(NL):
