@@ -144,8 +144,16 @@ def ramp_comparison(map_path, params, fx=1000.0, fz=3000.0, h=1e-3, fidelity="ma
     ramp = (t >= 0.5) & (t <= 1.4)
     rel = np.abs(out["level"]["cage"] / out["dynamic"]["cage"] - 1.0)
     hold = (t > 0.05) & ~ramp
+    # the dynamic cage speed fluctuates about its trend (the cage's whirl in its clearances, +-1.5 % between 1 ms
+    # samples at 6000-8000 rpm on this profile), which a steady level does not represent: also the deviation
+    # from its centred 10 ms moving mean (a little over half a cage revolution there)
+    nw = 2 * int(round(0.005 / h)) + 1
+    dyn = out["dynamic"]["cage"]
+    trend = np.convolve(np.pad(dyn, nw // 2, mode="edge"), np.ones(nw) / nw, mode="valid")[:dyn.size]
+    rel_t = np.abs(out["level"]["cage"] / trend - 1.0)
     return {"fx_N": fx, "fz_N": fz, "step_s": h, "max_rel_cage_ramp": float(rel[ramp].max()),
             "mean_rel_cage_ramp": float(rel[ramp].mean()), "max_rel_cage_holds": float(rel[hold].max()),
+            "max_rel_cage_ramp_trend": float(rel_t[ramp].max()), "max_rel_cage_holds_trend": float(rel_t[hold].max()),
             "fidelity": fidelity, "wall_s_level": out["level"]["wall_s"], "wall_s_dynamic": out["dynamic"]["wall_s"],
             "series": {"t": t[::10].tolist(), "cage_level": out["level"]["cage"][::10].tolist(),
                        "cage_dynamic": out["dynamic"]["cage"][::10].tolist()}}
@@ -200,7 +208,8 @@ def main(argv=None):
         res["ramp"] = r
         print(f"seed 000 profile (Fx 1 kN, Fz 3 kN, 1 ms steps): cage speed {a.fidelity} / dynamic over the ramp: max "
               f"{100 * r['max_rel_cage_ramp']:.2f} %, mean {100 * r['mean_rel_cage_ramp']:.2f} %; at the holds max "
-              f"{100 * r['max_rel_cage_holds']:.2f} %; session wall {r['wall_s_level']:.2f} s ({a.fidelity}), "
+              f"{100 * r['max_rel_cage_holds']:.2f} %; against the dynamic cage speed's 10 ms moving mean: ramp max "
+              f"{100 * r['max_rel_cage_ramp_trend']:.2f} %, holds max {100 * r['max_rel_cage_holds_trend']:.2f} %; session wall {r['wall_s_level']:.2f} s ({a.fidelity}), "
               f"{r['wall_s_dynamic']:.1f} s (dynamic) for 2 s")
     if a.json:
         Path(a.json).parent.mkdir(parents=True, exist_ok=True)
