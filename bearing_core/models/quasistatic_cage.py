@@ -8,10 +8,13 @@ candidate steady state and its accelerations are driven to zero. In the candidat
 about its centre (xc, yc), which stands still; ball j sits in pocket j (cage angle 0, pocket azimuth
 2 pi j / Z) where the pocket pushes it with the tangential force -q_j, orbits at theta_dot_j; the inner ring
 stands at its pose and turns at omega. Steady equations (Gupta, Advanced Dynamics of Rolling Elements 1984,
-Ch. 3 and 5, the equations of dynamics_kernels' ball with all rates zero in the frame orbiting with it):
+Ch. 3 and 5, the equations of dynamics_kernels' ball in the frame orbiting with it, radial and axial rates zero):
 
   ball j (unknowns r, z, Omega_r, Omega_t, Omega_z, q, theta_dot):
-      F_r + m r th_d^2 = 0,  F_z = 0,  M_r + J th_d Omega_t = 0,  M_t - J th_d Omega_r = 0,  M_z = 0,
+      F_r + m r th_d^2 = 0,  F_z = 0,
+      J wc (Omega_j - Omega_j-1) / dpsi = (M_j + M_j-1) / 2   per component, M = (M_r + J th_d Omega_t,
+                                                      M_t - J th_d Omega_r, M_z)  (rotational inertia along
+                                                      the orbit, trapezoidal rule)
       F_t = m r wc (th_d,j - th_d,j-1) / dpsi        (race tractions + drag + pocket force)
       thb_j - wc = wc (dth_j - dth_j-1) / dpsi        (azimuth rate about the cage centre; place in pocket)
   inner ring (unknowns dx, dy, dz, tx, ty; load coupling):  F_ext + sum_j F_ball->ring = 0
@@ -19,7 +22,7 @@ Ch. 3 and 5, the equations of dynamics_kernels' ball with all rates zero in the 
       sum_j (pocket force moments + pocket film shear) + land torque + churning = 0   (torque about z)
       sum_j pocket forces + land force = 0                                           (forces in x, y)
 
-The right-hand sides of the last two ball equations tie ball j to ball j - 1 (quasistatic_cage_kernels.
+The rates along the orbit tie ball j to ball j - 1 (quasistatic_cage_kernels.
 orbit_coupling): the balls at the pocket azimuths are one ball seen dpsi / wc apart in a motion periodic in
 the cage frame (dpsi = 2 pi / Z), so along its orbit a ball speeds up or slows down and crosses its pocket
 clearance; summed over the balls, the mean orbital speed about the cage centre is the cage speed. The
