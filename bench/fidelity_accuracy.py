@@ -6,7 +6,8 @@
    options, run on Dask through the sweep machinery with its cache). Tolerances: cage speed 1 %, friction
    torque 5 %, heat 5 %, reactions 0.5 % (of the applied load's magnitude), mean contact angles 0.5 deg.
 2. --ramp: the seed 000 speed profile (1000 rpm, 10,000 rpm/s to 10,000 rpm, Fx 1 kN, Fz 3 kN) at 1 ms steps
-   through the session at fidelity 'dynamic' and the level: the largest relative cage speed difference over the ramp.
+   through the session at fidelity 'dynamic' and the level: the largest relative cage speed difference over the ramp,
+   and the friction torque's (with the acceleration of balls and cage) 100 ms window means over the ramp.
 
     python bench/fidelity_accuracy.py --map maps/7218B_oil.nc [--fidelity quasi-static] [--points 30] [--seed 1]
         [--ramp] [--json OUT]
@@ -118,10 +119,14 @@ def _summary(ok):
 
 
 def ramp_comparison(map_path, params, fx=1000.0, fz=3000.0, h=1e-3, fidelity="map"):
-    """Cage speed through the seed 000 profile at fidelity 'dynamic' and a steady level (session, h steps)."""
+    """Cage speed and friction torque through the seed 000 profile at fidelity 'dynamic' and a steady level
+    (session, h steps). Torque: the means over 100 ms windows of the ramp (the dynamic torque fluctuates with
+    the cage by several % between samples) and over the whole ramp; during the ramp it carries the acceleration
+    of balls and cage (about 0.8 N m of ~2.9 N m here)."""
     from bearing_core.models.dynamics import SEED000_PROFILE
     from bearing_core.session.cosim import OUTPUT_INDEX, CoSimParameters, CoSimSession
     ic = OUTPUT_INDEX["cage_speed"]
+    itq = OUTPUT_INDEX["friction_torque"]
     tp = np.array([p[0] for p in SEED000_PROFILE])
     npf = np.array([p[1] for p in SEED000_PROFILE])
     n = int(round(tp[-1] / h))
@@ -131,7 +136,7 @@ def ramp_comparison(map_path, params, fx=1000.0, fz=3000.0, h=1e-3, fidelity="ma
         s = CoSimSession(CoSimParameters(**kw))
         u = {"shaft_speed": float(npf[0]) * RPM, "Fx": fx, "Fz": fz}
         s.initialize(0.0, u)
-        t, cage = [], []
+        t, cage, torque = [], [], []
         t0 = time.perf_counter()
         for k in range(n):
             tk = k * h
@@ -139,7 +144,9 @@ def ramp_comparison(map_path, params, fx=1000.0, fz=3000.0, h=1e-3, fidelity="ma
             s.step(tk, h, u)
             t.append(tk + h)
             cage.append(s.values[ic])
-        out["level" if fid == fidelity else fid] = {"t": np.array(t), "cage": np.array(cage), "wall_s": time.perf_counter() - t0}
+            torque.append(s.values[itq])
+        out["level" if fid == fidelity else fid] = {"t": np.array(t), "cage": np.array(cage),
+                                                     "torque": np.array(torque), "wall_s": time.perf_counter() - t0}
     t = out["level"]["t"]
     ramp = (t >= 0.5) & (t <= 1.4)
     rel = np.abs(out["level"]["cage"] / out["dynamic"]["cage"] - 1.0)
@@ -151,12 +158,26 @@ def ramp_comparison(map_path, params, fx=1000.0, fz=3000.0, h=1e-3, fidelity="ma
     dyn = out["dynamic"]["cage"]
     trend = np.convolve(np.pad(dyn, nw // 2, mode="edge"), np.ones(nw) / nw, mode="valid")[:dyn.size]
     rel_t = np.abs(out["level"]["cage"] / trend - 1.0)
+    # torque: window means over the ramp (9 windows of 100 ms between 0.5 and 1.4 s)
+    tq_l, tq_d = out["level"]["torque"], out["dynamic"]["torque"]
+    edges = np.arange(0.5, 1.4 + 1e-9, 0.1)
+    win = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        m = (t > a + 1e-9) & (t <= b + 1e-9)
+        win.append((float(tq_l[m].mean()), float(tq_d[m].mean())))
+    rel_w = [abs(a / b - 1.0) for a, b in win]
     return {"fx_N": fx, "fz_N": fz, "step_s": h, "max_rel_cage_ramp": float(rel[ramp].max()),
             "mean_rel_cage_ramp": float(rel[ramp].mean()), "max_rel_cage_holds": float(rel[hold].max()),
             "max_rel_cage_ramp_trend": float(rel_t[ramp].max()), "max_rel_cage_holds_trend": float(rel_t[hold].max()),
+            "max_rel_torque_ramp_100ms": float(max(rel_w)),
+            "rel_torque_ramp_mean": float(abs(tq_l[ramp].mean() / tq_d[ramp].mean() - 1.0)),
+            "torque_ramp_mean_level": float(tq_l[ramp].mean()), "torque_ramp_mean_dynamic": float(tq_d[ramp].mean()),
+            "torque_hold_10000rpm_level": float(tq_l[t > 1.5].mean()),
+            "torque_hold_10000rpm_dynamic": float(tq_d[t > 1.5].mean()),
             "fidelity": fidelity, "wall_s_level": out["level"]["wall_s"], "wall_s_dynamic": out["dynamic"]["wall_s"],
             "series": {"t": t[::10].tolist(), "cage_level": out["level"]["cage"][::10].tolist(),
-                       "cage_dynamic": out["dynamic"]["cage"][::10].tolist()}}
+                       "cage_dynamic": out["dynamic"]["cage"][::10].tolist(),
+                       "torque_level": tq_l[::10].tolist(), "torque_dynamic": tq_d[::10].tolist()}}
 
 
 def main(argv=None):
@@ -211,6 +232,10 @@ def main(argv=None):
               f"{100 * r['max_rel_cage_holds']:.2f} %; against the dynamic cage speed's 10 ms moving mean: ramp max "
               f"{100 * r['max_rel_cage_ramp_trend']:.2f} %, holds max {100 * r['max_rel_cage_holds_trend']:.2f} %; session wall {r['wall_s_level']:.2f} s ({a.fidelity}), "
               f"{r['wall_s_dynamic']:.1f} s (dynamic) for 2 s")
+        print(f"friction torque over the ramp (0.5-1.4 s): mean {r['torque_ramp_mean_level']:.3f} N.m ({a.fidelity}) / "
+              f"{r['torque_ramp_mean_dynamic']:.3f} N.m (dynamic), {100 * r['rel_torque_ramp_mean']:.2f} %; 100 ms "
+              f"window means within {100 * r['max_rel_torque_ramp_100ms']:.2f} %; at the 10,000 rpm hold "
+              f"{r['torque_hold_10000rpm_level']:.3f} / {r['torque_hold_10000rpm_dynamic']:.3f} N.m")
     if a.json:
         Path(a.json).parent.mkdir(parents=True, exist_ok=True)
         Path(a.json).write_text(json.dumps(res, indent=1, default=float))

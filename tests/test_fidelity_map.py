@@ -105,11 +105,20 @@ def test_radial_load_direction_turns_the_vector_outputs(smap):
 
 
 def test_cage_speed_follows_a_first_order_lag(smap):
-    """A speed step: the cage speed moves towards its new steady value by exp(-h / tau) per step (inputs held),
-    the torque takes its new steady value at once; state get/set restores the lag."""
+    """A speed step: the cage speed moves towards its new steady value by exp(-h / tau) per step (inputs held);
+    the torque is the new steady value plus, in the step of the speed change, the work that brings balls and
+    cage to the new speed, I c^2 (w1^2 - w0^2) / 2 (c the steady cage/shaft ratio, I the geometric rotating
+    inertia, contact.kinematics.rotating_inertia), over the step and the shaft speed: summed, the kinetic
+    energy gained; held, the steady torque; a coast-down gives the energy back; state get/set restores the
+    lag."""
+    from bearing_core import load_bearing
+    from bearing_core.contact.kinematics import rotating_inertia
+    g = load_bearing("7218B")
+    inertia = float(rotating_inertia(g.Z, g.ball_mass, g.ball_inertia, g.cage.inertia, g.alpha0, g.D, g.dm))
     s = session(smap)
     s.initialize(0.0, inputs(2000, 500.0, 2500.0))
     w0 = s.outputs["cage_speed"]
+    assert s.outputs["friction_torque"] == pytest.approx(expected("friction_torque", 2000, 500.0, 2500.0), rel=1e-12)
     st = s.get_state()
     h = 2e-3
     s.step(0.0, h, inputs(3000, 500.0, 2500.0))
@@ -117,12 +126,30 @@ def test_cage_speed_follows_a_first_order_lag(smap):
     ref.initialize(0.0, inputs(3000, 500.0, 2500.0))
     wss = ref.outputs["cage_speed"]     # the steady value there
     assert s.outputs["cage_speed"] == pytest.approx(wss + (w0 - wss) * math.exp(-h / TAU), rel=1e-12)
-    assert s.outputs["friction_torque"] == pytest.approx(expected("friction_torque", 3000, 500.0, 2500.0), rel=1e-12)
+    t_ss = expected("friction_torque", 3000, 500.0, 2500.0)
+    assert ref.outputs["friction_torque"] == pytest.approx(t_ss, rel=1e-12)
+    work = (s.outputs["friction_torque"] - t_ss) * 3000 * RPM * h
+    # the synthetic map's cage/shaft ratio is the same at both speeds: the work is the kinetic energy gained
+    assert work == pytest.approx(0.5 * inertia * (wss ** 2 - w0 ** 2), rel=1e-9)
+    assert s.outputs["instantaneous_friction_torque"] == s.outputs["friction_torque"]
+    assert s.outputs["drive_power"] - expected("drive_power", 3000, 500.0, 2500.0) == pytest.approx(work / h, rel=1e-9)
     for k in range(1, 200):
         s.step(k * h, h, inputs(3000, 500.0, 2500.0))
     assert s.outputs["cage_speed"] == pytest.approx(wss, rel=1e-6)
+    assert s.outputs["friction_torque"] == pytest.approx(t_ss, rel=1e-12)
     s.set_state(st)
     assert s.t == 0.0 and s.outputs["cage_speed"] == w0
+    # a coast-down from 2000 rpm: the kinetic energy of balls and cage drives the bearing, the drive torque drops
+    s.step(0.0, h, inputs(1000, 500.0, 2500.0))
+    w2 = session_steady_cage(smap, 1000)
+    back = (s.outputs["friction_torque"] - expected("friction_torque", 1000, 500.0, 2500.0)) * 1000 * RPM * h
+    assert back == pytest.approx(0.5 * inertia * (w2 ** 2 - w0 ** 2), rel=1e-9) and back < 0.0
+
+
+def session_steady_cage(path, rpm):
+    r = session(path)
+    r.initialize(0.0, inputs(rpm, 500.0, 2500.0))
+    return r.outputs["cage_speed"]
 
 
 def test_map_lag_constant_is_the_decay_of_small_deviations():

@@ -85,3 +85,22 @@ def kinematics(omega, alpha_i, alpha_o, D, dm, control="outer", outer_controls=N
         raise ValueError(f"control = {control!r}; allowed: outer | inner | hybrid")
     omega_m, omega_R = ball_speeds(omega, alpha_i, alpha_o, beta, D, dm)
     return beta, omega_m, omega_R
+
+
+def rotating_inertia(Z, ball_mass, ball_inertia, cage_inertia, alpha_o, D, dm):
+    """Rotating inertia of balls and cage referred to the cage speed, I_c = 2 KE / omega_m^2 [kg m^2], for
+    pure rolling with outer raceway control at the outer contact angle alpha_o [rad] (numpy-vectorised).
+
+    KE is the kinetic energy of the Z balls (mass ball_mass [kg], inertia ball_inertia [kg m^2] about a
+    diameter) and the cage (polar inertia cage_inertia [kg m^2]), as the dynamic model sums it: each ball's
+    orbital translation m (dm/2)^2 omega_m^2 / 2 and its absolute rotation J |w|^2 / 2, with w in (r, z) the
+    spin omega_R (-sin beta, cos beta) relative to the cage plus the cage's omega_m about z (ball_speeds:
+    omega_R / omega_m = -dm (1 + D cos ao / dm) / (D cos(ao - beta)); Harris & Kotzalas Vol. 2 Ch. 3). Ratios
+    of speeds only, so I_c does not depend on the shaft speed. A speed change of the rotating parts then
+    costs the drive dKE/dt = I_c omega_m d(omega_m)/dt."""
+    alpha_o = np.asarray(alpha_o, dtype=float)
+    beta = attitude_outer(alpha_o, D / dm)
+    go = D * np.cos(alpha_o) / dm
+    rho = -dm * (1.0 + go) / (D * np.cos(alpha_o - beta))     # omega_R / omega_m
+    w2 = (rho * np.sin(beta)) ** 2 + (rho * np.cos(beta) + 1.0) ** 2
+    return cage_inertia + Z * (ball_mass * (0.5 * dm) ** 2 + ball_inertia * w2)

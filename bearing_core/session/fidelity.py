@@ -8,6 +8,9 @@ is a class constructed from the CoSimParameters (raising BearingInputError for p
     names                    the names of its steady values: session output names (a missing one holds 0),
                              'cage_speed_eq26' (seed 000 Eq. 26 cage speed [rad/s]) and 'cage_time_constant' [s]
     i_tau                    the index of 'cage_time_constant' in names
+    inertia                  the rotating inertia of balls and cage referred to the cage speed [kg m^2]
+                             (2 KE / cage speed^2; read after steady_into): the acceleration torque
+                             (0: none)
     rotate                   True: the level is read at the radial load hypot(Fx, Fy) along x and the x-y outputs
                              (ROTATED) are turned by the load's direction (an axisymmetric bearing)
     query(u) -> (x, cos, sin)      its query point of the inputs u (dict of INPUT_NAMES, SI), and the radial
@@ -30,7 +33,10 @@ DynamicsOptions and running its load checks (a seating axial load, the static ca
 What a steady level gives (docs/fidelity.md): every step-averaged output is the steady value at the step's
 held inputs (its 'instantaneous_' twin the same); the cage speed follows its steady value through a first-order
 lag with the level's time constant (the map's: the dynamic model's own relaxation of the cage speed at that
-operating point), and the derived ratios and the skid state follow the lagged cage speed; the per-ball
+operating point), and the derived ratios and the skid state follow the lagged cage speed; the friction torque
+and drive power add the power that changes the kinetic energy of balls and cage as the shaft speed changes
+from step to step (map_kernels.steady_level_outputs: a run-up costs the drive more than the steady losses, a
+coast-down less; the heat is the losses alone); the per-ball
 instantaneous outputs (ball0_*) and the ring acceleration ir_ax hold 0. Temperatures: the isothermal oil
 temperature (the thermal network is not run at these levels). SI units: rad/s, N, N m, m, rad, W, Pa, K.
 """
@@ -208,6 +214,14 @@ class MapLevel:
             if not lo - 1e-9 <= T <= hi + 1e-9:
                 raise BearingInputError("oil_temperature", T, f"{lo:.6g} K <= value <= {hi:.6g} K (the map's range, "
                                         f"{self.path}; fidelity 'map' never extrapolates)")
+        # the rotating inertia of balls and cage [kg m^2] (the acceleration torque): geometric, pure rolling with
+        # outer raceway control (within 1.5 % of 2 KE / wc^2 of the quasi-static level's solutions on the 7218B)
+        self.inertia = 0.0
+        if geometry is not None:
+            from ..contact.kinematics import rotating_inertia
+            g = geometry()
+            self.inertia = float(rotating_inertia(g.Z, g.ball_mass, g.ball_inertia, g.cage.inertia, g.alpha0, g.D,
+                                                  g.dm))
         from . import map_kernels as MK
         self._interp = MK.interp_multilinear
         self._interp(self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags,
@@ -424,6 +438,7 @@ class QuasiStaticLevel:
         self._ss0 = np.zeros(len(self.names))     # the steady values at the last solution
         self._out0 = None                          # the solver's outputs there
         self._w0 = 0.0
+        self.inertia = 0.0                         # 2 KE / wc^2 of the last solution [kg m^2]
         self._flags0 = 0
         self._last = None                          # (x, ss, flags) of the last query point
 
@@ -506,6 +521,10 @@ class QuasiStaticLevel:
         self._ss0[-2] = res.diag[self._i_eq26]
         self._out0 = res.outputs.copy()
         self._w0 = res.omega
+        from ..models import dynamics_kernels as K
+        wc = res.cage_speed
+        ke = res.diag[K.OUT_INDEX["KE"]]
+        self.inertia = 2.0 * ke / (wc * wc) if wc != 0.0 and math.isfinite(ke) else 0.0
 
     def point_text(self, x) -> str:
         x = np.asarray(x, dtype=float)
@@ -529,7 +548,7 @@ FIDELITIES = ("dynamic",) + tuple(FIDELITY_LEVELS)
 
 class SteadySession:
     """A co-simulation session on a steady level: the API and output array of CoSimSession (which delegates to
-    it). The state is the time and the lagged cage speed."""
+    it). The state is the time, the lagged cage speed and the last step's shaft speed."""
 
     def __init__(self, params, level, values: np.ndarray, outputs_cls, step_rejected, csr_min_speed: float):
         """values: the session's output array (ALL_NAMES order); outputs_cls, step_rejected: the session's Outputs
@@ -546,6 +565,7 @@ class SteadySession:
         self.values = values           # the session's output array (updated in place)
         self.t = 0.0
         self.wc = 0.0
+        self.w_prev = 0.0              # the shaft speed of the last step [rad/s] (the acceleration of balls and cage)
         self.warnings = []             # messages for the FMU log (entry into a region where the level is weak)
         self._flags = 0
         self._ss = np.zeros(len(level.names))
@@ -564,6 +584,8 @@ class SteadySession:
         ib += [names.index("cage_speed_eq26"), OUTPUT_INDEX["cage_speed_pure_rolling_outer"]]
         ib += [OUTPUT_INDEX[n] for n in ("temperature_ball", "temperature_outer_ring", "temperature_inner_ring",
                                          "temperature_oil", "heat_to_ambient", "heat_to_oil_flow", "thermal_runaway")]
+        ib += [OUTPUT_INDEX[n] for n in ("friction_torque", "instantaneous_friction_torque", "drive_power",
+                                         "instantaneous_drive_power")]
         self._ib = np.array(ib, dtype=np.int64)
         T = float(params.oil_temperature)
         self._temps = np.array([T, T, T, T, 0.0, 0.0, 0.0])
@@ -575,6 +597,7 @@ class SteadySession:
         # a level with a one-call step kernel (query, values, outputs: MapLevel.step_kernel) takes it while its
         # inputs pass; anything refused goes through the checked path, which names the reason
         self._fast = getattr(level, "step_kernel", None)
+        self._i_speed = INPUT_NAMES.index("shaft_speed")
         self._res = np.zeros(2)
 
     def _validated(self, inputs: dict):
@@ -603,9 +626,11 @@ class SteadySession:
             return False
         c0, c1, c2 = self._consts
         if self._fast(u, *self.level.step_args, self._ss, self.level.i_tau, self._src, self._rot, self.wc, h,
-                      self._temps, c0, c1, c2, self._ib, self._new, self._res) != 0:
+                      self._temps, self.level.inertia, self.w_prev, c0, c1, c2, self._ib, self._new,
+                      self._res) != 0:
             return False
         self._note_flags(int(self._res[1]), self.level.x_fast, h)
+        self.w_prev = float(u[self._i_speed])
         if self._i_oil >= 0:
             self._new[self._i_oil] = self._oil
         self.wc = float(self._res[0])
@@ -617,8 +642,8 @@ class SteadySession:
         fl = self.level.steady_into(x, self._ss)
         tau = float(self._ss[self.level.i_tau])
         c0, c1, c2 = self._consts
-        wc = self._outputs_kernel(self._ss, self._src, self._rot, cs, sn, self.wc, h, tau, w, self._temps, c0,
-                                     c1, c2, self._ib, self._new)
+        wc = self._outputs_kernel(self._ss, self._src, self._rot, cs, sn, self.wc, h, tau, w, self._temps,
+                                  self.level.inertia, self.w_prev if h > 0.0 else w, c0, c1, c2, self._ib, self._new)
         if not math.isfinite(wc):
             bad = [n for n, v in zip(ALL_NAMES, self._new) if not math.isfinite(v)]
             raise BearingInputError("inputs", self.level.point_text(x),
@@ -648,6 +673,7 @@ class SteadySession:
             restart()
         q = self._validated(inputs)
         self.wc = self._evaluate(q, 0.0)
+        self.w_prev = q[3]
         np.copyto(self.values, self._new)
         self.t = float(t0)
 
@@ -666,15 +692,16 @@ class SteadySession:
         except BearingInputError as e:
             raise StepRejected(str(e))
         self.wc = wc
+        self.w_prev = q[3]
         np.copyto(self.values, self._new)
         self.t = t + h
         return Outputs(self.values.copy())
 
     def get_state(self):
-        return (self.t, self.wc, self.values.copy(), self._flags)
+        return (self.t, self.wc, self.w_prev, self.values.copy(), self._flags)
 
     def set_state(self, state):
         if state is None:
             return
-        self.t, self.wc, v, self._flags = state
+        self.t, self.wc, self.w_prev, v, self._flags = state
         self.values[:] = v

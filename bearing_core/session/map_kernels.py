@@ -74,7 +74,8 @@ def interp_multilinear(axes, ptr, strides, values, speed_scaled, flags, x, idx, 
 
 
 @_exact
-def steady_level_outputs(ss, src, rot, cs, sn, wc0, h, tau, shaft, temps, csr_min, skid_tol, skid_min, ib, out):
+def steady_level_outputs(ss, src, rot, cs, sn, wc0, h, tau, shaft, temps, inertia, shaft0, csr_min, skid_tol,
+                         skid_min, ib, out):
     """Outputs of a communication point of a steady level into out (session output layout) from the steady
     values ss (the level's outputs at the held inputs); returns the cage speed at the end of the step.
 
@@ -86,9 +87,23 @@ def steady_level_outputs(ss, src, rot, cs, sn, wc0, h, tau, shaft, temps, csr_mi
     quantities derived from the cage speed follow its lagged value as in session_kernels.assemble_outputs:
     cage/shaft ratios (0 below csr_min [rad/s]), skid ratio, cage slip ratio and skid state (tolerance
     skid_tol, 0/0 below skid_min [rad/s]). temps: T ball, outer, inner, oil [K], heat to ambient and to the
-    oil flow [W], runaway flag. ib: output indices of cage_speed, cage_shaft_ratio, cage_shaft_ratio_theory,
-    skid_ratio, cage_slip_ratio, skid_state, the Eq. 26 cage speed in ss, cage_speed_pure_rolling_outer,
-    then the outputs of the 7 entries of temps."""
+    oil flow [W], runaway flag.
+
+    Acceleration of the rotating parts: the steady torque and drive power are those of a bearing at constant
+    speed. While the shaft speed changes, the drive also supplies the change of the balls' and cage's kinetic
+    energy KE = inertia wc^2 / 2 (inertia [kg m^2] referred to the cage speed, contact.kinematics.
+    rotating_inertia; energy balance of the dynamic model: drive power = losses + dKE/dt, the outer ring
+    fixed), with the cage at its steady ratio c = wss / shaft to the shaft: over a step from the shaft speed
+    shaft0 [rad/s] of the previous step, dKE = inertia c^2 (shaft^2 - shaft0^2) / 2. It follows the inputs,
+    not the cage speed's steady values, whose small jumps where a level re-solves would otherwise turn into
+    torque spikes; a change of c with the loads is left out. dKE / h is added to drive_power and dKE / (h
+    shaft) to friction_torque (0 below csr_min), and to their 'instantaneous_' twins. The heat (the losses) is
+    unchanged.
+
+    ib: output indices of cage_speed, cage_shaft_ratio, cage_shaft_ratio_theory, skid_ratio,
+    cage_slip_ratio, skid_state, the Eq. 26 cage speed in ss, cage_speed_pure_rolling_outer, then the
+    outputs of the 7 entries of temps, then of friction_torque, instantaneous_friction_torque, drive_power,
+    instantaneous_drive_power."""
     n = out.shape[0]
     for i in range(n):
         out[i] = ss[src[i]] if src[i] >= 0 else 0.0
@@ -123,8 +138,15 @@ def steady_level_outputs(ss, src, rot, cs, sn, wc0, h, tau, shaft, temps, csr_mi
             state = -1.0
     out[ib[4]] = s
     out[ib[5]] = state
-    for k in range(temps.shape[0]):
+    nt = temps.shape[0]
+    for k in range(nt):
         out[ib[8 + k]] = temps[k]
+    if inertia > 0.0 and h > 0.0 and abs(shaft) >= csr_min:
+        c = wss / shaft
+        p_acc = 0.5 * inertia * c * c * (shaft * shaft - shaft0 * shaft0) / h
+        for k in range(2):
+            out[ib[10 + nt + k]] += p_acc
+            out[ib[8 + nt + k]] += p_acc / shaft
     ok = True
     for i in range(n):
         if not math.isfinite(out[i]):
@@ -135,9 +157,10 @@ def steady_level_outputs(ss, src, rot, cs, sn, wc0, h, tau, shaft, temps, csr_mi
 @_exact
 def map_step(u, i_speed, i_fx, i_fy, i_oring, zero_in, rotate, rpm, qkind, qidx, qval, qlo, qhi, qtol,
              axes, ptr, strides, values, speed_scaled, flags, x, idx, w, ss, i_tau,
-             src, rot, wc0, h, temps, csr_min, skid_tol, skid_min, ib, out, res):
+             src, rot, wc0, h, temps, inertia, shaft0, csr_min, skid_tol, skid_min, ib, out, res):
     """One communication point of the map level in one call: the query of the inputs, the interpolation
-    (interp_multilinear) and the outputs with the cage lag (steady_level_outputs), the arithmetic of
+    (interp_multilinear) and the outputs with the cage lag and the acceleration of the rotating parts (inertia
+    [kg m^2], shaft0 the previous step's shaft speed [rad/s]; steady_level_outputs), the arithmetic of
     fidelity.MapLevel.query and SteadySession._evaluate.
 
     u: the inputs in cosim_spec.INPUT_NAMES order [SI]; i_speed, i_fx, i_fy, i_oring: their indices of shaft
@@ -184,8 +207,8 @@ def map_step(u, i_speed, i_fx, i_fy, i_oring, zero_in, rotate, rpm, qkind, qidx,
     d, fl = interp_multilinear(axes, ptr, strides, values, speed_scaled, flags, x, idx, w, ss)
     if d >= 0:
         return 1
-    wc = steady_level_outputs(ss, src, rot, cs, sn, wc0, h, ss[i_tau], u[i_speed], temps, csr_min, skid_tol,
-                              skid_min, ib, out)
+    wc = steady_level_outputs(ss, src, rot, cs, sn, wc0, h, ss[i_tau], u[i_speed], temps, inertia, shaft0,
+                              csr_min, skid_tol, skid_min, ib, out)
     if not math.isfinite(wc):
         return 1
     res[0] = wc
