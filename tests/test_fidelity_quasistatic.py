@@ -87,6 +87,35 @@ def test_outputs_are_the_library_solution_through_the_session_output_path(oil_se
     assert oil_session.steady.level.inertia == pytest.approx(closed, rel=0.03)
 
 
+def test_one_call_step_equals_the_checked_path():
+    """The one-call step (map_kernels.quasistatic_step, taken inside the trust region of the last solution with
+    the loads the session's checks passed) gives the outputs of the checked Python path: a 4000 rpm/s ramp, a load
+    change (which the one-call step leaves to the checked path) and held inputs, every output within 1e-12; a
+    step beyond the static limit is refused on both alike."""
+    a = CoSimSession(CoSimParameters(**OIL))
+    b = CoSimSession(CoSimParameters(**OIL))
+    b.steady._fast = None
+    fast = []
+    orig = a.steady._fast
+
+    def counted(*args):
+        r = orig(*args)
+        fast.append(r == 0)
+        return r
+    a.steady._fast = counted
+    for s in (a, b):
+        s.initialize(0.0, inputs(3000.0))
+    for k in range(60):
+        u = inputs(3000.0 + 4.0 * (k + 1), fx=1000.0 if k < 30 else 1100.0)
+        a.step(k * 1e-3, 1e-3, u)
+        b.step(k * 1e-3, 1e-3, u)
+        np.testing.assert_allclose(a.values, b.values, rtol=1e-12, atol=1e-300)
+    assert 30 <= sum(fast) < 60      # most steps on the one-call path, the load change and re-solves not
+    for s in (a, b):
+        with pytest.raises(StepRejected, match="static limit"):
+            s.step(0.06, 1e-3, inputs(3240.0, fz=1e7))
+
+
 @needs_solves
 def test_follows_a_speed_ramp_like_cold_solves(oil_session):
     """3000 -> 3400 rpm in 0.1 s at 1 ms steps (4000 rpm/s): fewer re-solves than steps, no step in the torque

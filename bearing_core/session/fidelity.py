@@ -441,6 +441,28 @@ class QuasiStaticLevel:
         self.inertia = 0.0                         # 2 KE / wc^2 of the last solution [kg m^2]
         self._flags0 = 0
         self._last = None                          # (x, ss, flags) of the last query point
+        # the one-call step (map_kernels.quasistatic_step) inside the trust region of the last solution: its
+        # arrays, updated in place at each solution (_sync_kernel) and where the load checks pass (query)
+        from . import map_kernels as MK
+        n_out = len(QS_NAMES)
+        ix_in = {n: i for i, n in enumerate(INPUT_NAMES)}
+        ring_names = ("dx", "dy", "dz", "tx", "ty") if self.disp else ("Fx", "Fy", "Fz", "Mx", "My")
+        self._k_ring_ok = np.full(5, np.nan)
+        self._k_p0 = np.zeros(7)
+        self._k_y0 = np.zeros(n_out)
+        self._k_S = np.zeros((n_out, 7))
+        self._k_tol = np.full(7, np.inf)
+        self._k_sc = np.zeros(8)        # radius, imbalance, its allowed change, shaft speed, tau, p limit, slip, valid
+        self.x_fast = np.zeros(7)
+        self.step_kernel = MK.quasistatic_step
+        self.step_args = (ix_in["shaft_speed"], ix_in["outer_ring_speed"],
+                          np.array([ix_in[n] for n in ring_names], dtype=np.int64), self._k_ring_ok,
+                          0 if self.disp else 1, float(self.MIN_SPEED), 2.0e4, self.T_oil,
+                          self._k_p0, self._k_y0, self._k_S, self._k_tol, self._k_sc,
+                          QS_NAMES.index("P_drive"), QS_NAMES.index("heat"), self._pred, self._ss0,
+                          self._speed_scaled, self._race_split, np.array(self._i_race, dtype=np.int64),
+                          self._i_torque, self._i_torque_outer, self._i_pmax, self._i_cage, self._i_pure,
+                          self.x_fast, np.zeros(n_out))
 
     def query(self, u: dict):
         """(x, 1, 0): x = (shaft speed, Fx, Fy, Fz, Mx, My or dx, dy, dz, tx, ty, oil temperature) [rad/s, N,
@@ -459,12 +481,14 @@ class QuasiStaticLevel:
             ring = [u[k] for k in ("dx", "dy", "dz", "tx", "ty")]
         else:
             ring = [u[k] for k in ("Fx", "Fy", "Fz", "Mx", "My")]
+        self._k_ring_ok[:] = ring          # the load checks passed at these (the one-call step's condition)
         return np.array([w, *ring, self.T_oil]), 1.0, 0.0
 
     def restart(self):
         """The next point starts the inputs afresh (SteadySession.initialize): solved with its derivatives."""
         self.tracker.restart()
         self._last = None
+        self._k_sc[7] = 0.0
 
     def steady_into(self, x, ss) -> int:
         """The steady values at x into ss (one per name); returns FLAG_GROSS_SKID where the cage skids grossly.
@@ -477,6 +501,7 @@ class QuasiStaticLevel:
         res = self.tracker.res
         if solved:
             self._evaluate_solution(res)
+            self._sync_kernel(res)
         ss[:] = self._ss0
         if not solved:
             o0 = self._out0
@@ -525,6 +550,15 @@ class QuasiStaticLevel:
         wc = res.cage_speed
         ke = res.diag[K.OUT_INDEX["KE"]]
         self.inertia = 2.0 * ke / (wc * wc) if wc != 0.0 and math.isfinite(ke) else 0.0
+
+    def _sync_kernel(self, res):
+        """The one-call step's copy of the tracker's state at a new solution."""
+        tr = self.tracker
+        self._k_p0[:] = res.inputs()
+        self._k_y0[:] = res.outputs
+        self._k_S[:] = res.sensitivity
+        self._k_tol[:] = tr._tol
+        self._k_sc[:] = (tr.radius, tr._imb0, tr.balance_rel, self._w0, res.tau_cage, P_LIMIT, GROSS_SKID_SLIP, 1.0)
 
     def point_text(self, x) -> str:
         x = np.asarray(x, dtype=float)

@@ -214,3 +214,93 @@ def map_step(u, i_speed, i_fx, i_fy, i_oring, zero_in, rotate, rpm, qkind, qidx,
     res[0] = wc
     res[1] = fl
     return 0
+
+
+@_exact
+def quasistatic_step(u, i_speed, i_oring, ring_idx, ring_ok, check_ring, w_lo, w_hi, t_oil, p0, y0, sens, tol, sc,
+                     i_power, i_heat, pred, ss0, speed_scaled, race_split, i_race, i_torque, i_torque_outer, i_pmax,
+                     i_cage, i_pure, x, y, ss, i_tau, src, rot, wc0, h, temps, inertia, shaft0, csr_min, skid_tol,
+                     skid_min, ib, out, res):
+    """One communication point of the quasi-static level in one call where its inputs stay inside the trust
+    region of its last solution: the arithmetic of fidelity.QuasiStaticLevel.query and steady_into on the
+    tracker's first-order update (models.quasistatic_cage.QuasiStaticTracker.at) and of steady_level_outputs.
+
+    u: the inputs in cosim_spec.INPUT_NAMES order [SI]; i_speed, i_oring: shaft and outer-ring speed; ring_idx:
+    the 5 ring inputs (Fx..My, or dx..ty in displacement coupling); check_ring 1: they must equal ring_ok, the
+    values the session's load checks last passed (the checks themselves run on the Python path); shaft speed
+    within [w_lo, w_hi] [rad/s]; t_oil [K]. The last solution: inputs p0 (7), outputs y0, d outputs / d inputs
+    sens, per-input trust scales tol (inf: none), sc = (trust radius, its energy imbalance, the allowed change
+    of it, its shaft speed, cage time constant [s], contact pressure limit [Pa], gross-skid slip, 1 if valid);
+    i_power, i_heat: drive power and heat in the outputs. The level's steady values at the solution ss0 and
+    their update: pred (pairs: index in ss, index in y), speed_scaled (scale with the shaft speed),
+    race_split (scale with the race losses i_race), i_torque_outer (scales with i_torque); i_pmax, i_cage,
+    i_pure. Writes x (7, the query point) and y (the updated outputs). Returns 0 with res = (cage speed at the
+    end of the step [rad/s], validity flags) and the outputs in out; 1 (nothing to use) where anything needs
+    the Python path: an input not finite or out of range, ring inputs not yet checked, a point outside the
+    trust region or one whose update breaks the energy balance (a re-solve), a contact pressure above the
+    limit."""
+    if sc[7] == 0.0:
+        return 1
+    for i in range(u.shape[0]):
+        if not math.isfinite(u[i]):
+            return 1
+    if u[i_oring] != 0.0:
+        return 1
+    w = u[i_speed]
+    if not (w_lo <= w and w <= w_hi):
+        return 1
+    x[0] = w
+    for k in range(5):
+        v = u[ring_idx[k]]
+        if check_ring != 0 and v != ring_ok[k]:
+            return 1
+        x[1 + k] = v
+    x[6] = t_oil
+    d = 0.0
+    for j in range(7):
+        if math.isfinite(tol[j]):
+            dn = abs(x[j] - p0[j]) / tol[j]
+            if dn > d:
+                d = dn
+    if not d <= sc[0]:
+        return 1
+    ny = y0.shape[0]
+    for i in range(ny):
+        acc = y0[i]
+        for j in range(7):
+            acc += sens[i, j] * (x[j] - p0[j])
+        y[i] = acc
+    pd = y[i_power]
+    hb = y[i_heat]
+    m = max(abs(pd), abs(hb), 1e-9)
+    if not abs((pd - hb) / m - sc[1]) <= sc[2]:
+        return 1
+    for i in range(ss0.shape[0]):
+        ss[i] = ss0[i]
+    for r in range(pred.shape[0]):
+        ss[pred[r, 0]] = ss0[pred[r, 0]] + (y[pred[r, 1]] - y0[pred[r, 1]])
+    f = x[0] / sc[3]
+    for k in range(speed_scaled.shape[0]):
+        ss[speed_scaled[k]] = ss0[speed_scaled[k]] * f
+    r0 = ss0[i_race[0]] + ss0[i_race[1]]
+    if r0 > 0.0:
+        fr = (ss[i_race[0]] + ss[i_race[1]]) / r0
+        for k in range(race_split.shape[0]):
+            ss[race_split[k]] = ss0[race_split[k]] * fr
+    if ss0[i_torque] != 0.0:
+        ss[i_torque_outer] = ss0[i_torque_outer] * ss[i_torque] / ss0[i_torque]
+    if not ss[i_pmax] <= sc[5]:
+        return 1
+    tau = sc[4]
+    ss[i_tau] = tau if math.isfinite(tau) and tau > 0.0 else 0.0
+    pure = ss[i_pure]
+    fl = 0
+    if pure > 0.0 and 1.0 - ss[i_cage] / pure > sc[6]:
+        fl = 1
+    wc = steady_level_outputs(ss, src, rot, 1.0, 0.0, wc0, h, ss[i_tau], w, temps, inertia, shaft0, csr_min,
+                              skid_tol, skid_min, ib, out)
+    if not math.isfinite(wc):
+        return 1
+    res[0] = wc
+    res[1] = fl
+    return 0
