@@ -225,6 +225,7 @@ class QuasiStaticCageModel:
         self.opt.validate()
         self._setups = {}
         self._lu_last: _LU | None = None
+        self._dplace = np.full((geometry.Z, 2), np.nan)   # pocket offsets of the last evaluation (_evaluate)
 
     # ---- parameters -------------------------------------------------------------------------------
     def _setup(self, omega: float, T_oil: float):
@@ -684,8 +685,11 @@ class QuasiStaticCageModel:
         share = np.empty((Z, NG))
         R = np.empty(v.size)
         iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
+        # the last evaluation's pocket offsets start this one's root searches (cage_scaled_residual)
+        if self._dplace.shape[0] != Z:
+            self._dplace = np.full((Z, 2), np.nan)
         r = CK.cage_scaled_residual(0.0, y0, v, xs_l, xs_g, act, iF, iM, P, U, *tabs, xl, xg, yy, dy, diag, bd, Rl,
-                                    Rg, share, R, self.lam)
+                                    Rg, share, R, self.lam, self._dplace)
         return r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R
 
     def _result(self, omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity):

@@ -374,19 +374,22 @@ def cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, 
 
 @hot
 def cage_scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                         xl, xg, yy, dy, diag, bd, Rl, Rg, share, R, lam):
+                         xl, xg, yy, dy, diag, bd, Rl, Rg, share, R, lam, dplace):
     """R = residual vector (balls then globals) at the scaled unknowns v (non-finite entries 1e12); (xl, xg)
-    and (Rl, Rg, share) receive the physical unknowns and the residual blocks. Returns max |R|."""
+    and (Rl, Rg, share) receive the physical unknowns and the residual blocks. Returns max |R|.
+
+    dplace (Z, 2): on entry the balls' pocket offsets of a nearby evaluation (NaN: none), the starts of
+    pocket_place's root search (the same root to its tolerance, in fewer evaluations: an iteration's points are
+    close); on return this evaluation's."""
     Z = xl.shape[0]
     for j in range(Z):
         for k in range(NL):
             xl[j, k] = v[j * NL + k] * xs_l[k]
     for k in range(NG):
         xg[k] = v[Z * NL + k] * xs_g[k]
-    dg = np.full((Z, 2), np.nan)
-    dpl = np.empty((Z, 2))
+    dg = dplace.copy()
     cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                  yy, dy, diag, bd, Rl, Rg, share, dg, dpl)
+                  yy, dy, diag, bd, Rl, Rg, share, dg, dplace)
     orbit_coupling(xl, xg, yy, P, U, Rl, lam)
     r = 0.0
     for j in range(Z):

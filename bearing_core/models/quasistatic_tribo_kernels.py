@@ -203,6 +203,8 @@ def _lu6(M, piv):
         if d == 0.0:
             return 0.0
         for i in range(c + 1, n):
+            if M[i, c] == 0.0:
+                continue       # a zero below the pivot (the block-sparse Jacobians): nothing to eliminate
             f = M[i, c] / d
             M[i, c] = f
             for k in range(c + 1, n):
