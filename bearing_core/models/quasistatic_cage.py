@@ -572,7 +572,7 @@ class QuasiStaticCageModel:
         return res
 
     def _jacobian(self, v, omega, P, U, act, tabs, xs_l, xs_g):
-        """Dense Jacobian of the scaled residual at v (quasistatic_cage_kernels.cage_jacobian, 17 rhs calls)."""
+        """Dense Jacobian of the scaled residual at v (quasistatic_cage_kernels.cage_jacobian: 16 rhs calls, counted as 17 in the budget)."""
         Z = self.g.Z
         n = v.size
         xl = (v[:Z * NL].reshape(Z, NL) * xs_l).copy()

@@ -14,8 +14,9 @@ Residual:   cage_residual       one call of the dynamics' right-hand side (dynam
                                 residual, the ring's 5 loads, the cage's torque and forces, each ball's
                                 share of them; orbit_coupling adds the terms that tie ball j to ball j - 1
                                 along the orbit (the motion periodic in the cage frame)
-Jacobian:   cage_jacobian       forward differences, ball columns coloured (no two neighbours along the
-                                orbit perturbed together), one call per global unknown; cage_dense
+Jacobian:   cage_jacobian       forward differences, one call per ball unknown (all balls at once: the
+                                rhs couples no two balls) with orbit_coupling's derivatives in closed
+                                form, one call per global unknown; cage_dense
                                 assembles the dense matrix; dense_solve its LU solve
 Scaled unknowns v = (xl / xs_l, xg / xs_g) flattened (ball-major); residuals are forces [N] (moments over
 D/2 or dm/2).
@@ -436,62 +437,86 @@ def _full_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
 
 
 @hot
-def ball_colour(j, Z):
-    """Colour of ball j for the coloured differences: neighbours along the orbit differ (0/1 alternating;
-    an odd number of balls gives the last one colour 2)."""
-    if Z % 2 == 1 and j == Z - 1:
-        return 2
-    return j % 2
-
-
-@hot
 def cage_jacobian(t, y0, xl, xg, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
                   qx, qwx, qy, qwy, yy, dy, diag, bd, A, B, C, Dg, E, lam):
-    """Jacobian at (xl, xg) by forward differences (steps: _steps). Ball columns: unknown k of every ball of
-    one colour (ball_colour: no two neighbours along the orbit) perturbed in ONE rhs call; a ball's rows
-    couple only to its own unknowns (A, Z x 7 x 7), to those of the ball before it along the orbit (E, Z x
-    7 x 7, through orbit_coupling) and to the globals; the globals' rows to each ball through its share (C,
-    Z x 8 x 7). Global columns: one call each (B, Z x 7 x 8; Dg, 8 x 8, -1 on the diagonal of inactive
-    unknowns). 7 x (2 or 3) + 8 + 1 rhs calls."""
+    """Jacobian at (xl, xg) by forward differences (steps: _steps), 7 + 8 + 1 rhs calls.
+
+    Ball columns: with the globals held, the right-hand side couples no two balls (a ball's forces depend on
+    its own unknowns, the ring pose and the cage's), so unknown k of ALL balls is perturbed in one call; that
+    gives each ball's derivatives of its own residuals before orbit_coupling (Araw, Z x 7 x 7), of its share
+    of the global residuals (C, Z x 8 x 7) and of its pocket offset dth. orbit_coupling is linear in those
+    (and bilinear in r and theta_dot), so its derivatives follow in closed form: A (Z x 7 x 7), a ball's rows
+    against its own unknowns, and E (Z x 7 x 7), against those of the ball before it along the orbit.
+    Global columns: one call each (B, Z x 7 x 8; Dg, 8 x 8, -1 on the diagonal of inactive unknowns)."""
     Z = xl.shape[0]
-    Rl = np.empty((Z, NL))
-    Rg = np.empty(NG)
+    Rl0 = np.empty((Z, NL))
+    Rg0 = np.empty(NG)
     share = np.empty((Z, NG))
     dbase = np.empty((Z, 2))            # the balls' places at the base point: the starts of the perturbed ones
     dpl = np.empty((Z, 2))
-    _full_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy, diag, bd,
-                   Rl, Rg, share, lam, np.full((Z, 2), np.nan), dbase)
+    cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
+                  yy, dy, diag, bd, Rl0, Rg0, share, np.full((Z, 2), np.nan), dbase)
+    dth0 = np.empty(Z)
+    pocket_offsets(yy, Z, dth0)
+    Rl = Rl0.copy()                     # the full residual at the base point, for the global columns
+    orbit_coupling(xl, xg, yy, P, U, Rl, lam)
     xp = xl.copy()
     gp = xg.copy()
     Rl2 = np.empty((Z, NL))
     Rg2 = np.empty(NG)
     sh2 = np.empty((Z, NG))
+    dth2 = np.empty(Z)
     hl = np.empty((Z, NL))
     hg = np.empty(NG)
     _steps(xl, xg, omega, hl, hg)
-    ncol = 3 if Z % 2 == 1 else 2
-    for j in range(Z):
-        for a in range(NL):
-            for b in range(NL):
-                E[j, a, b] = 0.0
+    Araw = np.empty((Z, NL, NL))
+    ddth = np.empty((Z, NL))
     for k in range(NL):
-        for col in range(ncol):
-            for j in range(Z):
-                if ball_colour(j, Z) == col:
-                    xp[j, k] = xl[j, k] + hl[j, k]
-            _full_residual(t, y0, xp, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy,
-                           diag, bd, Rl2, Rg2, sh2, lam, dbase, dpl)
-            for j in range(Z):
-                if ball_colour(j, Z) != col:
-                    continue
-                xp[j, k] = xl[j, k]
-                h = hl[j, k]
-                n = j + 1 if j < Z - 1 else 0           # the ball after j along the orbit
-                for i in range(NL):
-                    A[j, i, k] = (Rl2[j, i] - Rl[j, i]) / h
-                    E[n, i, k] = (Rl2[n, i] - Rl[n, i]) / h
-                for i in range(NG):
-                    C[j, i, k] = (sh2[j, i] - share[j, i]) / h if act[i] else 0.0
+        for j in range(Z):
+            xp[j, k] = xl[j, k] + hl[j, k]
+        cage_residual(t, y0, xp, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
+                      yy, dy, diag, bd, Rl2, Rg2, sh2, dbase, dpl)
+        pocket_offsets(yy, Z, dth2)
+        for j in range(Z):
+            xp[j, k] = xl[j, k]
+            h = hl[j, k]
+            for i in range(NL):
+                Araw[j, i, k] = (Rl2[j, i] - Rl0[j, i]) / h
+            ddth[j, k] = (dth2[j] - dth0[j]) / h
+            for i in range(NG):
+                C[j, i, k] = (sh2[j, i] - share[j, i]) / h if act[i] else 0.0
+    # orbit_coupling's derivatives: F_t row -c5 r_j (thd_j - thd_i), kinematic row -c6 (dth_j - dth_i),
+    # moment rows (1 - lam/2) M_j + (lam/2) M_i - cm (Omega_j - Omega_i), i the ball before j
+    dpsi = 2.0 * math.pi / Z
+    wc = xg[G_WC]
+    c5 = lam * P[K.P_MB] * wc / dpsi
+    c6 = lam * kin_scale(P, U) * wc / dpsi
+    cm = lam * P[K.P_JB] * wc / (dpsi * 0.5 * P[K.P_D])
+    for j in range(Z):
+        i = j - 1 if j > 0 else Z - 1
+        n = j + 1 if j < Z - 1 else 0
+        for m in range(NL):
+            A[j, 0, m] = Araw[j, 0, m]
+            A[j, 1, m] = Araw[j, 1, m]
+            for q in range(3):
+                A[j, 2 + q, m] = (1.0 - 0.5 * lam) * Araw[j, 2 + q, m]
+            A[j, 5, m] = Araw[j, 5, m]
+            A[j, 6, m] = Araw[j, 6, m] - c6 * ddth[j, m]
+        A[j, 5, 0] -= c5 * (xl[j, 6] - xl[i, 6])
+        A[j, 5, 6] -= c5 * xl[j, 0]
+        for q in range(3):
+            A[j, 2 + q, 2 + q] -= cm
+        # ball n's rows against ball j's unknowns (j is the ball before n)
+        for a in range(NL):
+            for m in range(NL):
+                E[n, a, m] = 0.0
+        for m in range(NL):
+            for q in range(3):
+                E[n, 2 + q, m] = 0.5 * lam * Araw[j, 2 + q, m]
+            E[n, 6, m] = c6 * ddth[j, m]
+        E[n, 5, 6] = c5 * xl[n, 0]
+        for q in range(3):
+            E[n, 2 + q, 2 + q] += cm
     for k in range(NG):
         if act[k]:
             gp[k] = xg[k] + hg[k]
@@ -502,7 +527,7 @@ def cage_jacobian(t, y0, xl, xg, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, td
                 for i in range(NL):
                     B[j, i, k] = (Rl2[j, i] - Rl[j, i]) / hg[k]
             for i in range(NG):
-                Dg[i, k] = (Rg2[i] - Rg[i]) / hg[k] if act[i] else 0.0
+                Dg[i, k] = (Rg2[i] - Rg0[i]) / hg[k] if act[i] else 0.0
         else:
             for j in range(Z):
                 for i in range(NL):
