@@ -270,3 +270,55 @@ def test_fmu_at_fidelity_quasi_static_through_fmpy(fmu, tmp_path):
     assert rows[13]["status"] != 0 and "10 rad/s <= value <= 20000 rad/s at fidelity 'quasi-static'" in res["log"]
     assert rows[14]["status"] == 0
 
+
+
+PLACEMENT = r"""
+import ctypes, json, math, os, sys
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+path = sys.argv[1]
+md = read_model_description(path)
+vr = {v.name: v.valueReference for v in md.modelVariables}
+f = FMU2Slave(guid=md.guid, unzipDirectory=extract(path), modelIdentifier=md.coSimulation.modelIdentifier,
+              instanceName="placement")
+f.instantiate()
+f.setupExperiment(startTime=0.0)
+f.setString([vr["fidelity"]], ["quasi-static"])
+f.enterInitializationMode()
+f.setReal([vr["shaft_speed"], vr["Fx"], vr["Fz"]], [3000.0 * math.pi / 30.0, 1000.0, 3000.0])
+f.exitInitializationMode()
+for k in range(20):
+    f.doStep(k * 1e-3, 1e-3)
+me = os.getpid()
+mp = int(open(f"/proc/{me}/task/{me}/children").read().split()[-1])
+allowed = sorted(os.sched_getaffinity(mp))
+cpu = ctypes.CDLL(None).sched_getcpu()
+os.sched_setaffinity(0, {cpu})        # the master stays on its processor
+os.sched_setaffinity(mp, {cpu})       # and the model process is put beside it
+shared = 0
+for k in range(20, 220):
+    f.doStep(k * 1e-3, 1e-3)
+    shared += int(open(f"/proc/{mp}/stat").read().rsplit(")", 1)[1].split()[36]) == cpu
+after = sorted(os.sched_getaffinity(mp))
+f.terminate()
+f.freeInstance()
+print("RESULT", json.dumps({"shared": shared, "allowed": allowed, "after": after}))
+"""
+
+
+@pytest.mark.skipif(len(os.sched_getaffinity(0)) < 2, reason="needs two processors")
+def test_model_process_leaves_the_processor_of_a_master_spinning_through_short_steps(fmu):
+    """A steady level's steps take the model process tens of microseconds and the master spins through them;
+    sharing one processor they would take turns by time slices. With the master held on its processor and
+    the model process put on the same one, the model process moves away at the next short step and gives the
+    scheduler back every processor it had: at most 20 of 200 steps find the two together (all 200 if it
+    stayed)."""
+    import json
+    import subprocess
+    import sys
+    r = subprocess.run([sys.executable, "-c", PLACEMENT, fmu["path"]], capture_output=True, text=True,
+                       env=dict(os.environ, BEARING_FMU_CACHE=fmu["cache"]), timeout=600)
+    assert r.returncode == 0, r.stderr[-2000:]
+    res = json.loads(r.stdout.split("RESULT", 1)[1])
+    assert res["after"] == res["allowed"] and len(res["allowed"]) >= 2
+    assert res["shared"] <= 20, res

@@ -67,6 +67,8 @@ extern char **environ;
 #define O_BUSY 56
 #define O_PID 64
 #define O_PROG 72  /* u32: byte offset of the model's live integration time (double), 0: none */
+#define O_MCPU 76  /* i32: the processor the master sent the last request from (sched_getcpu), -1: unknown */
+#define O_WCPU 80  /* i32: the processor the model process sent its last answer from, -1: unknown */
 #define F_SNAPSHOT 1u
 
 enum { C_HELLO = 1, C_DEBUG, C_SETUP, C_ENTER, C_EXIT, C_STEP, C_TERMINATE, C_RESET, C_FREE, C_GET, C_SET,
@@ -103,6 +105,8 @@ typedef struct {
     unsigned long n_wait[4]; /* step answers seen by: the first spin, a predicted spin, the futex (asleep),
                                 a spin through the step */
     int last_wait;           /* which of them saw the last answer */
+    int mcpu;                /* the processor the last request was sent from (-1: unknown) */
+    unsigned long n_shared;  /* requests sent from the processor the model process last answered from */
     unsigned long ex_hist[4][5]; /* exchange time (request to answer seen, less the model's busy time) per kind,
                                     in bins < 10, < 20, < 40, < 80, >= 80 us (BEARING_FMU_WAIT_STATS) */
     int wait_mode;           /* WAIT_AUTO, WAIT_SLEEP, WAIT_SPIN (BEARING_FMU_WAIT) */
@@ -407,17 +411,26 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
      * waking a sleeping thread costs the waker tens of microseconds too (an inter-processor interrupt, a VM
      * exit on a virtual machine), the model process's delay in seeing the next request. */
     double spin = SPIN_SHORT;
-    int long_spin = h > 0 && c->step_expect > 0 && c->step_expect < SPIN_SHORT_STEP &&
+    /* A short step whose model process answered last from the processor this request is sent from: a
+     * spinning master would hold the processor the model process needs (the scheduler's wake-up placement
+     * puts a woken thread beside its waker; the model process moves away on seeing this, model_process.py),
+     * so no spin: sleep. Long steps (the master sleeps through them anyway) keep the waits below. */
+    int32_t wcpu;
+    memcpy(&wcpu, c->shm + O_WCPU, 4);
+    int shared = h > 0 && c->step_expect > 0 && c->step_expect < SPIN_SHORT_STEP && c->mcpu >= 0 &&
+                 wcpu == c->mcpu;
+    int long_spin = !shared && h > 0 && c->step_expect > 0 && c->step_expect < SPIN_SHORT_STEP &&
                     (c->short_score > 0.3 || (c->seq & 15u) == 0);
     if (long_spin) spin = 2.0 * c->step_expect + 100e-6;
-    int hit = spin_until(resp, c->seq, t0 + spin);
+    int hit = shared ? __atomic_load_n(resp, __ATOMIC_ACQUIRE) == c->seq : spin_until(resp, c->seq, t0 + spin);
     if (long_spin) c->short_score = 0.9 * c->short_score + (hit ? 0.1 : 0.0);
     if (hit) {
         if (h > 0) c->n_wait[0]++;
         c->last_wait = 0;
         return 0;
     }
-    if (h > 0 && c->step_expect < SPIN_THROUGH_STEP && spin_through(c)) {
+    if (shared) c->n_shared++;
+    if (!shared && h > 0 && c->step_expect < SPIN_THROUGH_STEP && spin_through(c)) {
         double lim = now() + (c->step_expect > 0 ? 2.0 * c->step_expect : 0.0) + SPIN_THROUGH_MAX;
         if (spin_step(c, resp, lim, prog0, h)) {
             c->n_wait[3]++;
@@ -427,7 +440,7 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
     }
     /* predicted spins only while they pay: on a machine with more runnable threads than cores the progress
      * is erratic and a spinning master takes a core from the model process; then every 16th step probes */
-    int spins = h > 0 && (c->spin_score > 0.3 || (c->seq & 15u) == 0) ? MAX_SPINS : 0;
+    int spins = !shared && h > 0 && (c->spin_score > 0.3 || (c->seq & 15u) == 0) ? MAX_SPINS : 0;
     for (;;) {
         uint32_t v = __atomic_load_n(resp, __ATOMIC_ACQUIRE);
         if (v == c->seq) return 0;
@@ -514,6 +527,9 @@ static fmi2Status exchange(Comp *c, uint32_t cmd, unsigned char *end, double tim
     memcpy(c->shm + O_REQLEN, &len, 8);
     memcpy(c->shm + O_CMD, &cmd, 4);
     double prog0 = cmd == C_STEP ? progress(c) : NAN;
+    c->mcpu = sched_getcpu();
+    int32_t mcpu = c->mcpu;
+    memcpy(c->shm + O_MCPU, &mcpu, 4);
     double t_send = now();
     __atomic_store_n(word(c, O_REQ), ++c->seq, __ATOMIC_RELEASE);
     futex_wake(word(c, O_REQ));
@@ -638,6 +654,9 @@ static int spawn_model(Comp *c, const char *res, char *err, size_t nerr) {
     uint32_t magic = SHM_MAGIC, ver = PROTOCOL;
     memcpy(c->shm + O_MAGIC, &magic, 4);
     memcpy(c->shm + O_VERSION, &ver, 4);
+    int32_t nocpu = -1;
+    memcpy(c->shm + O_MCPU, &nocpu, 4);
+    memcpy(c->shm + O_WCPU, &nocpu, 4);
 
     char launcher[4200], script[4200], fdarg[16], pidarg[32];
     snprintf(launcher, sizeof launcher, "%s/launch.sh", res);
@@ -763,6 +782,7 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
     c->magic = MODEL_MAGIC;
     c->spin_score = 1.0;
     c->short_score = 1.0;
+    c->mcpu = -1;
     c->tail = 100e-6;
     {
         const char *w = getenv("BEARING_FMU_WAIT");
@@ -808,7 +828,8 @@ FMI2_EXPORT void fmi2FreeInstance(fmi2Component comp) {
     if (getenv("BEARING_FMU_WAIT_STATS"))   /* how the master saw the step answers (bench/bench_fmu.py) */
     {
         fprintf(stderr, "BEARING_FMU_WAIT_STATS first_spin=%lu predicted_spin=%lu asleep=%lu spun_through=%lu "
-                "tail_us=%.1f\n", c->n_wait[0], c->n_wait[1], c->n_wait[2], c->n_wait[3], c->tail * 1e6);
+                "tail_us=%.1f same_processor=%lu\n", c->n_wait[0], c->n_wait[1], c->n_wait[2], c->n_wait[3],
+                c->tail * 1e6, c->n_shared);
         for (int k = 0; k < 4; k++)
             fprintf(stderr, "BEARING_FMU_EXCHANGE_HIST %d %lu %lu %lu %lu %lu\n", k, c->ex_hist[k][0],
                     c->ex_hist[k][1], c->ex_hist[k][2], c->ex_hist[k][3], c->ex_hist[k][4]);

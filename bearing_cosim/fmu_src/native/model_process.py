@@ -38,6 +38,7 @@ HDR = 4096                    # header bytes; requests at HDR, responses at HDR 
 # header fields (byte offsets)
 O_MAGIC, O_VERSION, O_REQ, O_RESP, O_CMD, O_STATUS, O_MODE, O_FLAGS = 0, 4, 8, 12, 16, 20, 24, 28
 O_REQLEN, O_RESPLEN, O_TIME, O_BUSY, O_PID, O_PROG = 32, 40, 48, 56, 64, 72
+O_MCPU, O_WCPU = 76, 80       # i32: the processors of the master's last request and of this process's answer
 Q_OFF = 1024                  # the dynamic model's time integrals (with its live integration time) in the header
 
 (C_HELLO, C_DEBUG, C_SETUP, C_ENTER, C_EXIT, C_STEP, C_TERMINATE, C_RESET, C_FREE, C_GET, C_SET, C_GETSTATE,
@@ -81,6 +82,31 @@ def _futex_wait(addr: int, expected: int, timeout_s: float):
 
 def _futex_wake(addr: int):
     _libc.syscall(_SYS_FUTEX, ctypes.c_void_p(addr), _FUTEX_WAKE, 0x7FFFFFFF, None, None, 0)
+
+
+# ---- processor placement ------------------------------------------------------------------------------
+_getcpu = getattr(_libc, "sched_getcpu", None)
+SHORT_STEP = 300e-6     # [s]
+
+
+def _cpu() -> int:
+    """The processor this thread runs on, -1 if unknown."""
+    return int(_getcpu()) if _getcpu is not None else -1
+
+
+def _leave_processor(cpu: int, allowed: set):
+    """Move this process off processor cpu, then give the scheduler all of allowed again (before a short step,
+    SHORT_STEP: the master spins through those, bearing_fmi2.c's SPIN_SHORT_STEP). The scheduler's
+    wake-up placement puts a woken thread on its waker's processor: after the master has slept through a long
+    step, master and model process can end up sharing one processor while another idles, and every short step
+    then costs a time slice (0.26-0.31 ms instead of 16 us per step measured on a 2-processor machine,
+    bench/fidelity_speed.py at the quasi-static level). The master does not spin while it sees this
+    (bearing_fmi2.c, await)."""
+    try:
+        os.sched_setaffinity(0, allowed - {cpu})
+        os.sched_setaffinity(0, allowed)
+    except OSError:
+        pass
 
 
 # ---- the model code ----------------------------------------------------------------------------------
@@ -520,6 +546,11 @@ def serve(res: Path, fd: int, master_pid: int):
         return 3
     struct.pack_into("<i", mm, O_PID, os.getpid())
     spin = float(os.environ.get("BEARING_FMU_SPIN_US", "200")) * 1e-6
+    try:
+        allowed = set(os.sched_getaffinity(0))
+    except OSError:
+        allowed = set()
+    step_busy = math.inf    # this process's time in the last step [s]
     cfg = json.loads((res / "model.json").read_text(encoding="utf-8"))
     model = None
     lock = CompileLock(None)
@@ -541,6 +572,10 @@ def serve(res: Path, fd: int, master_pid: int):
         last = words[O_REQ // 4]
         t0 = time.perf_counter()
         cmd = words[O_CMD // 4]
+        if cmd == C_STEP and step_busy < SHORT_STEP and len(allowed) > 1:
+            here = _cpu()
+            if here >= 0 and here == struct.unpack_from("<i", mm, O_MCPU)[0] and here in allowed:
+                _leave_processor(here, allowed)
         r = Reader(mm, req_off)
         w = Writer()
         status, flags = OK, 0
@@ -689,8 +724,9 @@ def serve(res: Path, fd: int, master_pid: int):
                 out_view = np.frombuffer(mm, dtype=np.float64, count=n, offset=resp_off + 16)
             out_view[:] = out
             logs = model.take_logs()
+            step_busy = time.perf_counter() - t0
             if profile is not None:
-                profile.record(time.perf_counter() - t0)
+                profile.record(step_busy)
             struct.pack_into("<II", mm, resp_off, n, 0)
             off = resp_off + 16 + 8 * n
             struct.pack_into("<I", mm, off, len(logs))
@@ -718,6 +754,7 @@ def _respond(mm, words, resp_off, resp_cap, status, mode, flags, t, t0, logs, w,
 
 def _finish(mm, words, status, mode, flags, t, t0, length, resp_addr, seq):
     struct.pack_into("<iII", mm, O_STATUS, status, mode, flags)
+    struct.pack_into("<i", mm, O_WCPU, _cpu())
     struct.pack_into("<Qdd", mm, O_RESPLEN, length, t, time.perf_counter() - t0)
     words[O_RESP // 4] = seq
     _futex_wake(resp_addr)
