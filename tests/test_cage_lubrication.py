@@ -204,12 +204,16 @@ def test_oil_regime_floods_the_land_with_the_oil_viscosity():
     assert s.P[K.P_ETA_LAND] == 0.0 and s.P[K.P_LUBE] == 0.0
 
 
-def test_power_balance_oil_regime_combined_load():
+@pytest.mark.parametrize("land_film,integrator", [("stationary", "rk4"), ("moving", "auto")])
+def test_power_balance_oil_regime_combined_load(land_film, integrator):
     """Conservation with the oil-lubricated cage (films, squeeze, EHL/boundary friction, flooded land):
     drive power + external-load power = dissipated power + d(kinetic + elastic energy)/dt over 0.02 s
-    windows within 1 % (7218B, 4000 rpm, Fx 1 kN, Fz 3 kN, RK4 at 1e-5 s, quasi-static start)."""
+    windows within 1 % (7218B, 4000 rpm, Fx 1 kN, Fz 3 kN, quasi-static start; RK4 at 1e-5 s, and the
+    production integrator with the moving centre's land film, whose squeeze damping is too stiff for that
+    fixed step where the cage runs close to its land)."""
     g = load_preset("7218B")
-    m = DynamicModel(g, DynamicsOptions(oil_temperature=323.15, integrator="rk4", reduced="full"))
+    m = DynamicModel(g, DynamicsOptions(oil_temperature=323.15, integrator=integrator, reduced="full",
+                                        land_film=land_film))
     m.initialize(4000 * RPM, (1000.0, 0.0, 3000.0, 0.0, 0.0))
     d = records_to_dict(m.advance(0.06, record_dt=2e-4))
     t = d["t"]

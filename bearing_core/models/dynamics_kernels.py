@@ -76,7 +76,10 @@ NSB = 9  # states per ball
  # gothic-arch (four-point-contact) grooves: offset e of the two curvature centres of the inner and the
  # outer groove from their groove mid-planes [m] (0: single-arc grooves, two-point contact)
  P_EI, P_EO,
- NPAR) = range(68)
+ # film of the flooded guiding land: 0 the film of a cage centre at rest (seed 001 Eq. 4), 1 with the whirl
+ # and squeeze terms of a moving centre (DynamicsOptions.land_film, _cage_flooded_land)
+ P_LANDFILM,
+ NPAR) = range(69)
 
 # ---- input vector indices (float64 array U, held over an advance call) --------------------------
 (U_W0, U_W1, U_T0, U_T1, U_FX, U_FY, U_FZ, U_MX, U_MY,
@@ -584,21 +587,39 @@ def _cage_flooded_land(eta, e, cl, xc, yc, vxc, vyc, wc, w, wo, P, FCx, FCy, FRx
     """Oil film of the flooded guiding land (viscosity eta > 0): film force and drag torque on the cage and
     the guiding ring, added to the land loss."""
     # oil-flooded guiding land: short journal bearing (seed 001 Eq. 4; Ocvirk, Hamrock 'Fundamentals of
-    # Fluid Film Lubrication' Ch. 12) and Petroff drag torque with eccentricity (seed 001 Eq. 5)
+    # Fluid Film Lubrication' Ch. 12) and Petroff drag torque with eccentricity (seed 001 Eq. 5).
+    # Seed 001's Eq. 4 is the film of a cage centre at rest (P_LANDFILM 0, 'stationary'). 'moving' (1) adds
+    # the Reynolds equation's dh/dt for a moving centre: the line of centres turning at phid replaces the sum
+    # of the surface speeds by (wg + wc - 2 phid), and the approach rate adds the squeeze film, both over
+    # the same half-Sommerfeld pi film (Childs, 'Turbomachinery Rotordynamics', 1993, Sec. 3.6; San Andres,
+    # 'Modern Lubrication Theory', short-length journal bearings). Without them the film drives any whirl of
+    # the cage forward, at any whirl speed
     cg = cl
     R = P[P_RLAND]
     B = P[P_WLAND]
     wg = w if P[P_GUIDE] > 0.5 else wo
     eps = min(e / cg, P[P_EPSMAX])
-    Us = R * (wg + wc)
     if e > 1e-15:
         ex = xc / e
         ey = yc / e
     else:
         ex = 1.0
         ey = 0.0
-    Fr_h = eta * abs(Us) * B ** 3 * eps * eps / (cg * cg * (1.0 - eps * eps) ** 2)
-    Ft_h = math.pi * eta * Us * B ** 3 * eps / (4.0 * cg * cg * (1.0 - eps * eps) ** 1.5)
+    if P[P_LANDFILM] > 0.5 and e > 1e-15:
+        phid = (ex * vyc - ey * vxc) / e             # whirl: turning rate of the line of centres [rad/s]
+        epsd = 0.0
+        if e / cg < P[P_EPSMAX]:
+            epsd = (ex * vxc + ey * vyc) / cg        # squeeze: d eps / dt [1/s] (none held at the film's limit)
+        Us = R * (wg + wc - 2.0 * phid)
+        q = 1.0 - eps * eps
+        Kf = eta * R * B ** 3 / (cg * cg)
+        sg = 1.0 if Us >= 0.0 else -1.0              # the pi film lies on the side the effective speed sets
+        Fr_h = Kf * (abs(Us) / R * eps * eps / q ** 2 + math.pi * (1.0 + 2.0 * eps * eps) * epsd / (2.0 * q ** 2.5))
+        Ft_h = Kf * (math.pi * Us / R * eps / (4.0 * q ** 1.5) + sg * 2.0 * eps * epsd / q ** 2)
+    else:
+        Us = R * (wg + wc)
+        Fr_h = eta * abs(Us) * B ** 3 * eps * eps / (cg * cg * (1.0 - eps * eps) ** 2)
+        Ft_h = math.pi * eta * Us * B ** 3 * eps / (4.0 * cg * cg * (1.0 - eps * eps) ** 1.5)
     fhx = -Fr_h * ex - Ft_h * ey
     fhy = -Fr_h * ey + Ft_h * ex
     FCx += fhx

@@ -29,6 +29,9 @@ METHOD_CODE = {"rk4": 0, "adaptive": 1, "implicit": 2, "adaptive-rk4": 3}
 ST_CUR, ST_C1, ST_C2, ST_AGE, ST_H1, ST_H2, ST_H3, NSTATS = 5, 6, 7, 8, 9, 10, 11, 12
 ST_H = {1: ST_H1, 2: ST_H2, 3: ST_H3}
 COUPLINGS = ("load", "displacement")
+#: film of the flooded guiding land (DynamicsOptions.land_film): the film of a cage centre at rest (seed 001 Eq. 4)
+#: or with the whirl and squeeze terms of a moving centre
+LAND_FILMS = ("stationary", "moving")
 START_MODELS = ("jones-harris", "tribological")
 
 
@@ -60,7 +63,11 @@ class DynamicsOptions:
     moments are then reactions (outputs Mx, My), not loads. outer_mount: 'fixed' or 'elastic' (outer
     ring on a radial housing spring housing_stiffness [N/m] with damping ratio housing_damping_ratio on the
     outer-ring mass). land_viscosity [Pa s]: > 0 makes the guiding land oil-flooded (short journal bearing
-    force and Petroff drag of seed 001 Eqs. 4-5 besides the contact penalty).
+    force and Petroff drag of seed 001 Eqs. 4-5 besides the contact penalty). land_film: 'stationary' (the film
+    force of seed 001 Eq. 4, that of a cage centre at rest) or 'moving' (with the whirl and squeeze terms of the
+    Reynolds equation for a moving centre: the film then opposes a cage whirl faster than half the sum of the
+    surface speeds and damps the cage's radial motion; stiff where the cage runs close to its land, so the
+    integration takes 1.4-2.7x the right-hand sides, docs/cage_whirl.md).
     churning: oil churning torques of seed 001 Eqs. 12-17 (bearing_core.lubrication.churning) on the cage and the inner
     ring, in the oil-air mixture of oil_fraction (ball drag is the existing Eq. 10 term). oil_supply: a
     bearing_core.lubrication.oil_supply.OilSupply; with oil_fraction 0 the mixture's oil fraction is its cavity
@@ -149,6 +156,7 @@ class DynamicsOptions:
     fits: object = None
     ring_growth: bool = False
     oil_supply: object = None
+    land_film: str = "stationary"
 
     @property
     def regime(self) -> str:
@@ -203,6 +211,8 @@ class DynamicsOptions:
         check_range("housing_stiffness", self.housing_stiffness, 1e4, 1e12, unit="N/m")
         check_range("housing_damping_ratio", self.housing_damping_ratio, 0.0, 2.0)
         check_range("land_viscosity", self.land_viscosity, 0.0, 10.0, unit="Pa s")
+        if self.land_film not in LAND_FILMS:
+            raise BearingInputError("land_film", self.land_film, " | ".join(LAND_FILMS))
         if self.reduced not in ("auto", "full", "axisymmetric"):
             raise BearingInputError("reduced", self.reduced, "auto | full | axisymmetric")
         get_lubricant(self.lubricant)
@@ -419,6 +429,7 @@ class DynamicSetup:
         P[K.P_CH] = (2.0 * o.housing_damping_ratio * math.sqrt(o.housing_stiffness * g.outer_ring_mass)
                      if o.outer_mount == "elastic" else 0.0)
         P[K.P_ETA_LAND] = o.land_viscosity
+        P[K.P_LANDFILM] = 1.0 if o.land_film == "moving" else 0.0
         P[K.P_WLAND] = g.cage.land_width
         from ..lubrication.churning import ChurningGeometry
         cg = ChurningGeometry.from_bearing(g)
