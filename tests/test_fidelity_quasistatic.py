@@ -171,6 +171,41 @@ def test_initialisation_does_not_depend_on_the_points_solved_before():
     np.testing.assert_allclose(a.values, b.values, rtol=1e-9, atol=1e-9)
 
 
+def _dynamic_whirl(u, t_end=0.3, since=0.2):
+    """Mean turning rate of the dynamic cage centre about the bearing axis over [since, t_end] s, over the
+    mean cage speed (1 ms samples of the state: centre y[12:14], its velocity y[14:16], cage speed y[11])."""
+    d = CoSimSession(CoSimParameters(**dict(OIL, fidelity="dynamic")))
+    d.initialize(0.0, u)
+    ph, wc = [], []
+    for k in range(int(round(t_end / 1e-3))):
+        d.step(k * 1e-3, 1e-3, u)
+        y = d.model.y
+        if (k + 1) * 1e-3 > since:
+            ph.append((y[12] * y[15] - y[13] * y[14]) / (y[12] ** 2 + y[13] ** 2))
+            wc.append(y[11])
+    return float(np.mean(ph) / np.mean(wc))
+
+
+def test_cage_instability_is_where_the_dynamic_cage_whirls():
+    """The level's cage-instability warning (linear stability of the cage centre at the steady state) against
+    the dynamic model's cage centre: 7218B at 4750 rpm, Fx 11 N, Fz 6725 N the centre's small motions grow, the
+    level warns, and the dynamic cage whirls at about its own speed; at 3090 rpm, Fx 900 N, Fz 7052 N they
+    decay, no warning, and the dynamic cage centre stands (mean turning rate below a tenth of the cage speed)."""
+    s = CoSimSession(CoSimParameters(**OIL))
+    for (rpm, fx, fz), unstable in (((4750.0, 11.0, 6725.0), True), ((3090.0, 900.0, 7052.0), False)):
+        u = inputs(rpm, fx=fx, fz=fz)
+        n = len(s.warnings)
+        s.initialize(0.0, u)
+        lvl = s.steady.level
+        whirl = _dynamic_whirl(u)
+        new = s.warnings[n:]
+        if unstable:
+            assert lvl.cage_growth > 0.0 and 0.5 < whirl < 1.5
+            assert len(new) == 1 and "cage instability" in new[0] and "4750 rpm" in new[0]
+        else:
+            assert lvl.cage_growth < 0.0 and abs(whirl) < 0.1 and not new
+
+
 @needs_solves
 def test_follows_a_speed_ramp_like_cold_solves(oil_session):
     """3000 -> 3400 rpm in 0.1 s at 1 ms steps (4000 rpm/s): fewer re-solves than steps, no step in the torque

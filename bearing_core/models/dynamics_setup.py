@@ -67,7 +67,7 @@ class DynamicsOptions:
     force of seed 001 Eq. 4, that of a cage centre at rest) or 'moving' (with the whirl and squeeze terms of the
     Reynolds equation for a moving centre: the film then opposes a cage whirl faster than half the sum of the
     surface speeds and damps the cage's radial motion; stiff where the cage runs close to its land, so the
-    integration takes 1.4-2.7x the right-hand sides, docs/cage_whirl.md).
+    integration takes 2.4x the right-hand sides on seed 000's profile, docs/tribology.md).
     churning: oil churning torques of seed 001 Eqs. 12-17 (bearing_core.lubrication.churning) on the cage and the inner
     ring, in the oil-air mixture of oil_fraction (ball drag is the existing Eq. 10 term). oil_supply: a
     bearing_core.lubrication.oil_supply.OilSupply; with oil_fraction 0 the mixture's oil fraction is its cavity

@@ -729,6 +729,37 @@ class QuasiStaticCageModel:
             self._sensitivity(res, v, s, P, U, act, tabs, xs_l, xs_g)
         return res
 
+    def cage_centre_stability(self, res: QuasiStaticCageResult) -> tuple[float, float]:
+        """Linear stability of the cage centre at the steady state res: the eigenvalues of its small motions
+        (position and velocity, 4 x 4; Lund's rotordynamic stability of a journal on its film, here the land
+        film and the pocket forces) with the balls, the rings and the cage's rotation held, from central
+        differences of the dynamics' right-hand side at the solution's state (8 calls). Returns (largest
+        growth rate [1/s], its frequency [rad/s]). A growth rate > 0: the centre's small motions grow and the
+        cage whirls in its clearance (cage instability), which a steady state does not represent."""
+        if not isinstance(res, QuasiStaticCageResult):
+            raise BearingInputError("res", type(res).__name__, "a QuasiStaticCageResult")
+        p0 = res.inputs()
+        _, P, U, act, tabs, xs_l, xs_g = self._problem(p0[0], p0[1:6], p0[6])
+        v = np.concatenate([(res.x[0] / xs_l).ravel(), res.x[1] / xs_g])
+        y = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)[3].copy()
+        A = np.zeros((4, 4))
+        A[0, 2] = A[1, 3] = 1.0
+        fp, fm = np.empty(y.size), np.empty(y.size)
+        diag, bd = np.zeros(K.NOUT), np.zeros((self.g.Z, K.NBD))
+        # cage centre x, y [m] and its velocity [m/s] (dynamics_kernels state layout: y[12:16])
+        for c, (i, h) in enumerate(((12, 1e-8), (13, 1e-8), (14, 1e-5), (15, 1e-5))):
+            yp = y.copy()
+            yp[i] += h
+            K.rhs(0.0, yp, fp, P, U, *tabs, diag, bd, False)
+            yp[i] = y[i] - h
+            K.rhs(0.0, yp, fm, P, U, *tabs, diag, bd, False)
+            A[2:, c] = (fp[14:16] - fm[14:16]) / (2.0 * h)
+        if not np.all(np.isfinite(A)):
+            return float("nan"), float("nan")
+        ev = np.linalg.eigvals(A)
+        k = int(np.argmax(ev.real))
+        return float(ev[k].real), float(abs(ev[k].imag))
+
     def _sensitivity(self, res, v, s, P, U, act, tabs, xs_l, xs_g, columns=None):
         """res.sensitivity (d outputs / d inputs) and res.tau_cage (module docstring) at the solution v."""
         g = self.g

@@ -136,6 +136,9 @@ class MapLevel:
     extrapolated: an input outside the map's grid is refused naming the input and the range."""
 
     name = "map"
+    #: the warning's words for each validity flag
+    FLAG_TEXT = {FLAG_GROSS_SKID: f"gross skidding (cage slip ratio > {GROSS_SKID_SLIP:g} at a neighbouring grid point)",
+                 FLAG_CAGE_UNSTEADY: "an unsteady cage (cage instability or whirl at a neighbouring grid point)"}
 
     def __init__(self, params, geometry=None, options=None, check_loads=None):
         path = params.map_file
@@ -371,6 +374,9 @@ class QuasiStaticLevel:
     ConvergenceError naming it (the FMU: fmi2Error with the message)."""
 
     name = "quasi-static"
+    FLAG_TEXT = {FLAG_GROSS_SKID: f"gross skidding (cage slip ratio > {GROSS_SKID_SLIP:g})",
+                 FLAG_CAGE_UNSTEADY: "cage instability (the cage centre's small motions about its steady position "
+                                     "grow: the cage whirls in its clearance)"}
     rotate = False
     MIN_SPEED = 10.0     # rad/s: the solver's lower bound of the shaft speed (QuasiStaticCageModel.solve)
     #: outputs of the solver's linear update (session name, solver output name)
@@ -452,7 +458,11 @@ class QuasiStaticLevel:
         self._k_y0 = np.zeros(n_out)
         self._k_S = np.zeros((n_out, 7))
         self._k_tol = np.full(7, np.inf)
-        self._k_sc = np.zeros(8)        # radius, imbalance, its allowed change, shaft speed, tau, p limit, slip, valid
+        self._k_sc = np.zeros(9)        # radius, imbalance, its allowed change, shaft speed, tau, p limit, slip, valid,
+        #                                 flags of the solution (FLAG_CAGE_UNSTEADY)
+        self._unstable = 0               # FLAG_CAGE_UNSTEADY where the last solution's cage centre is unstable
+        self.cage_growth = float("nan")  # its largest growth rate [1/s] (models.quasistatic_cage.cage_centre_stability)
+        self.cage_whirl_frequency = float("nan")   # and its frequency [rad/s]
         self.x_fast = np.zeros(7)
         self.step_kernel = MK.quasistatic_step
         self.step_args = (ix_in["shaft_speed"], ix_in["outer_ring_speed"],
@@ -526,6 +536,7 @@ class QuasiStaticLevel:
         ss[self.i_tau] = tau if math.isfinite(tau) and tau > 0.0 else 0.0
         pure = ss[self._i_pure]
         fl = FLAG_GROSS_SKID if pure > 0.0 and 1.0 - ss[self._i_cage] / pure > GROSS_SKID_SLIP else 0
+        fl |= self._unstable
         self._last = (np.array(x, dtype=float), ss.copy(), fl)
         return fl
 
@@ -550,6 +561,9 @@ class QuasiStaticLevel:
         wc = res.cage_speed
         ke = res.diag[K.OUT_INDEX["KE"]]
         self.inertia = 2.0 * ke / (wc * wc) if wc != 0.0 and math.isfinite(ke) else 0.0
+        # cage instability: the cage centre's small motions about the solution grow (the level warns there)
+        self.cage_growth, self.cage_whirl_frequency = self.model.cage_centre_stability(res)
+        self._unstable = FLAG_CAGE_UNSTEADY if self.cage_growth > 0.0 else 0
 
     def _sync_kernel(self, res):
         """The one-call step's copy of the tracker's state at a new solution."""
@@ -558,7 +572,8 @@ class QuasiStaticLevel:
         self._k_y0[:] = res.outputs
         self._k_S[:] = res.sensitivity
         self._k_tol[:] = tr._tol
-        self._k_sc[:] = (tr.radius, tr._imb0, tr.balance_rel, self._w0, res.tau_cage, P_LIMIT, GROSS_SKID_SLIP, 1.0)
+        self._k_sc[:] = (tr.radius, tr._imb0, tr.balance_rel, self._w0, res.tau_cage, P_LIMIT, GROSS_SKID_SLIP, 1.0,
+                         float(self._unstable))
 
     def point_text(self, x) -> str:
         x = np.asarray(x, dtype=float)
@@ -692,10 +707,10 @@ class SteadySession:
         """A warning when the operating point enters a cell with other validity flags (fl != 0)."""
         if fl and fl != self._flags:
             what = []
-            if fl & FLAG_GROSS_SKID:
-                what.append(f"gross skidding (cage slip ratio > {GROSS_SKID_SLIP:g} at a neighbouring grid point)")
-            if fl & FLAG_CAGE_UNSTEADY:
-                what.append("an unsteady cage (cage instability or whirl at a neighbouring grid point)")
+            texts = getattr(self.level, "FLAG_TEXT", MapLevel.FLAG_TEXT)
+            for bit in (FLAG_GROSS_SKID, FLAG_CAGE_UNSTEADY):
+                if fl & bit:
+                    what.append(texts[bit])
             self.warnings.append(f"t = {self.t + h:.6g} s: the operating point ({self.level.point_text(x)}) entered "
                                  f"a region of {' and '.join(what)}, where fidelity '{self.level.name}' is least "
                                  "accurate (docs/fidelity.md); use fidelity 'dynamic' for this operation")

@@ -230,7 +230,8 @@ def quasistatic_step(u, i_speed, i_oring, ring_idx, ring_ok, check_ring, w_lo, w
     values the session's load checks last passed (the checks themselves run on the Python path); shaft speed
     within [w_lo, w_hi] [rad/s]; t_oil [K]. The last solution: inputs p0 (7), outputs y0, d outputs / d inputs
     sens, per-input trust scales tol (inf: none), sc = (trust radius, its energy imbalance, the allowed change
-    of it, its shaft speed, cage time constant [s], contact pressure limit [Pa], gross-skid slip, 1 if valid);
+    of it, its shaft speed, cage time constant [s], contact pressure limit [Pa], gross-skid slip, 1 if valid, the
+    solution's validity flags);
     i_power, i_heat: drive power and heat in the outputs. The level's steady values at the solution ss0 and
     their update: pred (pairs: index in ss, index in y), speed_scaled (scale with the shaft speed),
     race_split (scale with the race losses i_race), i_torque_outer (scales with i_torque); i_pmax, i_cage,
@@ -294,9 +295,9 @@ def quasistatic_step(u, i_speed, i_oring, ring_idx, ring_ok, check_ring, w_lo, w
     tau = sc[4]
     ss[i_tau] = tau if math.isfinite(tau) and tau > 0.0 else 0.0
     pure = ss[i_pure]
-    fl = 0
+    fl = int(sc[8])                 # the solution's own flags (cage instability)
     if pure > 0.0 and 1.0 - ss[i_cage] / pure > sc[6]:
-        fl = 1
+        fl |= 1
     wc = steady_level_outputs(ss, src, rot, 1.0, 0.0, wc0, h, ss[i_tau], w, temps, inertia, shaft0, csr_min,
                               skid_tol, skid_min, ib, out)
     if not math.isfinite(wc):
