@@ -141,6 +141,7 @@ def accuracy(regimes, out_json=None):
                    dyn_steady=p["steady"])
         t0 = time.perf_counter()
         try:
+            m.forget()                  # each point solved cold on its own (no state from the point before)
             r = m.solve(w, loads)
         except Exception as e:   # noqa: BLE001 (reported per point)
             row.update(converged=False, error=str(e)[:300], cold_s=time.perf_counter() - t0)
@@ -218,6 +219,7 @@ def convergence(out_json=None):
         k2 = (key.split("|")[0], key.split("|")[1])
         if k2 not in models:
             models[k2] = QuasiStaticCageModel(g, opt)
+        models[k2].forget()             # each case solved cold on its own
         t0 = time.perf_counter()
         try:
             r = models[k2].solve(w, loads, sensitivity=False)

@@ -13,6 +13,7 @@ import pytest
 
 from bearing_core.errors import BearingInputError, ConvergenceError
 from bearing_core.session.cosim import CoSimParameters, CoSimSession, StepRejected
+from bearing_core.session.cosim_spec import INPUT_NAMES
 from test_fmu import fmu  # noqa: E402,F401  (session fixture: the FMU built once, its kernel cache shared)
 
 RPM = math.pi / 30.0
@@ -47,6 +48,26 @@ def test_inputs_the_level_cannot_take_are_refused_before_any_solve():
                      (inputs(3000.0, fz=1e7), r"loads = .*static limit of ball bearings")):
         with pytest.raises(BearingInputError, match=match):
             s.initialize(0.0, u)
+
+
+def test_a_dry_cage_takes_a_pure_axial_load_only():
+    """Solid- and dry-lubricated cages (Kalker or Coulomb traction): a radial load or a moment (load coupling), a
+    radial or tilt displacement (displacement coupling) is refused at initialisation, naming the input and the
+    allowed value, before any solve; an oil-lubricated cage takes them."""
+    for traction, lub in (("kalker", "solid"), ("coulomb", "dry")):
+        s = CoSimSession(CoSimParameters(**dict(OIL, traction_model=traction, lubrication=lub)))
+        for u, name in ((inputs(3000.0, fx=500.0), "Fx"), (inputs(3000.0, fx=0.0, Fy=-20.0), "Fy"),
+                        (inputs(3000.0, fx=0.0, My=1.0), "My")):
+            with pytest.raises(BearingInputError, match=rf"{name} = .*0 at fidelity 'quasi-static' with a solid- or "
+                                                        "dry-lubricated cage"):
+                s.initialize(0.0, u)
+        d = CoSimSession(CoSimParameters(**dict(OIL, traction_model=traction, lubrication=lub,
+                                                coupling="displacement")))
+        with pytest.raises(BearingInputError, match=r"dx = 1e-06.*0 at fidelity 'quasi-static'"):
+            d.initialize(0.0, {"shaft_speed": 3000 * RPM, "dx": 1e-6, "dz": 2e-5})
+    oil = CoSimSession(CoSimParameters(**OIL)).steady.level
+    x = oil.query(dict({k: 0.0 for k in INPUT_NAMES}, **inputs(3000.0, fx=500.0, My=1.0)))[0]
+    assert x[1] == 500.0 and x[5] == 1.0
 
 
 @pytest.fixture(scope="module")
