@@ -1045,6 +1045,10 @@ class QuasiStaticTracker:
         if e > self.refresh_error or self._since_refresh >= self.refresh_every:
             new.sensitivity = res.sensitivity.copy()
             self.model.update_sensitivity(new, columns=moved)
+            if not (math.isfinite(new.tau_cage) and new.tau_cage > 0.0):
+                # no restoring slope dT/dwc at this solution (every other equation in equilibrium): the lag
+                # keeps the last time constant rather than none
+                new.tau_cage = res.tau_cage
             self._since_refresh = 0
             self.refreshes += 1
         else:
