@@ -36,8 +36,8 @@ pure axial load from the free-ball tribological solution (quasistatic_tribo; els
 balls held at the cage's azimuth rate in the oil regime (orbit coupling 0), continuation in the other loads,
 then in the orbit coupling to 1 (and, with displacement coupling, in the ring pose); with an oil-lubricated
 cage, where that fails under a combined load, the same path from twice and four times the axial load (a light
-axial load alone skids grossly at high speed and has no steady state). A previous solution is a warm start. A point that does not converge raises ConvergenceError naming speed, loads or pose, and oil
-temperature. Tolerances: aim at tol, accept tol_accept (the contact laws' kinks leave a residual floor).
+axial load alone skids grossly at high speed and has no steady state). A previous solution is a warm start. A
+point that does not converge raises ConvergenceError naming speed, loads or pose, and oil temperature. Tolerances: aim at tol, accept tol_accept (the contact laws' kinks leave a residual floor).
 
 Sensitivity: central secants of the outputs over warm re-solves at the inputs +- a step on the scale of the
 re-solve tolerance (or, sensitivity_method 'implicit', dx/dp = -J^-1 dR/dp on the solution's Jacobian with
@@ -339,9 +339,8 @@ class QuasiStaticCageModel:
         every ball held at the cage's azimuth rate) from the free-ball tribological start (else Jones-Harris),
         continuation in the other loads to the operating point, then in the orbit coupling to 1; where that
         fails under a combined load with an oil-lubricated cage, the same from a heavier axial load
-        (axial_start_factors). With
-        displacement coupling the path runs under the loads the ring pose needs (Jones-Harris), and the
-        last step holds the pose. Returns the result or None (reasons appended to errors)."""
+        (axial_start_factors). With displacement coupling the path runs under the loads the ring pose needs
+        (Jones-Harris), and the last step holds the pose. Returns the result or None (reasons appended to errors)."""
         disp = self.opt.coupling == "displacement"
         loads = self._loads_of_pose(ring, omega) if disp else ring
         model = self if not disp else QuasiStaticCageModel(self.g, replace(self.opt, coupling="load"))
