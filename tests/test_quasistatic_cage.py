@@ -86,6 +86,27 @@ def test_sensitivity_and_time_constant(oil_3000):
     assert tol[0] > 0.0 and np.isfinite(tol[0])
 
 
+def test_accelerating_state_conserves_energy_and_lags(oil_3000):
+    """The accelerating quasi-steady state (every rotation with the cage growing at the relative rate acc, the
+    forces in equilibrium with the d'Alembert loads) at 7218B, 3000 rpm, Fx 1 kN, Fz 3 kN, speeding up and
+    slowing down: the drive power is the losses plus the rate of change of the kinetic energy of balls and cage,
+    2 KE acc (energy conservation, 1 % of the drive power), so the shaft torque rises by 2 KE acc / omega
+    (3 %); the cage lags its steady speed in a run-up and leads it in a coast-down, and the secant time constant
+    over that lag is positive and of the order of the linear one, I / (-dT/dwc), which sets the lag of small
+    accelerations."""
+    m, r = oil_3000
+    for acc in (1.0, -1.0, 3.0):
+        a = m.accelerating(r, acc)
+        assert a is not None and a.acceleration == acc
+        ke = a.diag[K.OUT_INDEX["KE"]]
+        assert abs(a.P_drive - a.heat["total"] - 2.0 * ke * acc) <= 1e-2 * a.P_drive
+        assert a.friction_torque - r.friction_torque == pytest.approx(2.0 * ke * acc / a.omega, rel=3e-2)
+        assert (r.cage_speed - a.cage_speed) * acc > 0.0
+        tau = m.secant_time_constant(r, a)
+        assert 0.5 * r.tau_cage < tau < 10.0 * r.tau_cage
+    assert m.acc == 0.0                     # the steady equations again after the accelerating solves
+
+
 def test_displacement_coupling_gives_the_pose_reaction(oil_3000, g):
     m, r = oil_3000
     md = QuasiStaticCageModel(g, DynamicsOptions(traction="lubricated", lubrication="oil", coupling="displacement"))

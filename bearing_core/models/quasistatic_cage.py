@@ -120,6 +120,8 @@ class QuasiStaticCageResult:
     residual: float                # max |residual| [N]
     iterations: int                # right-hand-side evaluations of the solve
     tau_cage: float                # time constant of the cage speed's first-order lag [s]
+    acceleration: float = 0.0      # relative acceleration dwc/dt / wc of every rotation [1/s] (0: steady;
+    #                                QuasiStaticCageModel.accelerating)
     sensitivity: np.ndarray = field(repr=False, default=None)   # d outputs / d inputs (len OUTPUT_NAMES x 7)
     input_names: tuple = INPUT_NAMES
     secant_inputs: tuple = ()      # inputs whose derivatives are secants over warm re-solves (contact-law kinks)
@@ -175,6 +177,13 @@ class QuasiStaticCageModel:
     #: share of the losses (7218B, oil, Fx 1 kN, Fz 3 kN); warm solves stalled on the floor were seen at 27-37 %
     power_balance_tol = 0.1
     power_balance_abs = 0.05
+    #: the energy balance an accelerating state (accelerating) is held to: drive power = losses + 2 KE acc
+    #: within this share. Its solves stall on the contact laws' residual floor more often than the steady
+    #: ones where the race traction saturates (7218B, Fx 1 kN, Fz 3 kN, 8400 rpm, acc 0.6-1 1/s: 0.2-0.5 N,
+    #: 8-10 % off the balance), and only its lag is used (the cage's time constant)
+    accelerating_balance_tol = 0.25
+    #: residual evaluations of one accelerating solve (a warm one takes 20-60 on seed 000's ramp)
+    accelerating_budget = 200
     _balance_guard = True
     #: the oil-lubricated pocket's contact dashpot (DynamicsOptions.pocket_damping_ratio) in the steady
     #: equations. Off: a linear (Kelvin-Voigt) dashpot switches on at first contact with a force step
@@ -201,6 +210,7 @@ class QuasiStaticCageModel:
     #: weight of the orbit coupling (quasistatic_cage_kernels.orbit_coupling): 1 the periodic motion, 0
     #: every ball held at the cage's azimuth rate
     lam = 1.0
+    acc = 0.0           # relative acceleration dwc/dt / wc of the solved state [1/s] (0: steady)
     #: orbit coupling along the load path (None: 0 with an oil-lubricated cage, whose pocket films give every
     #: ball a pocket force; 1 with a dry one, whose balls float in their clearance until the load grows)
     path_lam0 = None
@@ -333,6 +343,69 @@ class QuasiStaticCageModel:
         v = np.concatenate([(res.x[0] / xs_l).ravel(), res.x[1] / xs_g])
         self._sensitivity(res, v, s_, P, U, act, tabs, xs_l, xs_g, columns)
         return res
+
+    def accelerating(self, res: QuasiStaticCageResult, acc: float, start: QuasiStaticCageResult | None = None,
+                     max_halvings: int = 3):
+        """The accelerating quasi-steady state at res's inputs: the balls' orbit and rotation and the cage speed
+        growing at the relative rate acc = dwc/dt / wc [1/s] (a shaft speed ramp of rate acc x omega), with the
+        contact, traction and pocket forces in equilibrium with the inertia forces (d'Alembert;
+        quasistatic_cage_kernels.acceleration_loads). Where the traction's slope falls at larger slip, the cage
+        lags its steady speed by more than the linearisation tau x acc x wc predicts. Warm from start (an
+        accelerating state nearby) if given, else continued in acc from the steady state res in halves (at most
+        max_halvings failures). Returns the result (its cage speed the lagging one), or None where none is
+        found on res's branch (a cage/shaft speed ratio more than path_jump from res's)."""
+        acc = float(acc)
+        if acc == 0.0 or not math.isfinite(acc):
+            return None
+        p = res.inputs()
+        omega, ring, T_oil = float(p[0]), p[1:6], float(p[6])
+        ratio0 = res.cage_speed / res.omega
+
+        def attempt(a, st, J0):
+            self.acc = a
+            tol_b, budget = self.power_balance_tol, self.budget
+            self.power_balance_tol = self.accelerating_balance_tol
+            self.budget = self.accelerating_budget
+            try:
+                out = self._solve_from(omega, ring, T_oil, self._start("warm", st, omega, ring, T_oil), False,
+                                       J0=J0)
+            finally:
+                self.acc = 0.0
+                self.power_balance_tol, self.budget = tol_b, budget
+            if isinstance(out, QuasiStaticCageResult) and \
+                    abs(out.cage_speed / out.omega / ratio0 - 1.0) <= self.path_jump:
+                return out
+            return None
+
+        if start is not None and start.acceleration * acc > 0.0:
+            out = attempt(acc, start, start.jacobian)
+            if out is not None:
+                return out
+        cur, a_cur, path, failed = res, 0.0, [acc], 0
+        while path:
+            a = path[-1]
+            out = attempt(a, cur, cur.jacobian)
+            if out is not None:
+                cur, a_cur = out, a
+                path.pop()
+            else:
+                failed += 1
+                if failed > max_halvings:
+                    return None
+                path.append(0.5 * (a_cur + a))
+        return cur
+
+    def secant_time_constant(self, res: QuasiStaticCageResult, acc_state: QuasiStaticCageResult) -> float:
+        """Time constant [s] of the cage speed's first-order lag that reproduces the lag of the accelerating
+        state acc_state (accelerating) behind the steady state res in a ramp: tau = (wc_steady - wc_acc) /
+        (acc wc_acc), the secant of the cage's relaxation over the lag itself (a first-order lag in a ramp of
+        rate a trails by tau a). NaN where the lag does not have the sign of the acceleration."""
+        a = acc_state.acceleration
+        wc = acc_state.cage_speed
+        if a == 0.0 or wc == 0.0:
+            return float("nan")
+        tau = (res.cage_speed - wc) / (a * wc)
+        return float(tau) if tau > 0.0 and math.isfinite(tau) else float("nan")
 
     def _cold(self, omega, ring, T_oil, errors, lam0):
         """Solve without a previous solution (module docstring): the pure axial load at orbit coupling lam0 (0:
@@ -594,7 +667,12 @@ class QuasiStaticCageModel:
         # a steady state conserves energy: the shaft's drive power is the sum of the losses (the outer ring is
         # fixed and does no work). A point accepted on the residual floor whose moment equations are still off
         # breaks this balance although its forces balance
+        # (an accelerating state: plus the rate of change of the kinetic energy of balls and cage, 2 KE acc, KE
+        # growing with the square of the speeds)
         pd, hb = res.P_drive, res.heat["total"]
+        if self.acc != 0.0:
+            res.acceleration = float(self.acc)
+            hb += 2.0 * float(res.diag[K.OUT_INDEX["KE"]]) * self.acc
         if self._balance_guard and not abs(pd - hb) <= self.power_balance_tol * max(abs(pd), abs(hb)) + \
                 self.power_balance_abs:
             return (f"residual {r:.3g} N after {nfev} evaluations, but the drive power {pd:.5g} W does not match "
@@ -620,7 +698,7 @@ class QuasiStaticCageModel:
         Dg = np.empty((NG, NG))
         E = np.empty((Z, NL, NL))
         iF, iM = K.OUT_INDEX["Fx"], K.OUT_INDEX["Mx"]
-        CK.cage_jacobian(0.0, y0, xl, xg, act, omega, iF, iM, P, U, *tabs, yy, dy, diag, bd, A, B, C, Dg, E, self.lam)
+        CK.cage_jacobian(0.0, y0, xl, xg, act, omega, iF, iM, P, U, *tabs, yy, dy, diag, bd, A, B, C, Dg, E, self.lam, self.acc)
         J = np.empty((n, n))
         CK.cage_dense(A, B, C, Dg, E, xs_l, xs_g, J)
         return J
@@ -723,7 +801,7 @@ class QuasiStaticCageModel:
         if self._dplace.shape[0] != Z:
             self._dplace = np.full((Z, 2), np.nan)
         r = CK.cage_scaled_residual(0.0, y0, v, xs_l, xs_g, act, iF, iM, P, U, *tabs, xl, xg, yy, dy, diag, bd, Rl,
-                                    Rg, share, R, self.lam, self._dplace)
+                                    Rg, share, R, self.lam, self._dplace, self.acc)
         return r, xl, xg, yy, dy, diag, bd, Rl, Rg, share, R
 
     def _result(self, omega, ring, T_oil, v, nfev, s, P, U, act, tabs, xs_l, xs_g, sensitivity):
@@ -970,6 +1048,13 @@ class QuasiStaticTracker:
     radius_max = 64.0
     refresh_error = 10.0
     refresh_every = 8
+    #: relative shaft acceleration [1/s] from which a solution's cage lag is the secant over the accelerating
+    #: state's (_lag); below it the lag is a small fraction of the cage speed (the linear time constants are
+    #: 0.1-20 ms, so < 0.1 % at 0.05 1/s) and the linear time constant is used
+    accel_min = 0.05
+    #: and up to which (a faster change is a step of the input, whose accelerating state the traction cannot
+    #: hold: the linear time constant is used)
+    accel_max = 50.0
     max_bisect = 6
     #: a warm re-solve whose cage/shaft speed ratio moves by more than this from its start has left the branch
     #: it follows (the steady problem has several roots; docs/fidelity_quasistatic.md): the step is halved, as
@@ -996,6 +1081,9 @@ class QuasiStaticTracker:
         self._imb0 = 0.0
         self._nforce = len(self.FORCE_KEYS)
         self._fresh = True
+        self._tau_lin = float("nan")     # the cage lag's linear time constant (last fresh derivatives) [s]
+        self._acc_res = None             # the last accelerating state (_lag)
+        self.secant_lags = 0             # solutions whose lag is the accelerating state's secant
 
     def restart(self):
         """The next point is solved cold, with its full derivatives: a new start of the inputs rather than a
@@ -1013,9 +1101,10 @@ class QuasiStaticTracker:
             return dict(displacement=ring)
         return dict(loads=ring)
 
-    def at(self, p) -> tuple[np.ndarray, bool]:
+    def at(self, p, rate: float = 0.0) -> tuple[np.ndarray, bool]:
         """(outputs in OUTPUT_NAMES order, True if this call solved) at inputs p = (omega, 5 loads or pose
-        values, T_oil) [rad/s, N, N m or m, rad, K]. Raises ConvergenceError naming the point if no solution is
+        values, T_oil) [rad/s, N, N m or m, rad, K], the shaft speed changing at rate [rad/s^2] (the cage
+        lag's time constant at a solution, _lag). Raises ConvergenceError naming the point if no solution is
         found there."""
         p = np.asarray(p, dtype=float)
         res = self.res
@@ -1024,6 +1113,9 @@ class QuasiStaticTracker:
             self._fresh = False
             self.radius = self.radius_min
             self._since_refresh = 0
+            self._tau_lin = res.tau_cage
+            self._acc_res = None
+            self._lag(res, rate)
             self._accept(res)
             return res.outputs, True
         p0 = res.inputs()
@@ -1044,10 +1136,10 @@ class QuasiStaticTracker:
         if e > self.refresh_error or self._since_refresh >= self.refresh_every:
             new.sensitivity = res.sensitivity.copy()
             self.model.update_sensitivity(new, columns=moved)
-            if not (math.isfinite(new.tau_cage) and new.tau_cage > 0.0):
-                # no restoring slope dT/dwc at this solution (every other equation in equilibrium): the lag
-                # keeps the last time constant rather than none
-                new.tau_cage = res.tau_cage
+            if math.isfinite(new.tau_cage) and new.tau_cage > 0.0:
+                self._tau_lin = new.tau_cage
+            # else no restoring slope dT/dwc at this solution (every other equation in equilibrium): the lag
+            # keeps the last time constant rather than none
             self._since_refresh = 0
             self.refreshes += 1
         else:
@@ -1058,12 +1150,38 @@ class QuasiStaticTracker:
             if den > 0.0:
                 S += np.outer((y - res.outputs) - S @ dp, w) / den
             new.sensitivity = S
-            new.tau_cage = res.tau_cage
             new.secant_inputs = res.secant_inputs
+        self._lag(new, rate)
         grow = 0.8 * d / math.sqrt(max(e, 1e-12))
         self.radius = float(min(max(min(grow, 2.0 * self.radius), self.radius_min), self.radius_max))
         self._accept(new)
         return y, True
+
+    def _lag(self, res, rate):
+        """res.tau_cage, the time constant of the cage speed's lag at the solution res with the shaft speed
+        changing at rate [rad/s^2]. Where its relative rate s = rate / omega lies in [accel_min, accel_max]: the
+        secant over the lag of the accelerating state at s (QuasiStaticCageModel.accelerating and
+        secant_time_constant; warm from the last one while s keeps its sign), so that the lag in a ramp is that
+        state's. Otherwise, or where that state is not found: the linear one, I / (-dT/dwc) at the last
+        solution whose derivatives were computed afresh with a restoring slope."""
+        res.tau_cage = self._tau_lin
+        s = rate / res.omega
+        if not self.accel_min <= abs(s) <= self.accel_max:
+            self._acc_res = None
+            return
+        m = self.model
+        m._tol_factor = self.tol_factor
+        try:
+            a = m.accelerating(res, s, start=self._acc_res)
+        except (ConvergenceError, np.linalg.LinAlgError, ValueError, FloatingPointError):
+            a = None
+        finally:
+            m._tol_factor = 1.0
+        self._acc_res = a
+        tau = m.secant_time_constant(res, a) if a is not None else float("nan")
+        if math.isfinite(tau):
+            res.tau_cage = tau
+            self.secant_lags += 1
 
     def _resolve(self, res, p):
         """The solution at p from res: a warm solve; where it fails, continuation along the straight input path

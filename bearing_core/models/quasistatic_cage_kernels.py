@@ -374,8 +374,28 @@ def cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, 
 
 
 @hot
+def acceleration_loads(xl, xg, P, Rl, Rg, acc):
+    """Subtract the d'Alembert loads of a uniform relative acceleration acc = dwc/dt / wc [1/s] of every
+    rotation with the cage (the accelerating quasi-steady state: the balls' orbit and absolute rotation and
+    the cage speed grow at the rate acc, the ball-race contact and pocket forces in equilibrium with the
+    inertia forces; the class of models of Jain & Hunt and Han in seed 002's review, d'Alembert's principle):
+    F_t - m r acc theta_dot, (M - J acc Omega) / (D/2) per component (the ball's rotation in its orbiting frame,
+    Omega growing in proportion), cage torque (T - I_c acc wc) / (dm/2). acc = 0: the steady state."""
+    if acc == 0.0:
+        return
+    mb = P[K.P_MB]
+    Jb = P[K.P_JB]
+    hD = 0.5 * P[K.P_D]
+    for j in range(xl.shape[0]):
+        Rl[j, 5] -= mb * xl[j, 0] * acc * xl[j, 6]
+        for k in range(3):
+            Rl[j, 2 + k] -= Jb * acc * xl[j, 2 + k] / hD
+    Rg[5] -= P[K.P_IC] * acc * xg[G_WC] / (0.5 * P[K.P_DM])
+
+
+@hot
 def cage_scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
-                         xl, xg, yy, dy, diag, bd, Rl, Rg, share, R, lam, dplace):
+                         xl, xg, yy, dy, diag, bd, Rl, Rg, share, R, lam, dplace, acc):
     """R = residual vector (balls then globals) at the scaled unknowns v (non-finite entries 1e12); (xl, xg)
     and (Rl, Rg, share) receive the physical unknowns and the residual blocks. Returns max |R|.
 
@@ -391,6 +411,7 @@ def cage_scaled_residual(t, y0, v, xs_l, xs_g, act, iF, iM, P, U, tab_i, tab_o, 
     dg = dplace.copy()
     cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                   yy, dy, diag, bd, Rl, Rg, share, dg, dplace)
+    acceleration_loads(xl, xg, P, Rl, Rg, acc)
     orbit_coupling(xl, xg, yy, P, U, Rl, lam)
     r = 0.0
     for j in range(Z):
@@ -430,15 +451,16 @@ def _steps(xl, xg, omega, hl, hg):
 
 @hot
 def _full_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy, diag, bd,
-                   Rl, Rg, share, lam, dguess, dplace):
+                   Rl, Rg, share, lam, dguess, dplace, acc):
     cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                   yy, dy, diag, bd, Rl, Rg, share, dguess, dplace)
+    acceleration_loads(xl, xg, P, Rl, Rg, acc)
     orbit_coupling(xl, xg, yy, P, U, Rl, lam)
 
 
 @hot
 def cage_jacobian(t, y0, xl, xg, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp,
-                  qx, qwx, qy, qwy, yy, dy, diag, bd, A, B, C, Dg, E, lam):
+                  qx, qwx, qy, qwy, yy, dy, diag, bd, A, B, C, Dg, E, lam, acc):
     """Jacobian at (xl, xg) by forward differences (steps: _steps), 7 + 8 + 1 rhs calls.
 
     Ball columns: with the globals held, the right-hand side couples no two balls (a ball's forces depend on
@@ -456,6 +478,7 @@ def cage_jacobian(t, y0, xl, xg, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, td
     dpl = np.empty((Z, 2))
     cage_residual(t, y0, xl, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                   yy, dy, diag, bd, Rl0, Rg0, share, np.full((Z, 2), np.nan), dbase)
+    acceleration_loads(xl, xg, P, Rl0, Rg0, acc)
     dth0 = np.empty(Z)
     pocket_offsets(yy, Z, dth0)
     Rl = Rl0.copy()                     # the full residual at the base point, for the global columns
@@ -476,6 +499,7 @@ def cage_jacobian(t, y0, xl, xg, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, td
             xp[j, k] = xl[j, k] + hl[j, k]
         cage_residual(t, y0, xp, xg, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy,
                       yy, dy, diag, bd, Rl2, Rg2, sh2, dbase, dpl)
+        acceleration_loads(xp, xg, P, Rl2, Rg2, acc)
         pocket_offsets(yy, Z, dth2)
         for j in range(Z):
             xp[j, k] = xl[j, k]
@@ -521,7 +545,7 @@ def cage_jacobian(t, y0, xl, xg, act, omega, iF, iM, P, U, tab_i, tab_o, ta0, td
         if act[k]:
             gp[k] = xg[k] + hg[k]
             _full_residual(t, y0, xl, gp, act, iF, iM, P, U, tab_i, tab_o, ta0, tda, tp, qx, qwx, qy, qwy, yy, dy,
-                           diag, bd, Rl2, Rg2, sh2, lam, dbase, dpl)
+                           diag, bd, Rl2, Rg2, sh2, lam, dbase, dpl, acc)
             gp[k] = xg[k]
             for j in range(Z):
                 for i in range(NL):

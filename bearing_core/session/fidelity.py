@@ -15,8 +15,9 @@ is a class constructed from the CoSimParameters (raising BearingInputError for p
                              (ROTATED) are turned by the load's direction (an axisymmetric bearing)
     query(u) -> (x, cos, sin)      its query point of the inputs u (dict of INPUT_NAMES, SI), and the radial
                              load's direction; raises BearingInputError naming an input outside its range
-    steady_into(x, ss) -> flags    the steady values at x into ss (one per name); flags: FLAG_* bits of where
-                             the level is weak (a warning is logged on entry)
+    steady_into(x, ss, rate) -> flags    the steady values at x into ss (one per name), the shaft speed changing
+                             at rate [rad/s^2] over the step (a level may use it for the cage's lag); flags:
+                             FLAG_* bits of where the level is weak (a warning is logged on entry)
     point_text(x), describe()      words for messages
 
 and optionally a one-call step: step_kernel (map_kernels.map_step's signature), its level arguments step_args
@@ -339,7 +340,7 @@ class MapLevel:
         return BearingInputError(name, xd, f"{lo:.6g} {unit} <= value <= {hi:.6g} {unit}, the range of the "
                                  f"operating map {self.path}", "fidelity 'map' never extrapolates")
 
-    def steady_into(self, x, ss) -> int:
+    def steady_into(self, x, ss, rate: float = 0.0) -> int:
         """Steady values at the map coordinates x into ss (one per name of self.names); returns the validity
         flags of the interpolation cell. Raises BearingInputError if x lies outside the grid."""
         d, fl = self._interp(self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags, x,
@@ -512,14 +513,14 @@ class QuasiStaticLevel:
         self._last = None
         self._k_sc[7] = 0.0
 
-    def steady_into(self, x, ss) -> int:
+    def steady_into(self, x, ss, rate: float = 0.0) -> int:
         """The steady values at x into ss (one per name); returns FLAG_GROSS_SKID where the cage skids grossly.
         Raises ConvergenceError naming the point where no steady state is found."""
         last = self._last
         if last is not None and np.array_equal(last[0], x):
             ss[:] = last[1]
             return last[2]
-        y, solved = self.tracker.at(x)
+        y, solved = self.tracker.at(x, rate)
         res = self.tracker.res
         if solved:
             self._evaluate_solution(res)
@@ -704,7 +705,8 @@ class SteadySession:
 
     def _evaluate(self, q, h):
         x, cs, sn, w = q
-        fl = self.level.steady_into(x, self._ss)
+        rate = (w - self.w_prev) / h if h > 0.0 else 0.0
+        fl = self.level.steady_into(x, self._ss, rate)
         tau = float(self._ss[self.level.i_tau])
         c0, c1, c2 = self._consts
         wc = self._outputs_kernel(self._ss, self._src, self._rot, cs, sn, self.wc, h, tau, w, self._temps,
