@@ -45,8 +45,11 @@ chord steps, secants where that fails its checks). Time constant of the cage spe
 tau = I / (-dT/dwc), I = 2 KE / wc^2 the rotating parts' inertia referred to the cage speed (cage, balls' orbit
 and absolute rotation), T the net torque on cage and balls about the axis with every other
 equation in equilibrium (ball spin, contact and pocket forces follow the cage much faster):
--dT/dwc = -(dm/2) / (J^-1)[wc, cage torque row]. Method, accuracy against the dynamic model and its limits:
-docs/fidelity_quasistatic.md.
+-dT/dwc = -(dm/2) / (J^-1)[wc, cage torque row]. Accelerating state (accelerating): every rotation with the cage
+growing at the relative rate acc = (dwc/dt) / wc, the forces balancing the d'Alembert loads (quasistatic_cage_kernels.
+acceleration_loads); its lag behind the steady state gives the secant time constant of a ramp
+(secant_time_constant), which QuasiStaticTracker uses while the shaft accelerates. Method, accuracy against the
+dynamic model and its limits: docs/fidelity_quasistatic.md.
 """
 from __future__ import annotations
 
