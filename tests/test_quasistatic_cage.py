@@ -171,6 +171,7 @@ def test_light_axial_load_under_radial_load_at_high_speed(g):
     w, loads = 10552.0 * RPM, (1987.0, 0.0, 1487.0, 0.0, 0.0)
     m = QuasiStaticCageModel(g, OIL)
     m.axial_start_factors = (1.0,)
+    m.speed_path_factors = ()
     with pytest.raises(ConvergenceError, match="axial load 1487 N alone"):
         m.solve(w, loads, sensitivity=False)
     m = QuasiStaticCageModel(g, OIL)
@@ -183,3 +184,37 @@ def test_light_axial_load_under_radial_load_at_high_speed(g):
     I = K.OUT_INDEX
     assert abs(r.cage_speed / np.mean(rec[:, I["cage_speed"]]) - 1.0) < 0.01
     assert abs(r.friction_torque / np.mean(rec[:, I["friction_torque"]]) - 1.0) < 0.05
+
+
+def test_high_speed_point_reached_along_the_shaft_speed(g):
+    """7218B, 12,000 rpm, Fz 8 kN alone (oil): the cold load path stalls on the contact laws' residual floor
+    (its accepted point broke the energy balance by 32 %), so the solve starts at a lower speed and follows the
+    shaft speed up, as a run-up reaches the point. The end point is a steady state (drive power = losses within
+    1 %) on the dynamic model's branch: cage speed within 1 % of the dynamics' mean over 0.1-0.2 s."""
+    w, loads = 12000.0 * RPM, (0.0, 0.0, 8000.0, 0.0, 0.0)
+    m = QuasiStaticCageModel(g, OIL)
+    m.speed_path_factors = ()
+    with pytest.raises(ConvergenceError, match="12000 rpm"):
+        m.solve(w, loads, sensitivity=False)
+    r = QuasiStaticCageModel(g, OIL).solve(w, loads, sensitivity=False)
+    assert abs(r.heat["total"] / r.P_drive - 1.0) < 0.01
+    d = DynamicModel(g, DynamicsOptions(traction="lubricated", lubrication="oil", integrator="auto"))
+    d.initialize(w, loads)
+    d.advance(0.1)
+    rec = d.advance(0.2, record_dt=1e-3)
+    assert abs(r.cage_speed / np.mean(rec[:, K.OUT_INDEX["cage_speed"]]) - 1.0) < 0.01
+
+
+def test_speed_path_refuses_a_root_without_restoring_cage_torque(g):
+    """7218B, 11,986 rpm, Fx 432 N, Fz 2332 N (oil): the cold load path fails, and the speed path from 6000 rpm
+    reaches a rolling root at about 599 rad/s whose cage torque has no restoring slope. The dynamic cage started
+    at the point does not hold such a state: its mean speed falls by more than 5 % from 0.1-0.2 s to 0.2-0.3 s
+    (towards gross skidding). The solve refuses that root and names it rather than returning it."""
+    w, loads = 11986.0 * RPM, (432.0, 0.0, 2332.0, 0.0, 0.0)
+    with pytest.raises(ConvergenceError, match="no restoring cage torque"):
+        QuasiStaticCageModel(g, OIL).solve(w, loads, sensitivity=False)
+    d = DynamicModel(g, DynamicsOptions(traction="lubricated", lubrication="oil", integrator="auto"))
+    d.initialize(w, loads)
+    d.advance(0.1)
+    wc = d.advance(0.3, record_dt=1e-3)[:, K.OUT_INDEX["cage_speed"]]
+    assert np.mean(wc[100:]) < 0.95 * np.mean(wc[:100])

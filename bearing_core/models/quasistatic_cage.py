@@ -36,7 +36,9 @@ pure axial load from the free-ball tribological solution (quasistatic_tribo; els
 balls held at the cage's azimuth rate in the oil regime (orbit coupling 0), continuation in the other loads,
 then in the orbit coupling to 1 (and, with displacement coupling, in the ring pose); with an oil-lubricated
 cage, where that fails under a combined load, the same path from twice and four times the axial load (a light
-axial load alone skids grossly at high speed and has no steady state). A previous solution is a warm start. A
+axial load alone skids grossly at high speed and has no steady state); where the path fails at a speed, the
+same path at half and at a quarter of it and continuation in the shaft speed up to it (the way a run-up
+reaches the point; oil-lubricated cage). A previous solution is a warm start. A
 point that does not converge raises ConvergenceError naming speed, loads or pose, and oil temperature. Tolerances: aim at tol, accept tol_accept (the contact laws' kinks leave a residual floor).
 
 Sensitivity: central secants of the outputs over warm re-solves at the inputs +- a step on the scale of the
@@ -227,6 +229,9 @@ class QuasiStaticCageModel:
     #: axial loads of the cold path's start, as multiples of the operating point's (tried in turn where a start
     #: or its path fails; oil-lubricated cage): _cold
     axial_start_factors = (1.0, 2.0, 4.0)
+    #: start speeds of the speed path, as fractions of the operating point's, tried in turn where the cold
+    #: path fails (_speed_path)
+    speed_path_factors = (0.5, 0.25)
     #: step caps of the damped Newton solve: positions [um], tilts [10 urad]
     cap_position = 10.0
     cap_tilt = 10.0
@@ -325,6 +330,9 @@ class QuasiStaticCageModel:
         finally:
             self.budget = budget
             self.lam = 1.0
+        if res is None and self.opt.regime == "oil":
+            # (a dry cage's paths end on roots with the cage pressed on its land: _cold)
+            res = self._speed_path(omega, ring, T_oil, errors, lam0)
         if res is not None:
             if sensitivity:
                 s_, P, U, act, tabs, xs_l, xs_g = self._problem(omega, ring, T_oil)
@@ -504,10 +512,11 @@ class QuasiStaticCageModel:
         errors.append(f"end point: {out}")
         return None
 
-    def _continuation(self, res, path, omega, T_oil, errors, what, tol_factor=None):
+    def _continuation(self, res, path, omega, T_oil, errors, what, tol_factor=None, speed=None):
         """Follow path(a) -> (ring input, orbit coupling) from a = 0 (res) to 1 in adaptive steps (a quarter
         first, x1.5 after a success, halved after a failure, at least 1/512), each point solved to tol_factor
-        times the tolerance (None: path_tol_factor). Returns the end result or None."""
+        times the tolerance (None: path_tol_factor); speed(a): the shaft speed along the path [rad/s] (None:
+        omega throughout). Returns the end result or None."""
         a, da = 0.0, 0.25
         lam_res = self.lam          # the orbit coupling of res
         self._tol_factor = self.path_tol_factor if tol_factor is None else tol_factor
@@ -517,12 +526,13 @@ class QuasiStaticCageModel:
                 a2 = min(a + da, 1.0)
                 ring, lam = path(a2)
                 self.lam = lam
-                out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False)
-                # a step that moves the cage speed by more than path_jump has left the branch it follows (the
-                # steady problem has several roots: 7218B, 10,000 rpm, Fx 1 kN, Fz 3 kN has one at 4374 rpm
-                # and a skidding one at 2664 rpm): a smaller step
+                w = omega if speed is None else speed(a2)
+                out = self._solve_from(w, ring, T_oil, self._start("warm", res, w, ring, T_oil), False)
+                # a step that moves the cage/shaft speed ratio by more than path_jump has left the branch it
+                # follows (the steady problem has several roots: 7218B, 10,000 rpm, Fx 1 kN, Fz 3 kN has one
+                # at 4374 rpm and a skidding one at 2664 rpm): a smaller step
                 jump = isinstance(out, QuasiStaticCageResult) and \
-                    abs(out.cage_speed / res.cage_speed - 1.0) > self.path_jump
+                    abs((out.cage_speed / out.omega) / (res.cage_speed / res.omega) - 1.0) > self.path_jump
                 if isinstance(out, QuasiStaticCageResult) and not jump:
                     res, a, da, lam_res = out, a2, da * 1.5, lam
                     continue
@@ -538,6 +548,68 @@ class QuasiStaticCageModel:
             self.lam = lam_res
             self._tol_factor = 1.0
             self._balance_guard = True
+
+    def _speed_path(self, omega, ring, T_oil, errors, lam0):
+        """Where the cold path fails at omega: the same cold path at a lower speed (speed_path_factors x
+        omega, at least 10 rad/s), then continuation in the shaft speed up to omega with the loads (or the
+        ring pose) held, and the end point to the full tolerance. At high speed the centrifugal and gyroscopic
+        loads and the race traction near saturation make the load path's Newton steps stall on the contact
+        laws' residual floor, where the same point is reached along the speed as a run-up reaches it (7218B,
+        oil: 12,000 rpm under Fz 8 kN alone, from 6000 rpm). Returns the result or None (reasons appended to
+        errors)."""
+        budget = self.budget
+        for f in self.speed_path_factors:
+            omega0 = f * omega
+            if omega0 < 10.0:
+                continue
+            sub = []
+            try:
+                self.budget = budget
+                res = self._cold(omega0, ring, T_oil, sub, lam0)
+                if res is None:
+                    errors.append(f"from {omega0 * 30 / math.pi:.0f} rpm: no steady state there either")
+                    continue
+                self.lam = 1.0
+                self.budget = self.sub_budget
+                res = self._continuation(res, lambda a: (ring, 1.0), omega, T_oil, errors, "shaft speed from "
+                                         f"{omega0 * 30 / math.pi:.0f} rpm",
+                                         speed=lambda a: omega0 + a * (omega - omega0))
+                if res is None:
+                    continue
+                self.budget = budget
+                out = self._solve_from(omega, ring, T_oil, self._start("warm", res, omega, ring, T_oil), False)
+                if not isinstance(out, QuasiStaticCageResult):
+                    errors.append(f"end point of the speed path from {omega0 * 30 / math.pi:.0f} rpm: {out}")
+                    continue
+                # the branch a run-up follows can end past the load at which the dynamic cage still rolls:
+                # such a root has no restoring cage torque, and the dynamic cage started there decelerates
+                # towards gross skidding (7218B, 11,986 rpm, Fx 432 N, Fz 2332 N: the root at 599 rad/s, the
+                # dynamic cage from 567 to 495 rad/s over 0.1-0.3 s, the oil map's nearest point skidding at
+                # 182 rad/s). Roots reached only along the speed are kept where the cage speed is restored
+                tau = self._restoring_time_constant(out)
+                if math.isfinite(tau) and tau > 0.0:
+                    return out
+                errors.append(f"end point of the speed path from {omega0 * 30 / math.pi:.0f} rpm at a cage speed of "
+                              f"{out.cage_speed * 30 / math.pi:.0f} rpm has no restoring cage torque (dT/dwc >= 0: "
+                              "the cage drifts from it towards gross skidding)")
+            except (ConvergenceError, np.linalg.LinAlgError, ValueError) as e:
+                errors.append(f"from {omega0 * 30 / math.pi:.0f} rpm: {e}")
+            finally:
+                self.budget = budget
+                self.lam = 1.0
+        return None
+
+    def _restoring_time_constant(self, res):
+        """The cage lag's linear time constant at the solution res [s] (_tau_cage on its Jacobian): inf where
+        the cage torque has no restoring slope dT/dwc < 0."""
+        p0 = res.inputs()
+        _, P, U, act, tabs, xs_l, xs_g = self._problem(p0[0], p0[1:6], p0[6])
+        v = np.concatenate([(res.x[0] / xs_l).ravel(), res.x[1] / xs_g])
+        J = self._jacobian(v, float(res.omega), P, U, act, tabs, xs_l, xs_g)
+        z = np.empty(v.size)
+        if not self._lu(J).solve(self._e_wc(v.size), z):
+            return float("nan")
+        return self._tau_cage(res, z, xs_g)
 
     def _start(self, kind, st, omega, ring, T_oil):
         """Unknowns (xl, xg) to start from: a previous solution (speeds scaled to omega), the free-ball
