@@ -464,8 +464,10 @@ class QuasiStaticLevel:
         self._k_y0 = np.zeros(n_out)
         self._k_S = np.zeros((n_out, 7))
         self._k_tol = np.full(7, np.inf)
-        self._k_sc = np.zeros(9)        # radius, imbalance, its allowed change, shaft speed, tau, p limit, slip, valid,
-        #                                 flags of the solution (FLAG_CAGE_UNSTEADY)
+        self._k_sc = np.zeros(13)       # radius, imbalance, its allowed change, shaft speed, tau, p limit, slip, valid,
+        #                                 flags of the solution (FLAG_CAGE_UNSTEADY), the shaft's rate at an
+        #                                 accelerating solution (0: steady), the tracker's accel_min, accel_max,
+        #                                 accel_rel
         self._unstable = 0               # FLAG_CAGE_UNSTEADY where the last solution's cage centre is unstable
         self.cage_growth = float("nan")  # its largest growth rate [1/s] (models.quasistatic_cage.cage_centre_stability)
         self.cage_whirl_frequency = float("nan")   # and its frequency [rad/s]
@@ -517,7 +519,9 @@ class QuasiStaticLevel:
         """The steady values at x into ss (one per name); returns FLAG_GROSS_SKID where the cage skids grossly.
         Raises ConvergenceError naming the point where no steady state is found."""
         last = self._last
-        if last is not None and np.array_equal(last[0], x):
+        tr = self.tracker
+        if last is not None and np.array_equal(last[0], x) and (tr.res is None or tr.res.acceleration == 0.0):
+            # (at an accelerating solution the same inputs end its ramp: the tracker solves the steady state)
             ss[:] = last[1]
             return last[2]
         y, solved = self.tracker.at(x, rate)
@@ -590,7 +594,7 @@ class QuasiStaticLevel:
         self._k_S[:] = res.sensitivity
         self._k_tol[:] = tr._tol
         self._k_sc[:] = (tr.radius, tr._imb0, tr.balance_rel, self._w0, res.tau_cage, P_LIMIT, GROSS_SKID_SLIP, 1.0,
-                         float(self._unstable))
+                         float(self._unstable), res.acceleration * res.omega, tr.accel_min, tr.accel_max, tr.accel_rel)
 
     def point_text(self, x) -> str:
         x = np.asarray(x, dtype=float)

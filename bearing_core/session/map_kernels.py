@@ -231,15 +231,18 @@ def quasistatic_step(u, i_speed, i_oring, ring_idx, ring_ok, check_ring, w_lo, w
     within [w_lo, w_hi] [rad/s]; t_oil [K]. The last solution: inputs p0 (7), outputs y0, d outputs / d inputs
     sens, per-input trust scales tol (inf: none), sc = (trust radius, its energy imbalance, the allowed change
     of it, its shaft speed, cage time constant [s], contact pressure limit [Pa], gross-skid slip, 1 if valid, the
-    solution's validity flags);
+    solution's validity flags, the shaft's rate [rad/s^2] at an accelerating solution (0: a steady one),
+    and the tracker's accel_min, accel_max [1/s] and accel_rel: an accelerating solution holds while the
+    shaft's rate over the step, (shaft - shaft0) / h, continues its ramp (QuasiStaticTracker.in_ramp and
+    same_rate));
     i_power, i_heat: drive power and heat in the outputs. The level's steady values at the solution ss0 and
     their update: pred (pairs: index in ss, index in y), speed_scaled (scale with the shaft speed),
     race_split (scale with the race losses i_race), i_torque_outer (scales with i_torque); i_pmax, i_cage,
     i_pure. Writes x (7, the query point) and y (the updated outputs). Returns 0 with res = (cage speed at the
     end of the step [rad/s], validity flags) and the outputs in out; 1 (nothing to use) where anything needs
     the Python path: an input not finite or out of range, ring inputs not yet checked, a point outside the
-    trust region or one whose update breaks the energy balance (a re-solve), a contact pressure above the
-    limit."""
+    trust region or one whose update breaks the energy balance (a re-solve), a ramp that ended or changed its
+    rate, a contact pressure above the limit."""
     if sc[7] == 0.0:
         return 1
     for i in range(u.shape[0]):
@@ -257,6 +260,14 @@ def quasistatic_step(u, i_speed, i_oring, ring_idx, ring_ok, check_ring, w_lo, w
             return 1
         x[1 + k] = v
     x[6] = t_oil
+    r0 = sc[9]
+    if r0 != 0.0:
+        if not h > 0.0:
+            return 1
+        rate = (w - shaft0) / h
+        s = rate / w
+        if not (sc[10] <= abs(s) and abs(s) <= sc[11] and s * r0 > 0.0 and abs(rate - r0) <= sc[12] * abs(r0)):
+            return 1
     d = 0.0
     for j in range(7):
         if math.isfinite(tol[j]):
