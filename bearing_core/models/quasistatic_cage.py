@@ -428,14 +428,15 @@ class QuasiStaticCageModel:
 
     def secant_time_constant(self, res: QuasiStaticCageResult, acc_state: QuasiStaticCageResult) -> float:
         """Time constant [s] of the cage speed's first-order lag that reproduces the lag of the accelerating
-        state acc_state (accelerating) behind the steady state res in a ramp: tau = (wc_steady - wc_acc) /
-        (acc wc_acc), the secant of the cage's relaxation over the lag itself (a first-order lag in a ramp of
-        rate a trails by tau a). NaN where the lag does not have the sign of the acceleration."""
+        state acc_state (accelerating) behind the steady state res in a ramp: tau = (c_steady - c_acc) /
+        (acc c_acc) over the cage/shaft speed ratios c (at one shaft speed: (wc_steady - wc_acc) / (acc
+        wc_acc)), the secant of the cage's relaxation over the lag itself (a first-order lag in a ramp of rate a
+        trails by tau a). NaN where the lag does not have the sign of the acceleration."""
         a = acc_state.acceleration
-        wc = acc_state.cage_speed
-        if a == 0.0 or wc == 0.0:
+        ca = acc_state.cage_speed / acc_state.omega
+        if a == 0.0 or ca == 0.0:
             return float("nan")
-        tau = (res.cage_speed - wc) / (a * wc)
+        tau = (res.cage_speed / res.omega - ca) / (a * ca)
         return float(tau) if tau > 0.0 and math.isfinite(tau) else float("nan")
 
     def _cold(self, omega, ring, T_oil, errors, lam0):
@@ -804,8 +805,8 @@ class QuasiStaticCageModel:
         of it lowers the residual, Levenberg-Marquardt steps (J^T J + mu diag(J^T J)) dv = -J^T R with mu
         growing ten-fold until one does. The Jacobian is kept over steps that contract the max-norm
         residual at least four-fold (chord steps; accelerating solves: two-fold, accelerating_chord); J0, if
-        given, is the first one (rebuilt as soon as a step on it fails). Stops at max |R| <= ftol, after the budget, or when six steps on fresh Jacobians in a row
-        lowered the max-norm residual by less than 5 % each (the floor that the kinks of the contact laws
+        given, is the first one (rebuilt as soon as a step on it fails). Stops at max |R| <= ftol, after the
+        budget, or when six steps on fresh Jacobians in a row lowered the max-norm residual by less than 5 % each (the floor that the kinks of the contact laws
         leave). Returns (max |R|, rhs evaluations, the last Jacobian or None)."""
         budget = self.budget
         R = self._evaluate(v, P, U, act, tabs, xs_l, xs_g)[-1]
@@ -1357,8 +1358,7 @@ class QuasiStaticTracker:
     def _end_ramp(self, a, p, rate):
         """The steady state at p where the ramp of the accelerating solution a has ended (or reversed), warm
         from a, with its full derivatives; the cage speed relaxes from a's to it with the secant time constant
-        tau = (c_steady - c_acc) / (s c_acc) over the cage/shaft speed ratios c (secant_time_constant), or
-        with the lag of a new ramp's accelerating state (_lag)."""
+        between the two (secant_time_constant), or with the lag of a new ramp's accelerating state (_lag)."""
         new = self._resolve(a, p)
         new.sensitivity = a.sensitivity.copy()
         new.secant_inputs = a.secant_inputs
@@ -1377,9 +1377,8 @@ class QuasiStaticTracker:
         if self.accel_min <= abs(s) <= self.accel_max:
             self._lag(new, rate)
         else:
-            ca, cs = a.cage_speed / a.omega, new.cage_speed / new.omega
-            tau = (cs - ca) / (a.acceleration * ca)
-            new.tau_cage = float(tau) if tau > 0.0 and math.isfinite(tau) else self._tau_lin
+            tau = self.model.secant_time_constant(new, a)
+            new.tau_cage = tau if math.isfinite(tau) else self._tau_lin
         self.radius = self.radius_min
         self._accept(new)
         return new.outputs, True
