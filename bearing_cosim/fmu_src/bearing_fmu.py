@@ -367,18 +367,18 @@ class BearingFMU(Fmi2Slave):
         self._out = self._session.values
 
     def do_step(self, current_time, step_size):
-        from bearing_core.session.cosim import StepRejected
         if self._session is None:
             self.log("do_step without a successful initialisation", Fmi2Status.error)
             return False
         try:
             self._session.step(current_time, step_size, self._inputs())
-        except StepRejected as e:
-            self.log(f"step at t = {current_time:.9g} s rejected: {e}", Fmi2Status.discard)
-            self._publish()          # flags such as thermal_runaway are visible after the discarded step
-            return False
         except Exception as e:  # never let an exception reach the host (it would be fmi2Fatal)
-            self.log(f"step at t = {current_time:.9g} s failed: {type(e).__name__}: {e}", Fmi2Status.error)
+            from bearing_core.session.cosim import StepRejected     # here, not per step
+            if isinstance(e, StepRejected):
+                self.log(f"step at t = {current_time:.9g} s rejected: {e}", Fmi2Status.discard)
+                self._publish()          # flags such as thermal_runaway are visible after the discarded step
+            else:
+                self.log(f"step at t = {current_time:.9g} s failed: {type(e).__name__}: {e}", Fmi2Status.error)
             return False
         self._publish()
         if self._session.warnings:

@@ -18,6 +18,7 @@ cache next to the sources holds wherever and however (read-only) the FMU is unpa
 from __future__ import annotations
 
 import ctypes
+import functools
 import json
 import math
 import mmap
@@ -302,6 +303,8 @@ class Model:
             self.log(int(m.status), m.msg)
 
     def take_logs(self) -> bytes:
+        if not self.logs:
+            return b""
         out = "".join(r + "\0" for r in self.logs).encode("utf-8", errors="replace")
         self.logs.clear()
         return out
@@ -453,6 +456,15 @@ class Model:
 
 
 # ---- the exchange loop -------------------------------------------------------------------------------
+_STEP_ARGS = struct.Struct("<ddi")     # fmi2DoStep: current time, step size, noSetFMUStatePriorToCurrentPoint
+
+
+@functools.lru_cache(maxsize=16)
+def _in_formats(n: int):
+    """The compiled formats of n input references and values (a step's request)."""
+    return struct.Struct(f"<{n}I"), struct.Struct(f"<{n}d")
+
+
 class Reader:
     def __init__(self, mm, off):
         self.mm, self.off = mm, off
@@ -460,6 +472,12 @@ class Reader:
     def unpack(self, fmt):
         v = struct.unpack_from(fmt, self.mm, self.off)
         self.off += struct.calcsize(fmt)
+        return v
+
+    def unpack_s(self, st: struct.Struct):
+        """unpack with a compiled format (the per-step fields: no format parsing per call)."""
+        v = st.unpack_from(self.mm, self.off)
+        self.off += st.size
         return v
 
     def bytes(self):
@@ -580,8 +598,11 @@ def serve(res: Path, fd: int, master_pid: int):
         w = Writer()
         status, flags = OK, 0
         (n_in,) = r.unpack("<I")
-        in_vrs = r.unpack(f"<{n_in}I") if n_in else ()
-        in_vals = r.unpack(f"<{n_in}d") if n_in else ()
+        if n_in:
+            f_vrs, f_vals = _in_formats(n_in)
+            in_vrs, in_vals = r.unpack_s(f_vrs), r.unpack_s(f_vals)
+        else:
+            in_vrs = in_vals = ()
         r0 = r.off
         try:
             if cmd == C_HELLO:
@@ -614,7 +635,7 @@ def serve(res: Path, fd: int, master_pid: int):
                 if cmd in (C_EXIT, C_STEP):
                     lock.acquire()
                 if cmd == C_STEP:
-                    t, h, _ = r.unpack("<ddi")
+                    t, h, _ = r.unpack_s(_STEP_ARGS)
                     try:
                         status = model.step(t, h)
                     except FmiError:
