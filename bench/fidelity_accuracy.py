@@ -47,7 +47,8 @@ def _level_session(fidelity, path, params):
 
 def reference_options(opts: dict, window_s: float | None) -> dict:
     """The dynamic reference runs' options: the map's own (its window means), or windows of window_s [s], run
-    until two consecutive ones agree (the map's steadiness tolerances) and at least 4 windows long. Under
+    until two consecutive ones agree (the map's steadiness tolerances), for at most 4 windows (or the map's
+    max_time_s where longer); the sweep's option check refuses a window outside 1e-3-10 s. Under
     combined load the dynamic torque wanders by several per cent over 1-2 s at some points (docs/fidelity.md,
     "What the numbers say"), so a short window mean is one sample of it; a window of about 1 s averages it."""
     if window_s is None:
