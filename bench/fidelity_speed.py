@@ -29,6 +29,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent))
 from machine import machine_info, machine_line  # noqa: E402
+from fmpy_floor import step_loop  # noqa: E402  (the same master loop as the floor it is compared with)
 
 RPM = math.pi / 30.0
 H = 1e-3
@@ -98,21 +99,7 @@ def fmu_speed(fmu, params, t_end, n_out, fx=1000.0, fz=3000.0, profile=None, fid
     skip = int(round(0.1 / H))
     # the inputs computed before the loop: the master's own model is not the FMU's cost
     inputs = [[profile_speed(k * H), fx, fz] for k in range(n)]
-    t_step = t_io = 0.0
-    for k in range(n):
-        if k == skip:
-            t_step = t_io = 0.0
-            tw = time.perf_counter()
-        a = time.perf_counter()
-        f.setReal(in_vr, inputs[k])
-        b = time.perf_counter()
-        f.doStep(currentCommunicationPoint=k * H, communicationStepSize=H)
-        c = time.perf_counter()
-        f.getReal(out_vr)
-        d = time.perf_counter()
-        t_step += c - b
-        t_io += (b - a) + (d - c)
-    wall = time.perf_counter() - tw
+    wall, t_step, t_io = step_loop(f, in_vr, out_vr, inputs, skip)
     sim = (n - skip) * H
     f.terminate()
     f.freeInstance()

@@ -190,6 +190,28 @@ def build_idle(dest: Path) -> Path:
     return fmu_build._build("Idle", {"idle_slave": _SLAVE}, "idle_slave", dest)
 
 
+def step_loop(f, in_vr, out_vr, inputs, skip: int):
+    """The master's loop of the speed benches (this one and bench/fidelity_speed.py) on fmpy's FMU2Slave f: per 1 ms
+    step setReal of in_vr to inputs[k], doStep, getReal of out_vr. Returns the wall time [s] from step skip on (the
+    start-up left out) and the times in doStep and in setReal + getReal over the same steps."""
+    t_step = t_io = 0.0
+    tw = time.perf_counter()
+    for k in range(len(inputs)):
+        if k == skip:
+            t_step = t_io = 0.0
+            tw = time.perf_counter()
+        a = time.perf_counter()
+        f.setReal(in_vr, inputs[k])
+        b = time.perf_counter()
+        f.doStep(currentCommunicationPoint=k * H, communicationStepSize=H)
+        c = time.perf_counter()
+        f.getReal(out_vr)
+        d = time.perf_counter()
+        t_step += c - b
+        t_io += (b - a) + (d - c)
+    return time.perf_counter() - tw, t_step, t_io
+
+
 def floor_per_sim_s(fmu: Path, t_end: float, n_out: int) -> dict:
     """fmpy's FMU2Slave through t_end at 1 ms steps, the loop of bench/fidelity_speed.py (the first 0.1 s left
     out): wall time per simulated second, in doStep and in setReal + getReal apart. The inputs are the first N_IN
@@ -210,22 +232,7 @@ def floor_per_sim_s(fmu: Path, t_end: float, n_out: int) -> dict:
     n = int(round(t_end / H))
     skip = int(round(0.1 / H))
     inputs = [[1000.0 + k, 1000.0, 3000.0] for k in range(n)]
-    t_step = t_io = 0.0
-    tw = time.perf_counter()
-    for k in range(n):
-        if k == skip:
-            t_step = t_io = 0.0
-            tw = time.perf_counter()
-        a = time.perf_counter()
-        f.setReal(in_vr, inputs[k])
-        b = time.perf_counter()
-        f.doStep(currentCommunicationPoint=k * H, communicationStepSize=H)
-        c = time.perf_counter()
-        f.getReal(out_vr)
-        d = time.perf_counter()
-        t_step += c - b
-        t_io += (b - a) + (d - c)
-    wall = time.perf_counter() - tw
+    wall, t_step, t_io = step_loop(f, in_vr, out_vr, inputs, skip)
     sim = (n - skip) * H
     f.terminate()
     f.freeInstance()
