@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -248,6 +249,13 @@ def main(argv=None):
     ap.add_argument("--no-model-process", action="store_true", help="only the C FMU's floor")
     ap.add_argument("--json", default=None)
     a = ap.parse_args(argv)
+    # the first 0.1 s are left out (start-up): a shorter run measures nothing
+    for name, v, ok, allowed in (("--t-end", a.t_end, math.isfinite(a.t_end) and 0.2 <= a.t_end <= 3600.0,
+                                  "0.2 <= value <= 3600 s"),
+                                 ("--outputs", a.outputs, 1 <= a.outputs <= 10000, "1 <= value <= 10000"),
+                                 ("--repeat", a.repeat, 1 <= a.repeat <= 100, "1 <= value <= 100")):
+        if not ok:
+            ap.error(f"{name} = {v!r} is invalid; allowed: {allowed}")
     print(machine_line())
     runs = {"floor": [], "model_process": []}
     with tempfile.TemporaryDirectory(prefix="fmpy_floor_") as d:
