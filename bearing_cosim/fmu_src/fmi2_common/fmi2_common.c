@@ -18,7 +18,7 @@
 #define STATE_MAGIC 0x42524D53u    /* marks an FMU state of this layer */
 #define SER_MAGIC "BRGSTATE"
 #define SER_VERSION 1u
-#define SER_HEADER 64u
+#define SER_HEADER 96u
 
 static const char *CATEGORY[] = {"logInfo", "logWarning", "logDiscard", "logError", "logError", "logInfo"};
 static const char *MODE_NAME[] = {"instantiated", "initialization", "step", "terminated", "failed"};
@@ -613,8 +613,8 @@ FMI2_EXPORT fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2V
 
 /* ---- FMU states ------------------------------------------------------------------------------------------------
  * An FMU state is the layer's mode and the model's mutable state (model_state_save). Serialised:
- *   char[8] "BRGSTATE", u32 version, u32 header size (64), u32 mode, u32 payload size, u32 CRC-32 of the payload,
- *   u32 length of the GUID, char[36] the model's GUID (zero-padded, cut at 36 bytes), then the payload.
+ *   char[8] "BRGSTATE", u32 version, u32 header size (96), u32 mode, u32 payload size, u32 CRC-32 of the payload,
+ *   u32 length of the GUID, char[64] the model's GUID (zero-padded, cut at 64 bytes), then the payload.
  * Deserialising checks every header field, the GUID, the CRC and then the payload field by field (model). */
 typedef struct {
     unsigned magic;
@@ -720,7 +720,7 @@ FMI2_EXPORT fmi2Status fmi2SerializeFMUstate(fmi2Component comp, fmi2FMUstate FM
     le_put_u32(p + 20, (unsigned)st->size);
     le_put_u32(p + 24, crc32_ieee(st->bytes, st->size));
     const char *g = model_guid(c->model);
-    size_t gl = strlen(g) > 36 ? 36 : strlen(g);
+    size_t gl = strlen(g) > 64 ? 64 : strlen(g);
     le_put_u32(p + 28, (unsigned)gl);
     memcpy(p + 32, g, gl);
     memcpy(p + SER_HEADER, st->bytes, st->size);
@@ -757,7 +757,7 @@ FMI2_EXPORT fmi2Status fmi2DeSerializeFMUstate(fmi2Component comp, const fmi2Byt
         why = "corrupt serialized state (CRC-32 mismatch)";
     else {
         const char *g = model_guid(c->model);
-        size_t gl = strlen(g) > 36 ? 36 : strlen(g);
+        size_t gl = strlen(g) > 64 ? 64 : strlen(g);
         if (le_get_u32(p + 28) != gl || memcmp(p + 32, g, gl)) why = "serialized state of another FMU (GUID)";
     }
     if (why) {

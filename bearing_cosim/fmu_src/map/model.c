@@ -915,12 +915,11 @@ static double evaluate(Instance *c, Model *m, double h, int *warned, char *err, 
 int model_initialize(Instance *c, void *mp, double t0, char *err, size_t n) {
     Model *m = (Model *)mp;
     if (check_parameters(m, err, n)) return fmi2Error;
-    if (m->i_axis_oil >= 0) {
-        Param *pt = NULL;
-        for (int k = 0; k < m->n_par; k++)
-            if (m->par[k].check == CHECK_OIL_AXIS) pt = &m->par[k];
-        if (pt) m->ax[m->i_axis_oil].fixed = pt->num - 273.15;
-    }
+    for (int k = 0; k < m->n_par; k++) /* the isothermal temperatures: the oil_temperature parameter [K] */
+        if (!strcmp(m->par[k].name, "oil_temperature")) {
+            for (int j = 0; j < 4; j++) m->temps[j] = m->par[k].num;
+            if (m->i_axis_oil >= 0) m->ax[m->i_axis_oil].fixed = m->par[k].num - 273.15;
+        }
     m->t = 0.0;
     m->wc = 0.0;
     m->w_prev = 0.0;
