@@ -13,7 +13,8 @@
  *   roundtrip (serialize the state, deserialize it into a new one and set it)
  *   save_state <file> (serialize to a file)   load_state <file> (deserialize from a file and set it)
  *   repeat <n> <h> <input values...> (n steps, prints the last ROW and "TIMING <median ns per fmi2DoStep>")
- *   cycles <n> (n instantiate/free cycles with the script's last instantiate arguments)
+ *   cycles <n> (n instantiate/free cycles with the script's last instantiate arguments; prints
+ *              "TIMING_CYCLE <mean ns per instantiate + free>")
  *   rss (prints "RSS <resident set size in kB>", Linux)
  * Output: "STATUS <command> <fmi2Status>", "VALUE <vr> <v>", "ROW <status> <t> <outputs...>",
  * "LOG <status> <category> <message>". Exit status 0 when the script ran to its end.
@@ -200,11 +201,13 @@ int main(int argc, char **argv) {
             st = c ? 0 : 3;
         } else if (!strcmp(cmd, "cycles")) {
             int n = atoi(a1);
+            double t1 = now_ns();
             for (int i = 0; i < n && st == 0; i++) {
                 fmi2Component c2 = inst("bearing", 1, argv[3], uri, &cb, 0, last_log);
                 if (!c2) st = 3;
                 else freei(c2);
             }
+            printf("TIMING_CYCLE %.1f\n", n > 0 ? (now_ns() - t1) / n : 0.0);
         } else if (!strcmp(cmd, "rss")) {
             long kb = -1;
 #if !defined(_WIN32)
