@@ -441,3 +441,26 @@ def test_win64_dll_under_wine_equals_linux(built, host, tmp_path):
     assert sl == sw and len(sl) == 150
     assert rel_diff(vl, vw).max() <= 1e-12
     assert "STATUS roundtrip 0" in win.stdout
+
+
+def test_cli_build_and_simulate(built, tmp_path):
+    """`bearing build-map-fmu` builds the FMU (a platform without its compiler or an unknown one is refused, naming
+    it), and `bearing simulate --fmu BearingMapFMU.fmu` drives it through seed 000's profile with the parameters it
+    sets for BearingFMU (the map's values)."""
+    exe = Path(sys.executable).with_name("bearing")
+    r = subprocess.run([str(exe), "build-map-fmu", str(MAPS["oil"]), "--dest", str(tmp_path / "d"), "--platforms",
+                        "linux64"], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0 and "binaries: linux64" in r.stdout, r.stderr
+    r = subprocess.run([str(exe), "build-map-fmu", str(MAPS["oil"]), "--platforms", "darwin64"], capture_output=True,
+                       text=True, timeout=300)
+    assert r.returncode == 2 and "--platforms = 'darwin64' is invalid; allowed: linux64, win64" in r.stderr
+    env = dict(os.environ, PATH="/nonexistent")          # no cross compiler on this PATH
+    r = subprocess.run([str(exe), "build-map-fmu", str(MAPS["oil"]), "--platforms", "win64", "--dest",
+                        str(tmp_path / "w")], capture_output=True, text=True, timeout=300, env=env)
+    assert r.returncode == 2 and "gcc-mingw-w64-x86-64-win32" in r.stderr, r.stderr
+    r = subprocess.run([str(exe), "simulate", "--fmu", str(tmp_path / "d" / "BearingMapFMU.fmu"), "--profile",
+                        "seed000", "--fx", "1000", "--fz", "3000", "--stop-time", "0.7", "--out", str(tmp_path / "o")],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr[-2000:]
+    s = json.loads((tmp_path / "o" / "fmu_simulation_summary.json").read_text())
+    assert 0.35 < s["final_cage_shaft_ratio"] < 0.5 and s["final_friction_torque_Nm"] > 0.0
