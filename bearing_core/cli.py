@@ -151,8 +151,12 @@ def build_parser() -> argparse.ArgumentParser:
     li = sub.add_parser("life", help="fatigue rating life: ISO 281 C_r, ISO/TS 16281 reference rating life L10r from "
                                       "the quasi-static load distribution, ISO 281 modified life L_nmr")
     li.add_argument("--bearing", required=True, help="preset name, catalogue designation or bearing JSON file")
-    li.add_argument("--speed-rpm", required=True, type=_finite("--speed-rpm"),
-                    help="inner-ring speed [rpm], 0 < speed <= 190000 (outer ring fixed)")
+    li.add_argument("--speed-rpm", type=_finite("--speed-rpm"), default=None,
+                    help="inner-ring speed [rpm], 0 < speed <= 190000 (outer ring fixed); required without --duty")
+    li.add_argument("--duty", default=None, metavar="CSV",
+                    help="duty cycle of held levels: CSV with columns duration_s, speed_rpm and optionally Fx_N, Fy_N, "
+                         "Fz_N, Mx_Nm, My_Nm (missing: the --fx ... values); Palmgren-Miner damage per cycle and the "
+                         "equivalent lives")
     _add_loads(li)
     li.add_argument("--fixed-tilt", action="store_true",
                     help="inner ring held square by the shaft (Mx, My are reactions); default: free to tilt")
@@ -287,10 +291,66 @@ def cmd_quasistatic(a) -> int:
     return 0
 
 
+def _read_duty(path, a) -> list:
+    """Levels (duration_s, speed_rpm, loads) of a duty-cycle CSV (cmd_life --duty)."""
+    import csv
+    p = Path(path)
+    if not p.is_file():
+        raise _BadArg(f"--duty = {path!r} is invalid; allowed: an existing CSV file (file not found)")
+    cols = ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")
+    default = (a.fx, a.fy, a.fz, a.mx, a.my)
+    levels = []
+    with p.open(newline="") as f:
+        rd = csv.DictReader(f)
+        need = {"duration_s", "speed_rpm"}
+        if rd.fieldnames is None or not need.issubset(rd.fieldnames):
+            raise _BadArg(f"--duty = {path!r} is invalid; allowed: a CSV with columns duration_s, speed_rpm "
+                          f"[, {', '.join(cols)}] (got {rd.fieldnames})")
+        for k, row in enumerate(rd, start=2):
+            try:
+                vals = [float(row["duration_s"]), float(row["speed_rpm"])] + \
+                    [float(row[c]) if row.get(c) not in (None, "") else d for c, d in zip(cols, default)]
+            except ValueError as e:
+                raise _BadArg(f"--duty {path}: line {k} is invalid; allowed: numbers ({e})")
+            if not all(math.isfinite(v) for v in vals):
+                raise _BadArg(f"--duty {path}: line {k} = {vals} is invalid; allowed: finite numbers")
+            levels.append((vals[0], vals[1], tuple(vals[2:])))
+    if not levels:
+        raise _BadArg(f"--duty = {path!r} is invalid; allowed: at least one level (the file has no rows)")
+    return levels
+
+
 def cmd_life(a) -> int:
     from .bearing.geometry import load_bearing
-    from .models.life import life_at
+    from .models.life import duty_cycle_life, life_at
 
+    if a.duty is not None:
+        if a.speed_rpm is not None:
+            raise _BadArg(f"--speed-rpm = {a.speed_rpm:g} is invalid with --duty; allowed: the speeds of the duty CSV")
+        for flag, v, lo, hi in (("--contamination", a.contamination, 0.0, 1.0), ("--reliability", a.reliability, 90.0, 99.95)):
+            if not lo <= v <= hi:
+                raise _BadArg(f"{flag} = {v:g} is invalid; allowed: {lo:g} <= value <= {hi:g}")
+        g = load_bearing(a.bearing)
+        dc = duty_cycle_life(g, _read_duty(a.duty, a), oil=a.oil, oil_temperature_c=a.oil_temperature_c,
+                             e_C=a.contamination, reliability_pct=a.reliability, fixed_tilt=a.fixed_tilt)
+        d = dc.to_dict()
+        if a.json:
+            print(json.dumps(d))
+            return 0
+        print(f"bearing {g.name}  duty cycle {a.duty}: {len(dc.levels)} levels, {d['cycle_s']:g} s per cycle" +
+              ("  (inner ring held square)" if a.fixed_tilt else ""))
+        print(f"{'level':>5} {'time':>9} {'speed':>8} {'Fx':>8} {'Fy':>8} {'Fz':>8} {'Mx':>7} {'My':>7} {'L10r':>10} "
+              f"{'L_nmr':>10} {'damage L10r':>12}")
+        print(f"{'':>5} {'s':>9} {'rpm':>8} {'N':>8} {'N':>8} {'N':>8} {'N m':>7} {'N m':>7} {'h':>10} {'h':>10} {'-':>12}")
+        for k, (t, rep) in enumerate(zip(dc.durations_s, dc.levels)):
+            L = rep.loads
+            print(f"{k:5d} {t:9.4g} {rep.speed_rpm:8.5g} {L[0]:8.5g} {L[1]:8.5g} {L[2]:8.5g} {L[3]:7.4g} {L[4]:7.4g} "
+                  f"{rep.rating.L10r_h:10.4g} {rep.L_nmr_h:10.4g} {t / 3600.0 / rep.rating.L10r_h:12.4e}")
+        print(f"Palmgren-Miner damage per cycle: {dc.damage_L10r:.4e} (L10r), {dc.damage_L_nmr:.4e} (L_nmr)")
+        print(f"equivalent lives: L10r {dc.L10r_h:.4g} h, L_nmr {dc.L_nmr_h:.4g} h")
+        return 0
+    if a.speed_rpm is None:
+        raise _BadArg("--speed-rpm is required (or --duty CSV); allowed: 0 < speed <= 190000 rpm")
     if not 0.0 < a.speed_rpm <= 190000.0:
         raise _BadArg(f"--speed-rpm = {a.speed_rpm:g} is invalid; allowed: 0 < speed <= 190000 rpm (the inner ring "
                       "turning in the positive sense; a rating life in hours needs rotation)")

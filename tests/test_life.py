@@ -191,3 +191,24 @@ def test_cli_json(capsys):
     assert rc == 2
     err = capsys.readouterr().err
     assert "Fz = -3000.0" in err and "Fz > 0 N" in err and "nan" not in err.lower()
+
+
+def test_duty_cycle_life_is_sum_of_levels(tmp_path, capsys):
+    """duty_cycle_life: the damage of a two-level cycle is the sum of t_k / L_k of the levels solved alone, the
+    equivalent life lies between theirs; `bearing life --duty` gives the same in --json form."""
+    g = load_bearing("7218B")
+    levels = [(3600.0, 1000.0, (1000.0, 0, 3000.0, 0, 0)), (600.0, 8000.0, (3000.0, 0, 6000.0, 0, 0))]
+    dc = L.duty_cycle_life(g, levels, fixed_tilt=True)
+    alone = [L.life_at(g, n, loads, fixed_tilt=True) for _, n, loads in levels]
+    parts = [t / 3600.0 / r.rating.L10r_h for (t, _, _), r in zip(levels, alone)]
+    assert dc.damage_L10r == pytest.approx(sum(parts), rel=1e-12)
+    assert min(r.rating.L10r_h for r in alone) < dc.L10r_h < max(r.rating.L10r_h for r in alone)
+    f = tmp_path / "duty.csv"
+    f.write_text("duration_s,speed_rpm,Fx_N,Fz_N\n3600,1000,1000,3000\n600,8000,3000,6000\n")
+    from bearing_core.cli import main
+    assert main(["life", "--bearing", "7218B", "--duty", str(f), "--fixed-tilt", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["damage_L10r_per_cycle"] == pytest.approx(dc.damage_L10r, rel=1e-12)
+    assert [lv["duration_s"] for lv in d["levels"]] == [3600.0, 600.0]
+    with pytest.raises(BearingInputError, match="duration_s"):
+        L.duty_cycle_life(g, [(0.0, 1000.0, (0, 0, 3000.0, 0, 0))])

@@ -409,3 +409,49 @@ class FatigueDamage:
             raise BearingInputError("life_h", life_h, "value > 0 h (inf: no damage)")
         self.value += damage_increment_nb(float(dt_s), float(life_h))
         return self.value
+
+
+@dataclass
+class DutyCycleLife:
+    """Rating lives of a duty cycle of held operating points (duty_cycle_life): levels (LifeReport each),
+    durations_s [s], the Palmgren-Miner damage of one cycle with L10r and with L_nmr [-], and the equivalent
+    lives L = cycle time / damage [h]."""
+
+    levels: list
+    durations_s: list
+    damage_L10r: float
+    damage_L_nmr: float
+    L10r_h: float
+    L_nmr_h: float
+
+    def to_dict(self) -> dict:
+        fin = lambda x: float(x) if math.isfinite(x) else None  # noqa: E731
+        return {"cycle_s": float(sum(self.durations_s)), "damage_L10r_per_cycle": self.damage_L10r,
+                "damage_L_nmr_per_cycle": self.damage_L_nmr, "L10r_h": fin(self.L10r_h),
+                "L_nmr_h": fin(self.L_nmr_h),
+                "levels": [dict(duration_s=float(t), **{k: v for k, v in rep.to_dict().items()
+                                                          if k == "notes" or not isinstance(v, list)})
+                           for t, rep in zip(self.durations_s, self.levels)]}   # (per-ball lists left out)
+
+
+def duty_cycle_life(geometry, levels, **kw) -> DutyCycleLife:
+    """Rating lives of a duty cycle: levels is a sequence of (duration_s [s] > 0, speed_rpm [rpm] > 0, loads
+    (Fx, Fy, Fz, Mx, My) [N, N m]), each held (life_at with the keywords kw: oil, oil_temperature_c, e_C,
+    reliability_pct, control, fixed_tilt). Palmgren-Miner: the damage of one cycle is sum t_k / L_k (lives in
+    hours at each level's speed), the equivalent life the cycle time over that damage."""
+    levels = list(levels)
+    if not levels:
+        raise BearingInputError("duty cycle", [], "at least one level (duration_s, speed_rpm, loads)")
+    reps, ts = [], []
+    for k, lev in enumerate(levels):
+        try:
+            t, n, loads = lev
+        except (TypeError, ValueError):
+            raise BearingInputError(f"duty cycle level {k}", lev, "(duration_s, speed_rpm, (Fx, Fy, Fz, Mx, My))")
+        ts.append(check_range(f"duty cycle level {k}: duration_s", t, 0.0, None, lo_incl=False, unit="s"))
+        reps.append(life_at(geometry, n, loads, **kw))
+    d10 = sum(damage_increment_nb(t, r.rating.L10r_h) for t, r in zip(ts, reps))
+    dnm = sum(damage_increment_nb(t, r.L_nmr_h) for t, r in zip(ts, reps))
+    T_h = sum(ts) / 3600.0
+    return DutyCycleLife(levels=reps, durations_s=ts, damage_L10r=d10, damage_L_nmr=dnm,
+                         L10r_h=T_h / d10 if d10 > 0 else math.inf, L_nmr_h=T_h / dnm if dnm > 0 else math.inf)
