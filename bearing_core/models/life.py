@@ -164,8 +164,9 @@ def contact_ratings(geometry, alpha_i, alpha_o):
 
 
 def a1_reliability(reliability_pct: float) -> float:
-    """Life modification factor for reliability a_1 [-], ISO 281:2007 Eq. (mentioned with Table 12):
-    a_1 = 0.95 (ln(100/R) / ln(100/90))^(2/3) + 0.05, 90 <= R <= 99.95 %."""
+    """Life modification factor for reliability a_1 [-] at reliability R [%], 90 <= R <= 99.95: the three-parameter
+    Weibull relation behind ISO 281:2007 Table 12 (slope 1.5, minimum life 0.05 L10),
+    a_1 = 0.95 (ln(100/R) / ln(100/90))^(2/3) + 0.05 (bearing_validation case iso281-a1-reliability)."""
     R = check_range("reliability", reliability_pct, RELIABILITY_MIN, RELIABILITY_MAX, unit="%")
     return 0.95 * (math.log(100.0 / R) / math.log(100.0 / 90.0)) ** (2.0 / 3.0) + 0.05
 
