@@ -160,7 +160,8 @@ def build_parser() -> argparse.ArgumentParser:
     _add_loads(li)
     li.add_argument("--fixed-tilt", action="store_true",
                     help="inner ring held square by the shaft (Mx, My are reactions); default: free to tilt")
-    li.add_argument("--oil", default="iso-vg32-mineral", help="oil for the viscosity ratio kappa (default iso-vg32-mineral)")
+    li.add_argument("--oil", default="iso-vg32-mineral",
+                    help="oil for the viscosity ratio kappa (default iso-vg32-mineral)")
     li.add_argument("--oil-temperature-c", type=_finite("--oil-temperature-c"), default=40.0,
                     help="operating oil temperature [degC] (default 40)")
     li.add_argument("--contamination", type=_finite("--contamination"), default=1.0,
@@ -326,8 +327,10 @@ def cmd_life(a) -> int:
 
     if a.duty is not None:
         if a.speed_rpm is not None:
-            raise _BadArg(f"--speed-rpm = {a.speed_rpm:g} is invalid with --duty; allowed: the speeds of the duty CSV")
-        for flag, v, lo, hi in (("--contamination", a.contamination, 0.0, 1.0), ("--reliability", a.reliability, 90.0, 99.95)):
+            raise _BadArg(f"--speed-rpm = {a.speed_rpm:g} is invalid with --duty; allowed: none (the speeds of the "
+                          "duty CSV)")
+        for flag, v, lo, hi in (("--contamination", a.contamination, 0.0, 1.0),
+                                ("--reliability", a.reliability, 90.0, 99.95)):
             if not lo <= v <= hi:
                 raise _BadArg(f"{flag} = {v:g} is invalid; allowed: {lo:g} <= value <= {hi:g}")
         g = load_bearing(a.bearing)
@@ -339,13 +342,15 @@ def cmd_life(a) -> int:
             return 0
         print(f"bearing {g.name}  duty cycle {a.duty}: {len(dc.levels)} levels, {d['cycle_s']:g} s per cycle" +
               ("  (inner ring held square)" if a.fixed_tilt else ""))
-        print(f"{'level':>5} {'time':>9} {'speed':>8} {'Fx':>8} {'Fy':>8} {'Fz':>8} {'Mx':>7} {'My':>7} {'L10r':>10} "
-              f"{'L_nmr':>10} {'damage L10r':>12}")
-        print(f"{'':>5} {'s':>9} {'rpm':>8} {'N':>8} {'N':>8} {'N':>8} {'N m':>7} {'N m':>7} {'h':>10} {'h':>10} {'-':>12}")
+        print(f"{'level':>5} {'time':>9} {'speed':>8} {'Fx':>8} {'Fy':>8} {'Fz':>8} {'Mx':>7} {'My':>7} "
+              f"{'L10r':>10} {'L_nmr':>10} {'damage L10r':>12}")
+        print(f"{'':>5} {'s':>9} {'rpm':>8} {'N':>8} {'N':>8} {'N':>8} {'N m':>7} {'N m':>7} {'h':>10} {'h':>10} "
+              f"{'-':>12}")
         for k, (t, rep) in enumerate(zip(dc.durations_s, dc.levels)):
             L = rep.loads
-            print(f"{k:5d} {t:9.4g} {rep.speed_rpm:8.5g} {L[0]:8.5g} {L[1]:8.5g} {L[2]:8.5g} {L[3]:7.4g} {L[4]:7.4g} "
-                  f"{rep.rating.L10r_h:10.4g} {rep.L_nmr_h:10.4g} {t / 3600.0 / rep.rating.L10r_h:12.4e}")
+            print(f"{k:5d} {t:9.4g} {rep.speed_rpm:8.5g} {L[0]:8.5g} {L[1]:8.5g} {L[2]:8.5g} {L[3]:7.4g} "
+                  f"{L[4]:7.4g} {rep.rating.L10r_h:10.4g} {rep.L_nmr_h:10.4g} "
+                  f"{t / 3600.0 / rep.rating.L10r_h:12.4e}")
         print(f"Palmgren-Miner damage per cycle: {dc.damage_L10r:.4e} (L10r), {dc.damage_L_nmr:.4e} (L_nmr)")
         print(f"equivalent lives: L10r {dc.L10r_h:.4g} h, L_nmr {dc.L_nmr_h:.4g} h")
         return 0

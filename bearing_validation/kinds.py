@@ -746,8 +746,8 @@ def iso281_load_ratings(inputs):
 
 @kind
 def iso281_a1(inputs):
-    """Life modification factor for reliability a_1 (models.life.a1_reliability: the Weibull relation behind ISO 281 Table 12) at each
-    reliability [%] of the case."""
+    """Life modification factor for reliability a_1 (models.life.a1_reliability: the Weibull relation behind
+    ISO 281 Table 12) at each reliability [%] of the case."""
     from bearing_core.models.life import a1_reliability
     return {"a1": [a1_reliability(R) for R in inputs["reliability_pct"]],
             "reliability_pct": list(inputs["reliability_pct"])}

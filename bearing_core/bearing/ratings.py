@@ -59,7 +59,8 @@ def lundberg_palmgren_fc(gamma: float, fi: float = 0.52, fe: float = 0.53) -> fl
     """Lundberg-Palmgren f_c [LP] of a single-row radial ball bearing (N, mm) at gamma = D cos(alpha)/dm,
     groove conformities fi, fe (ISO 281's basis: 0.52, 0.53); no b_m, no reduction factors."""
     g = float(gamma)
-    t = (1.04 * ((1.0 - g) / (1.0 + g)) ** 1.72 * (fi * (2.0 * fe - 1.0) / (fe * (2.0 * fi - 1.0))) ** 0.41) ** (10.0 / 3.0)
+    ratio = fi * (2.0 * fe - 1.0) / (fe * (2.0 * fi - 1.0))
+    t = (1.04 * ((1.0 - g) / (1.0 + g)) ** 1.72 * ratio ** 0.41) ** (10.0 / 3.0)
     return (39.9 * (1.0 + t) ** -0.3 * g ** 0.3 * (1.0 - g) ** 1.39 / (1.0 + g) ** (1.0 / 3.0)
             * (2.0 * fi / (2.0 * fi - 1.0)) ** 0.41)
 
