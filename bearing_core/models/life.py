@@ -5,7 +5,7 @@ Units: SI at the interface (N, m, rad, s); the ISO formulas inside take N, mm, r
 10^6 revolutions of the rotating ring relative to the stationary one ([Mrev]) or hours at a speed ([h]).
 
 Contact ratings (Lundberg-Palmgren point contact; Harris & Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 2
-Ch. 8; ISO/TS 16281:2008 clause 7, same form), per raceway contact of operating angle alpha, N and mm:
+Ch. 8; ISO/TS 16281:2008, same form), per raceway contact of operating angle alpha, N and mm:
     Q_c = k 98.1 (2 f / (2 f - 1))^0.41 (1 -+ g)^1.39 / (1 +- g)^(1/3) (D/dm)^0.3 D^1.8 Z^(-1/3)
     (D > 25.4 mm: 3.647 D^1.4 in place of D^1.8, ISO 281 6.1.1), g = D cos(alpha) / dm,
     upper signs inner raceway (f = fi), lower outer raceway (f = fo).
@@ -15,20 +15,20 @@ bearing file): with Lundberg-Palmgren's relation between raceway and bearing rat
 (J_r = J_r(0.5), J_1 = J_1(0.5) for the rotating inner ring, J_2 = J_2(0.5) for the stationary outer ring: the
 Sjovall-Lundberg-Palmgren load-distribution integrals, computed here by quadrature), k = C_r / C(k = 1).
 k = 1 is Lundberg-Palmgren's theory without ISO's material factor b_m; for the ISO 281 C_r of the presets
-k = 1.25-1.36 (b_m = 1.3 and the table's departure from the theory, bearing_core.bearing.ratings).
+k = 1.24-1.32 (b_m = 1.3 and the table's departure from the theory, bearing_core.bearing.ratings).
 
-Reference rating life (ISO/TS 16281 clause 7 with per-ball contact ratings, Lundberg-Palmgren):
+Reference rating life (ISO/TS 16281:2008 with per-ball contact ratings, Lundberg-Palmgren):
     rotating ring:    Q_e / Q_c = [ (1/Z) sum_j (Q_j / Q_cj)^3     ]^(1/3)       (cubic mean)
     stationary ring:  Q_e / Q_c = [ (1/Z) sum_j (Q_j / Q_cj)^(10/3) ]^(3/10)
     L_ring = (Q_c / Q_e)^3,   L10r = (L_i^(-e) + L_o^(-e))^(-1/e),  e = 10/9     [Mrev]
 With the same Q_c for every ball this is (Q_c / Q_e)^3 with Q_e the ISO/TS 16281 equivalent rolling element
 load. Four-point-contact bearings: the four raceway tracks (two arcs per ring) enter the sum as four rings.
 
-Modified rating life (ISO 281:2007 clause 9; ISO/TS 16281 clause 8):
+Modified rating life (ISO 281:2007; ISO/TS 16281:2008):
     L_nmr = a_1 a_ISO L10r,   a_ISO = f(kappa, e_C C_u / P)  (ball bearing equations, a_iso())
     P = C_r L10r^(-1/3)  (dynamic equivalent reference load, ISO/TS 16281)
     kappa = nu / nu_1,  nu_1 the ISO 281 reference viscosity (reference_viscosity())
-    C_u = C_0 / 22 (d_m <= 100 mm), C_0 / 22 (100 / d_m)^0.5 (d_m > 100 mm), ISO 281:2007 Annex B.2.1, ball
+    C_u = C_0 / 22 (d_m <= 100 mm), C_0 / 22 (100 / d_m)^0.5 (d_m > 100 mm), ISO 281:2007 Annex B, ball
           bearings, with C_0 on ISO 76's basis (bearing_core.lubrication.friction_models.iso76_static_rating)
 Palmgren-Miner damage over a run: D = sum dt / L_h (damage_increment_nb).
 """
@@ -45,10 +45,9 @@ from ..errors import BearingInputError, check_range
 E_BALL = 10.0 / 9.0            # Lundberg-Palmgren Weibull slope of ball bearings
 P_BALL = 3.0                   # life exponent of ball bearings
 REVS_PER_MREV = 1.0e6
-RING_INNER, RING_OUTER = 0, 1
 ROTATING_RINGS = ("inner", "outer")
-A_ISO_MAX = 50.0               # ISO 281:2007 9.3.1: a_ISO limited to 50
-KAPPA_MIN, KAPPA_MAX = 0.1, 4.0  # ISO 281:2007 9.3.2: kappa < 0.1 not covered; kappa > 4 taken as 4
+A_ISO_MAX = 50.0               # ISO 281:2007: a_ISO limited to 50
+KAPPA_MIN, KAPPA_MAX = 0.1, 4.0  # ISO 281:2007: kappa < 0.1 not covered; kappa > 4 taken as 4
 RELIABILITY_MIN, RELIABILITY_MAX = 90.0, 99.95   # ISO 281:2007 Table 12
 
 
@@ -172,7 +171,7 @@ def a1_reliability(reliability_pct: float) -> float:
 
 
 def reference_viscosity(dm: float, speed_rpm: float) -> float:
-    """ISO 281:2007 9.3.3 reference kinematic viscosity nu_1 [mm^2/s] at pitch diameter dm [m] and speed
+    """ISO 281:2007 reference kinematic viscosity nu_1 [mm^2/s] at pitch diameter dm [m] and speed
     [rpm] > 0: 45000 n^-0.83 D_pw^-0.5 for n < 1000 r/min, 4500 n^-0.5 D_pw^-0.5 for n >= 1000 r/min."""
     n = check_range("speed_rpm", speed_rpm, 0.0, None, lo_incl=False, unit="rpm")
     Dpw = dm * 1e3
@@ -182,7 +181,7 @@ def reference_viscosity(dm: float, speed_rpm: float) -> float:
 
 
 def a_iso(kappa: float, ec_cu_over_p: float) -> float:
-    """Life modification factor a_ISO [-] of radial ball bearings, ISO 281:2007 9.3.2, Eqs. for
+    """Life modification factor a_ISO [-] of radial ball bearings, ISO 281:2007 equations for
     0.1 <= kappa < 0.4, 0.4 <= kappa < 1, 1 <= kappa <= 4 (kappa > 4 taken as 4; kappa < 0.1 is outside the
     standard: a BearingInputError), x = e_C C_u / P >= 0:
         a_ISO = 0.1 [1 - (2.5671 - c1 / kappa^c2)^0.83 x^(1/3)]^(-9.3),  limited to 50
@@ -204,7 +203,7 @@ def a_iso(kappa: float, ec_cu_over_p: float) -> float:
 
 
 def fatigue_load_limit(C0: float, dm: float) -> float:
-    """Fatigue load limit C_u [N] of a ball bearing, ISO 281:2007 Annex B.2.1 (estimate): C_0 / 22 for
+    """Fatigue load limit C_u [N] of a ball bearing, ISO 281:2007 Annex B (estimate): C_0 / 22 for
     D_pw <= 100 mm, C_0 / 22 (100 / D_pw)^0.5 above; C0 [N], dm [m]."""
     Dpw = dm * 1e3
     return C0 / 22.0 if Dpw <= 100.0 else C0 / 22.0 * (100.0 / Dpw) ** 0.5
@@ -384,10 +383,10 @@ def life_at(geometry, speed_rpm: float, loads, oil: str = "iso-vg32-mineral", oi
     if kappa < KAPPA_MIN:
         notes.append(f"kappa = {kappa:.3g} < 0.1 is outside ISO 281's a_ISO range: a_ISO evaluated at kappa = 0.1")
     if kappa > KAPPA_MAX:
-        notes.append(f"kappa = {kappa:.3g} > 4: a_ISO evaluated at kappa = 4 (ISO 281 9.3.2)")
+        notes.append(f"kappa = {kappa:.3g} > 4: a_ISO evaluated at kappa = 4 (ISO 281:2007)")
     ai = a_iso(max(kappa, KAPPA_MIN), e_C * Cu / rl.P_ref)
     if ai >= A_ISO_MAX:
-        notes.append("a_ISO at its limit of 50 (ISO 281 9.3.1)")
+        notes.append("a_ISO at its limit of 50 (ISO 281:2007)")
     src = "catalogue (bearing file dynamic_load_rating_N)" if g.dynamic_load_rating > 0 else "ISO 281 from the geometry"
     Lnm = a1 * ai * rl.L10r_Mrev
     return LifeReport(bearing=g.name, speed_rpm=n, loads=tuple(map(float, loads)), rating=rl, C_r=rl.C_r,
