@@ -82,6 +82,19 @@ def test_kernel_equals_python_path(states):
         assert rl.L10r_Mrev < min(rl.L_inner_Mrev, rl.L_outer_Mrev)
 
 
+def test_details_kernel_equals_arrays(states):
+    """rating_life_hours_details_nb on a per-ball details array (the dynamics' layout) equals the array form."""
+    from bearing_core.models import dynamics_kernels as K
+    g, sts = states
+    par = L.life_parameters(g)
+    for rpm, res in sts:
+        bd = np.zeros((g.Z, K.NBD))
+        bd[:, K.BD_QI], bd[:, K.BD_AI], bd[:, K.BD_QO], bd[:, K.BD_AO] = res.Q_i, res.alpha_i, res.Q_o, res.alpha_o
+        ref = L.rating_life_hours_nb(res.Q_i, res.Q_o, res.alpha_i, res.alpha_o, par, rpm)
+        assert L.rating_life_hours_details_nb(bd, par, rpm) == pytest.approx(ref, rel=1e-12)
+    assert L.rating_life_hours_details_nb(np.zeros((g.Z, K.NBD)), par, 1000.0) == math.inf
+
+
 def test_damage_at_held_state_is_time_over_life(states):
     g, sts = states
     par = L.life_parameters(g)

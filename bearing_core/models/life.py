@@ -41,6 +41,7 @@ import numpy as np
 from numba import njit
 
 from ..errors import BearingInputError, check_range
+from . import dynamics_kernels as K
 
 E_BALL = 10.0 / 9.0            # Lundberg-Palmgren Weibull slope of ball bearings
 P_BALL = 3.0                   # life exponent of ball bearings
@@ -114,6 +115,26 @@ def rating_life_hours_nb(Q_i, Q_o, alpha_i, alpha_o, par, speed_rpm):
     if n <= 0.0 or not L < math.inf:
         return math.inf
     return L * REVS_PER_MREV / (60.0 * n)
+
+
+@njit(cache=True)
+def rating_life_hours_details_nb(bd, par, speed_rpm):
+    """L10r [h] straight from the dynamics' per-ball details bd (Z x dynamics_kernels.NBD: columns BD_QI, BD_AI,
+    BD_QO, BD_AO and, for four-point bearings, the second arcs BD_QI2, BD_AI2, BD_QO2, BD_AO2, which are 0 for
+    two-point bearings); par = life_parameters(geometry); speed_rpm the relative ring speed [rpm]. A four-point
+    bearing's tracks are each ball's more and less loaded arc (the grouping bd holds). inf at zero speed or
+    without load."""
+    rot_in = par[6] == 0.0
+    s = 0.0
+    for cq, ca, inner in ((K.BD_QI, K.BD_AI, True), (K.BD_QO, K.BD_AO, False), (K.BD_QI2, K.BD_AI2, True),
+                          (K.BD_QO2, K.BD_AO2, False)):
+        f = par[2] if inner else par[3]
+        r = ring_load_ratio_nb(bd[:, cq], bd[:, ca], par[0], par[1], f, inner, par[5], inner == rot_in)
+        s += r ** (3.0 * E_BALL)
+    n = abs(speed_rpm)
+    if s <= 0.0 or n <= 0.0:
+        return math.inf
+    return s ** (-1.0 / E_BALL) * REVS_PER_MREV / (60.0 * n)
 
 
 @njit(cache=True)
