@@ -140,6 +140,19 @@ def model_description(desc: dict, guid: str) -> Element:
     units = {_MODELICA_UNIT.get(u, u) for u in INPUT_UNITS} | {_MODELICA_UNIT.get(u, u) for _n, u, _d in OUTPUT_SPEC}
     units |= {u for p in desc["parameters"] if (u := _param_unit(p[0]))}
     _units_xml(root, units)
+    enums = {ename: (param, items) for param, (ename, items) in desc["enums"].items()}
+    declared = {p[0] for p in desc["parameters"]} & set(enums)
+    if declared:
+        from .fmu_src.bearing_fmu import _ENUM_DESC
+        td = SubElement(root, "TypeDefinitions")
+        for ename in sorted(declared):
+            param, items = enums[ename]
+            st = SubElement(td, "SimpleType", name=f"{param}_choices")
+            en = SubElement(st, "Enumeration")
+            descs = _ENUM_DESC.get(param, ())
+            for i, it in enumerate(items):
+                SubElement(en, "Item", {"name": it, "value": str(i + 1),
+                                        **({"description": descs[i]} if i < len(descs) else {})})
     lc = SubElement(root, "LogCategories")
     for cat, d in (("logError", "the reason of every fmi2Error"), ("logDiscard", "the reason of every rejected step "
                    "(fmi2Discard)"), ("logWarning", "warnings (the operating point enters a region where the map is "
@@ -191,12 +204,14 @@ def model_description(desc: dict, guid: str) -> Element:
         full = pdesc.get(name, d)
         sv = SubElement(mv, "ScalarVariable", name=name, valueReference=str(VR_PARAMETER + k), causality="parameter",
                         variability="fixed", initial="exact",
-                        description=(d if name in ("fidelity", "map_file") or check == 4 else
+                        description=(d if name in ("fidelity", "map_file") or check in (4, 5, 6) else
                                      f"{full} -- fixed by the map: {rep}"))
         if typ is str:
             SubElement(sv, "String", start=str(start))
         elif typ is bool:
             SubElement(sv, "Boolean", start="true" if start else "false")
+        elif typ is int and name in enums:
+            SubElement(sv, "Enumeration", declaredType=f"{enums[name][0]}_choices", start=str(int(start)))
         elif typ is int:
             SubElement(sv, "Integer", start=str(int(start)))
         else:

@@ -38,7 +38,7 @@ Format version 1 (every integer little-endian; f64 IEEE 754 little-endian; str =
       i32 i_oil; f64 oil_fraction
       u32 n_par; per parameter: str name, i32 type (0 Real, 1 Integer, 2 Boolean, 3 String), i32 check
                 (0 the map's build value, 1 a value the level requires, 2 fidelity, 3 map_file, 4 oil temperature
-                axis range), f64 start, str start, str repr of the required value, str detail, u32 n_alt, str alt[]
+                axis range, 5 none, 6 the Enumeration item of a checked String), f64 start, str start, str repr of the required value, str detail, u32 n_alt, str alt[]
       u32 end mark 0x454e4421 ("!DNE")
 """
 from __future__ import annotations
@@ -59,7 +59,10 @@ TABLE_NAME = "map_table.bin"
 """The table's file name in the FMU's resources/."""
 
 PARAM_TYPES = {float: 0, int: 1, bool: 2, str: 3}
-CHECK_BUILT, CHECK_FIXED, CHECK_FIDELITY, CHECK_MAP_FILE, CHECK_OIL_AXIS = range(5)
+CHECK_BUILT, CHECK_FIXED, CHECK_FIDELITY, CHECK_MAP_FILE, CHECK_OIL_AXIS, CHECK_NONE, CHECK_ENUM = range(7)
+"""How fmi2ExitInitializationMode checks a parameter: the map's build value, a value the level requires, 'map',
+an empty map_file, within the map's oil temperature axis, not at all (a parameter of BearingFMU that has no
+effect at the map level), the item of a checked String parameter (its Enumeration twin)."""
 
 
 class _W:
@@ -144,6 +147,37 @@ def pinned_parameters(built: dict, axis_names) -> list:
             what = ("the map is of an isothermal bearing with its definition's geometry, outer ring fixed and inner "
                     "ring free to tilt")
         out.append((k, typ, CHECK_FIXED, want, repr(want), what, (), f"{k}: {want!r} at the map level"))
+    # BearingFMU's other parameters: accepted, no effect at the map level (as in BearingFMU at fidelity = map)
+    from .fmu_src.bearing_fmu import _GEOMETRY_PARAMS, _PARAMS
+    have = {p[0] for p in out}
+    for name, typ, start, _unit, desc, _rng in _PARAMS:
+        if name not in have:
+            out.append((name, typ, CHECK_NONE, start, repr(start), "", (), f"{desc} (no effect at the map level)"))
+    for name, typ, _unit, desc, _rng in _GEOMETRY_PARAMS:
+        if name not in have:
+            out.append((name, typ, CHECK_NONE, typ(0), repr(typ(0)), "", (), f"{desc} (no effect at the map level)"))
+    # the Enumeration twins of the choice parameters: the item of the map's value
+    values = {p[0]: p for p in out}
+    for param, (ename, items) in enum_twins().items():
+        v = values[param][3]
+        if v not in items:
+            continue                 # a bearing file or designation: no preset item
+        checked = values[param][2] != CHECK_NONE
+        out.append((ename, int, CHECK_ENUM if checked else CHECK_NONE, items.index(v) + 1,
+                    f"{items.index(v) + 1} ({v})", f"the item of {param}, {v!r}", (),
+                    f"Enumeration of the String parameter {param}"))
+    return out
+
+
+def enum_twins() -> dict:
+    """{String parameter: (its Enumeration twin's name, items)} of BearingFMU (bearing_fmu.ENUMERATIONS)."""
+    from bearing_core.session.fidelity import FIDELITIES
+    from .fmu_src.bearing_fmu import ENUM_NAME, ENUMERATIONS, bearing_preset_items
+    out = {}
+    for param, items in ENUMERATIONS.items():
+        if items is None:
+            items = tuple(FIDELITIES) if param == "fidelity" else tuple(bearing_preset_items())
+        out[param] = (ENUM_NAME.get(param, f"{param}_choice"), tuple(items))
     return out
 
 
@@ -228,7 +262,7 @@ def build_table(map_path, guid: str = "") -> tuple[bytes, dict]:
     header += b"\0" * (HEADER - len(header))
     desc = {"axes": [(nm, float(qlo[d]), float(qhi[d]), int(ptr[d + 1] - ptr[d]))
                      for d, nm in enumerate(lv.axis_names)],
-            "ranges": lv.ranges(), "parameters": params, "attrs": prov, "built": built, "rotate": bool(rotate),
+            "ranges": lv.ranges(), "parameters": params, "enums": enum_twins(), "attrs": prov, "built": built, "rotate": bool(rotate),
             "n_points": n_points, "map_name": Path(map_path).name}
     return header + body, desc
 

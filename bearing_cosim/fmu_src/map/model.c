@@ -34,7 +34,7 @@
 #define MAX_VALS 512
 #define MAX_OUT 1024
 #define MAX_IN 64
-#define MAX_PAR 64
+#define MAX_PAR 128
 #define MAX_POINTS 20000000u
 #define STR_CAP 512 /* longest String parameter value + 1 */
 #define N_IB 19
@@ -43,7 +43,7 @@
 #define FLAG_GROSS_SKID 1
 #define FLAG_CAGE_UNSTEADY 2
 
-enum { CHECK_BUILT, CHECK_FIXED, CHECK_FIDELITY, CHECK_MAP_FILE, CHECK_OIL_AXIS };
+enum { CHECK_BUILT, CHECK_FIXED, CHECK_FIDELITY, CHECK_MAP_FILE, CHECK_OIL_AXIS, CHECK_NONE, CHECK_ENUM };
 
 typedef struct {
     char *name, *start_str, *repr, *detail;
@@ -379,7 +379,7 @@ static int parse_table(Model *m, Rd *r) {
         p->detail = rd_str(r, "parameter detail");
         p->n_alt = (int)rd_u32(r, "parameter alternatives");
         RANGE(p->type, 0, 3, "parameter type");
-        RANGE(p->check, 0, 4, "parameter check");
+        RANGE(p->check, 0, 6, "parameter check");
         RANGE(p->n_alt, 0, 16, "parameter alternatives");
         if (r->err[0]) return 0;
         p->alt = (char **)calloc((size_t)(p->n_alt ? p->n_alt : 1), sizeof(char *));
@@ -625,7 +625,8 @@ static int check_parameters(Model *m, char *err, size_t n) {
     for (int pass = 0; pass < 3; pass++) /* fidelity and map_file, then the build parameters, then fixed ones */
         for (int k = 0; k < m->n_par; k++) {
             Param *p = &m->par[k];
-            int want = p->check == CHECK_FIDELITY || p->check == CHECK_MAP_FILE
+            if (p->check == CHECK_NONE) continue; /* no effect at the map level */
+            int want = p->check == CHECK_FIDELITY || p->check == CHECK_MAP_FILE || p->check == CHECK_ENUM
                            ? 0
                            : (p->check == CHECK_BUILT || p->check == CHECK_OIL_AXIS ? 1 : 2);
             if (want != pass) continue;
@@ -658,6 +659,9 @@ static int check_parameters(Model *m, char *err, size_t n) {
             else if (p->check == CHECK_FIXED)
                 snprintf(err, n, "%s = %s is invalid; allowed: %s at fidelity 'map' (%s)", p->name, v, p->repr,
                          p->detail);
+            else if (p->check == CHECK_ENUM)
+                snprintf(err, n, "%s = %s is invalid; allowed: %s, %s (this FMU holds one operating map)", p->name, v,
+                         p->repr, p->detail);
             else
                 snprintf(err, n, "%s = %s is invalid; allowed: %s (%s)", p->name, v, p->repr, p->detail);
             return -1;
