@@ -211,6 +211,8 @@ void fmu_log(Instance *c, int status, const char *fmt, ...) {
               fmtd);
 }
 
+static void free_all_states(Instance *c); /* FMU states, below */
+
 static Instance *valid(fmi2Component comp) {
     Instance *c = (Instance *)comp;
     return (c && c->magic == INSTANCE_MAGIC) ? c : NULL;
@@ -286,6 +288,7 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
 FMI2_EXPORT void fmi2FreeInstance(fmi2Component comp) {
     Instance *c = valid(comp);
     if (!c) return;
+    free_all_states(c);
     model_delete(c->model);
     c->magic = 0;
     free(c->name);
@@ -616,16 +619,45 @@ FMI2_EXPORT fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2V
  *   char[8] "BRGSTATE", u32 version, u32 header size (96), u32 mode, u32 payload size, u32 CRC-32 of the payload,
  *   u32 length of the GUID, char[64] the model's GUID (zero-padded, cut at 64 bytes), then the payload.
  * Deserialising checks every header field, the GUID, the CRC and then the payload field by field (model). */
-typedef struct {
+typedef struct FmuState {
     unsigned magic;
     int mode;
     size_t size;
     unsigned char *bytes;
+    struct FmuState *next; /* the instance's list of states */
+    Instance *owner;
 } FmuState;
 
-static FmuState *valid_state(fmi2FMUstate s) {
-    FmuState *st = (FmuState *)s;
-    return (st && st->magic == STATE_MAGIC) ? st : NULL;
+static FmuState *new_state(Instance *c) {
+    FmuState *st = (FmuState *)calloc(1, sizeof *st);
+    if (!st) return NULL;
+    st->magic = STATE_MAGIC;
+    st->owner = c;
+    st->next = (FmuState *)c->states;
+    c->states = st;
+    return st;
+}
+
+static void free_state(Instance *c, FmuState *st) {
+    for (FmuState **p = (FmuState **)&c->states; *p; p = &(*p)->next)
+        if (*p == st) {
+            *p = st->next;
+            break;
+        }
+    st->magic = 0;
+    free(st->bytes);
+    free(st);
+}
+
+static void free_all_states(Instance *c) {
+    while (c->states) free_state(c, (FmuState *)c->states);
+}
+
+/* a state this instance allocated (and has not freed) */
+static FmuState *valid_state(Instance *c, fmi2FMUstate s) {
+    for (FmuState *st = (FmuState *)c->states; st; st = st->next)
+        if (st == (FmuState *)s && st->magic == STATE_MAGIC && st->owner == c) return st;
+    return NULL;
 }
 
 FMI2_EXPORT fmi2Status fmi2GetFMUstate(fmi2Component comp, fmi2FMUstate *FMUstate) {
@@ -635,11 +667,10 @@ FMI2_EXPORT fmi2Status fmi2GetFMUstate(fmi2Component comp, fmi2FMUstate *FMUstat
         return fmi2Error;
     }
     size_t n = model_state_size(c->model);
-    FmuState *st = valid_state(*FMUstate);
+    FmuState *st = valid_state(c, *FMUstate);
     if (!st) {
-        st = (FmuState *)calloc(1, sizeof *st);
+        st = new_state(c);
         if (!st) return fmi2Error;
-        st->magic = STATE_MAGIC;
     }
     if (st->size != n) {
         unsigned char *b = (unsigned char *)realloc(st->bytes, n ? n : 1);
@@ -655,7 +686,7 @@ FMI2_EXPORT fmi2Status fmi2GetFMUstate(fmi2Component comp, fmi2FMUstate *FMUstat
 
 FMI2_EXPORT fmi2Status fmi2SetFMUstate(fmi2Component comp, fmi2FMUstate FMUstate) {
     CHECK("fmi2SetFMUstate", M(MODE_INIT) | M(MODE_STEP))
-    FmuState *st = valid_state(FMUstate);
+    FmuState *st = valid_state(c, FMUstate);
     if (!st) {
         fmu_log(c, fmi2Error, "fmi2SetFMUstate: not an FMU state of this FMU");
         return fmi2Error;
@@ -673,14 +704,12 @@ FMI2_EXPORT fmi2Status fmi2FreeFMUstate(fmi2Component comp, fmi2FMUstate *FMUsta
     Instance *c = valid(comp);
     if (!c) return fmi2Error;
     if (!FMUstate || !*FMUstate) return fmi2OK;
-    FmuState *st = valid_state(*FMUstate);
+    FmuState *st = valid_state(c, *FMUstate);
     if (!st) {
         fmu_log(c, fmi2Error, "fmi2FreeFMUstate: not an FMU state of this FMU");
         return fmi2Error;
     }
-    st->magic = 0;
-    free(st->bytes);
-    free(st);
+    free_state(c, st);
     *FMUstate = NULL;
     return fmi2OK;
 }
@@ -688,7 +717,7 @@ FMI2_EXPORT fmi2Status fmi2FreeFMUstate(fmi2Component comp, fmi2FMUstate *FMUsta
 FMI2_EXPORT fmi2Status fmi2SerializedFMUstateSize(fmi2Component comp, fmi2FMUstate FMUstate, size_t *size) {
     Instance *c = valid(comp);
     if (!c) return fmi2Error;
-    FmuState *st = valid_state(FMUstate);
+    FmuState *st = valid_state(c, FMUstate);
     if (!st || !size) {
         fmu_log(c, fmi2Error, "fmi2SerializedFMUstateSize: not an FMU state of this FMU");
         return fmi2Error;
@@ -701,7 +730,7 @@ FMI2_EXPORT fmi2Status fmi2SerializeFMUstate(fmi2Component comp, fmi2FMUstate FM
                                              size_t size) {
     Instance *c = valid(comp);
     if (!c) return fmi2Error;
-    FmuState *st = valid_state(FMUstate);
+    FmuState *st = valid_state(c, FMUstate);
     if (!st || !serializedState) {
         fmu_log(c, fmi2Error, "fmi2SerializeFMUstate: not an FMU state of this FMU");
         return fmi2Error;
@@ -778,17 +807,16 @@ FMI2_EXPORT fmi2Status fmi2DeSerializeFMUstate(fmi2Component comp, const fmi2Byt
     }
     model_state_load(c->model, keep, cur, buf, sizeof buf);
     free(keep);
-    FmuState *st = (FmuState *)calloc(1, sizeof *st);
+    FmuState *st = new_state(c);
     if (!st) return fmi2Error;
     st->bytes = (unsigned char *)malloc(n ? n : 1);
     if (!st->bytes) {
-        free(st);
+        free_state(c, st);
         return fmi2Error;
     }
     memcpy(st->bytes, p + SER_HEADER, n);
     st->size = n;
     st->mode = (int)le_get_u32(p + 16);
-    st->magic = STATE_MAGIC;
     *FMUstate = st;
     return fmi2OK;
 }

@@ -60,11 +60,14 @@ typedef struct Instance {
     double t_start;
     char failure[2048]; /* why the initialisation failed (MODE_FAILED) */
     void *model;
+    void *states; /* the FMU states this instance allocated (freed with it, FMI 2.0 fmi2FreeInstance) */
 } Instance;
 
 /* The message (printf format) to the master's logger, category from the status (logInfo only with logging on). */
 void fmu_log(Instance *c, int status, const char *fmt, ...)
-#if defined(__GNUC__)
+#if defined(__MINGW32__)
+    __attribute__((format(gnu_printf, 3, 4))) /* C99 formats (__USE_MINGW_ANSI_STDIO) */
+#elif defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
