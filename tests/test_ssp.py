@@ -174,13 +174,17 @@ def test_drivetrain_two_masters_energy(build, tmp_path):
 
 
 def test_helper_fmus_run_on_the_project_fmi_layer(build):
-    """Every FMU of the examples carries the project's FMI layer and model process, none pythonfmu's exported
-    native library."""
+    """Every FMU of the examples carries the project's FMI layer and model process (BearingMapFMU: the shared C
+    layer and no Python at all), none pythonfmu's exported native library."""
     for fmu in sorted(Path(build["fmus"]).glob("*.fmu")):
         with zipfile.ZipFile(fmu) as z:
             names = z.namelist()
             tool = ET.fromstring(z.read("modelDescription.xml")).get("generationTool")
-        assert "resources/model_process.py" in names and "native FMI 2.0 layer" in tool, fmu.name
+        if fmu.name == "BearingMapFMU.fmu":
+            assert "sources/fmi2_common.c" in names and not any(n.endswith(".py") for n in names), names
+            assert "pure C" in tool, tool
+        else:
+            assert "resources/model_process.py" in names and "native FMI 2.0 layer" in tool, fmu.name
         assert not any("pythonfmu-export" in n for n in names), fmu.name
 
 
