@@ -23,7 +23,6 @@ import json
 import math
 import mmap
 import os
-import pickle
 import shutil
 import signal
 import struct
@@ -439,20 +438,236 @@ class Model:
     def serialize(self, sid):
         if sid not in self.states:
             raise FmiError(f"unknown FMU state {sid:#x}")
-        return pickle.dumps((PROTOCOL, self.states[sid]), protocol=4)
+        slave_state, t, mode = self.states[sid]
+        conv = {v.name: _CONV[_KIND.index(type(v).__name__)] for v in self.vars.values()}
+        slave_state = {k: conv[k](v) if k in conv else v for k, v in slave_state.items()}
+        return encode_state({"guid": self.guid, "time": float(t), "mode": mode, "slave": slave_state})
+
+    def check_state(self, st):
+        """A decoded serialised state checked field by field against this instance: the FMU's GUID, the mode
+        and time, every settable variable with its type (and range), and the session's rollback state with the
+        kinds, dtypes and shapes of this instance's session. Returns (slave state, time, mode)."""
+        if st.get("guid") != self.guid:
+            raise FmiError(f"the state is of the FMU with GUID {st.get('guid')!r}; this FMU is {self.guid}")
+        mode, t = st.get("mode"), st.get("time")
+        if mode not in ("init", "step"):
+            raise FmiError(f"state field mode = {mode!r} is invalid; allowed: 'init' or 'step'")
+        if type(t) is not float or not math.isfinite(t):
+            raise FmiError(f"state field time = {t!r} is invalid; allowed: a finite float")
+        slave = st.get("slave")
+        if type(slave) is not dict:
+            raise FmiError(f"state field slave is a {type(slave).__name__}; allowed: a map of variable values")
+        want = {v.name: v for v in self.vars.values() if v.causality.name != "output"}
+        names = set(slave) - {"_session_state"}
+        if names != set(want):
+            extra, missing = sorted(names - set(want)), sorted(set(want) - names)
+            raise FmiError("state variables do not match this FMU's"
+                           + (f"; unknown: {', '.join(map(str, extra[:10]))}" if extra else "")
+                           + (f"; missing: {', '.join(missing[:10])}" if missing else ""))
+        ranges = getattr(self.slave, "_ranges", {})
+        enums = getattr(self.slave, "_enums", {})
+        for name, var in want.items():
+            v, kind = slave[name], type(var).__name__
+            ok = {"Real": float, "Integer": int, "Boolean": bool, "String": str}[kind]
+            if type(v) is not ok:
+                raise FmiError(f"state variable {name} = {v!r:.60} is a {type(v).__name__}; allowed: a {kind} "
+                               f"({ok.__name__})")
+            if kind == "Integer" and name in enums and not 1 <= v <= len(enums[name][1]):
+                raise FmiError(f"state variable {name} = {v} is not an item value of its enumeration; allowed: "
+                               f"1..{len(enums[name][1])}")
+            if kind == "Real" and var.causality.name == "parameter" and name in ranges:
+                lo, hi = ranges[name]
+                if not lo <= v <= hi:
+                    raise FmiError(f"state variable {name} = {v!r} is outside the allowed range [{lo:g}, {hi:g}]")
+        sess = getattr(self.slave, "_session", None)
+        got = slave.get("_session_state")
+        if got is not None:
+            if sess is None:
+                raise FmiError("the state holds a running simulation; this instance has none yet (deserialise "
+                               "it after fmi2ExitInitializationMode)")
+            _check_like(got, _session_template(sess), "session state")
+        return slave, t, mode
 
     def deserialize(self, data, sid):
-        try:
-            version, state = pickle.loads(data)
-        except Exception as e:
-            raise FmiError(f"not a serialized state of this FMU ({type(e).__name__}: {e})") from None
-        if version != PROTOCOL:
-            raise FmiError(f"serialized state of protocol {version}, this FMU reads {PROTOCOL}")
+        state = self.check_state(decode_state(data))
         if sid not in self.states:
             sid = self.next_state
             self.next_state += 1
         self.states[sid] = state
         return sid
+
+
+# ---- serialised FMU state: plain data, never pickled -------------------------------------------------
+STATE_MAGIC = b"BRGSTATE"
+STATE_VERSION = 1
+_STATE_HDR = struct.Struct("<8sII")         # magic, format version, body length
+_DTYPES = {1: "<f8", 2: "<i8"}              # the array dtypes a state may hold
+_MAX_DEPTH, _MAX_NDIM, _MAX_ITEMS = 8, 4, 1 << 24
+
+
+def encode_state(obj) -> bytes:
+    """obj (None, bool, int, float, str, tuple/list, dict with str keys, numpy float64/int64 arrays and scalars)
+    as tagged little-endian binary behind a versioned header."""
+    import numpy as np
+    out = []
+
+    def enc(x):
+        if x is None:
+            out.append(b"N")
+        elif isinstance(x, (bool, np.bool_)):
+            out.append(b"T" if x else b"F")
+        elif isinstance(x, (int, np.integer)):
+            out.append(b"i" + struct.pack("<q", int(x)))
+        elif isinstance(x, (float, np.floating)):
+            out.append(b"d" + struct.pack("<d", float(x)))
+        elif isinstance(x, str):
+            b = x.encode("utf-8")
+            out.append(b"s" + struct.pack("<I", len(b)) + b)
+        elif isinstance(x, (tuple, list)):
+            out.append(b"t" + struct.pack("<I", len(x)))
+            for v in x:
+                enc(v)
+        elif isinstance(x, dict):
+            out.append(b"m" + struct.pack("<I", len(x)))
+            for k, v in x.items():
+                enc(str(k))
+                enc(v)
+        elif isinstance(x, np.ndarray):
+            code = {np.dtype("<f8"): 1, np.dtype("<i8"): 2}.get(x.dtype.newbyteorder("<") if x.dtype.byteorder == ">"
+                                                             else x.dtype)
+            if code is None or x.ndim > _MAX_NDIM:
+                raise FmiError(f"cannot serialise an array of {x.dtype} with {x.ndim} dimensions")
+            out.append(b"a" + struct.pack(f"<BB{x.ndim}I", code, x.ndim, *x.shape)
+                       + np.ascontiguousarray(x, dtype=_DTYPES[code]).tobytes())
+        else:
+            raise FmiError(f"cannot serialise a {type(x).__name__} in the FMU state")
+
+    enc(obj)
+    body = b"".join(out)
+    return _STATE_HDR.pack(STATE_MAGIC, STATE_VERSION, len(body)) + body
+
+
+def decode_state(data: bytes):
+    """The inverse of encode_state; every length is checked against the bytes there are. Raises FmiError naming
+    what is wrong."""
+    import numpy as np
+    data = bytes(data)
+    if len(data) < _STATE_HDR.size or data[:8] != STATE_MAGIC:
+        raise FmiError(f"not a serialized state of this FMU ({len(data)} bytes without the {STATE_MAGIC.decode()} "
+                       "header)")
+    _, version, n = _STATE_HDR.unpack_from(data)
+    if version != STATE_VERSION:
+        raise FmiError(f"serialized state format version {version}; this FMU reads version {STATE_VERSION}")
+    if n != len(data) - _STATE_HDR.size:
+        raise FmiError(f"serialized state body length {n} does not match the {len(data) - _STATE_HDR.size} bytes "
+                       "given")
+    pos = [_STATE_HDR.size]
+
+    def take(k):
+        if k < 0 or pos[0] + k > len(data):
+            raise FmiError(f"serialized state truncated at byte {pos[0]} (needs {k} more)")
+        b = data[pos[0]:pos[0] + k]
+        pos[0] += k
+        return b
+
+    def count():
+        (k,) = struct.unpack("<I", take(4))
+        if k > len(data) - pos[0]:
+            raise FmiError(f"serialized state: a count of {k} at byte {pos[0] - 4} exceeds the remaining bytes")
+        return k
+
+    def dec(depth):
+        if depth > _MAX_DEPTH:
+            raise FmiError(f"serialized state nested deeper than {_MAX_DEPTH}")
+        tag = take(1)
+        if tag == b"N":
+            return None
+        if tag in (b"T", b"F"):
+            return tag == b"T"
+        if tag == b"i":
+            return struct.unpack("<q", take(8))[0]
+        if tag == b"d":
+            return struct.unpack("<d", take(8))[0]
+        if tag == b"s":
+            try:
+                return take(count()).decode("utf-8")
+            except UnicodeDecodeError:
+                raise FmiError(f"serialized state: a string before byte {pos[0]} is not UTF-8") from None
+        if tag == b"t":
+            return tuple(dec(depth + 1) for _ in range(count()))
+        if tag == b"m":
+            out = {}
+            for _ in range(count()):
+                k = dec(depth + 1)
+                if type(k) is not str:
+                    raise FmiError(f"serialized state: a map key before byte {pos[0]} is a {type(k).__name__}")
+                out[k] = dec(depth + 1)
+            return out
+        if tag == b"a":
+            code, ndim = struct.unpack("<BB", take(2))
+            if code not in _DTYPES or ndim > _MAX_NDIM:
+                raise FmiError(f"serialized state: array of dtype code {code} with {ndim} dimensions; allowed: "
+                               f"float64 or int64, at most {_MAX_NDIM} dimensions")
+            shape = struct.unpack(f"<{ndim}I", take(4 * ndim))
+            size = math.prod(shape)
+            if size > _MAX_ITEMS:
+                raise FmiError(f"serialized state: array of shape {shape} exceeds {_MAX_ITEMS} items")
+            return np.frombuffer(take(8 * size), dtype=_DTYPES[code]).reshape(shape).astype(_DTYPES[code][1:])
+        raise FmiError(f"serialized state: unknown tag {tag!r} at byte {pos[0] - 1}")
+
+    obj = dec(0)
+    if pos[0] != len(data):
+        raise FmiError(f"serialized state: {len(data) - pos[0]} bytes after its end")
+    if type(obj) is not dict:
+        raise FmiError("serialized state: not a map of fields")
+    return obj
+
+
+def _session_template(sess):
+    """What the session's get_state of this instance may return: its own state, with the implicit integrator's
+    workspace (absent until its first implicit step) of this bearing's size."""
+    import numpy as np
+    cur = sess.get_state()
+    if cur is not None and not isinstance(cur[0], str) and len(cur) == 8 and cur[7] is None:
+        K = sys.modules["bearing_core.models.dynamics"].K
+        cur = cur[:7] + (tuple(K.rosw_workspace(int(sess.model.P[K.P_NB]))),)
+    return cur
+
+
+def _check_like(got, want, where):
+    """got has the kinds of want: None, str (equal), float, int, bool, tuples of the same length, arrays of the
+    same dtype and shape; the implicit integrator's workspace (the last item of the dynamic state) may be None."""
+    import numpy as np
+    if isinstance(want, np.ndarray):
+        if not isinstance(got, np.ndarray) or got.dtype != want.dtype or got.shape != want.shape:
+            desc = f"an array of {got.dtype} {got.shape}" if isinstance(got, np.ndarray) else type(got).__name__
+            raise FmiError(f"{where} is {desc}; allowed: an array of {want.dtype} {want.shape}")
+    elif isinstance(want, tuple):
+        if type(got) is not tuple or len(got) != len(want):
+            raise FmiError(f"{where} is {type(got).__name__}"
+                           + (f" of {len(got)} items" if isinstance(got, tuple) else "")
+                           + f"; allowed: {len(want)} items")
+        for k, (g, w) in enumerate(zip(got, want)):
+            if k == 7 and len(want) == 8 and g is None:
+                continue
+            _check_like(g, w, f"{where}[{k}]")
+    elif want is None:
+        if got is not None:
+            raise FmiError(f"{where} is a {type(got).__name__}; allowed: None for this instance's parameters")
+    elif isinstance(want, str):
+        if got != want:
+            raise FmiError(f"{where} = {got!r:.40}; allowed: {want!r}")
+    elif isinstance(want, (bool, np.bool_)):
+        if type(got) is not bool:
+            raise FmiError(f"{where} is a {type(got).__name__}; allowed: a bool")
+    elif isinstance(want, (int, np.integer)):
+        if type(got) is not int:
+            raise FmiError(f"{where} is a {type(got).__name__}; allowed: an int")
+    elif isinstance(want, (float, np.floating)):
+        if type(got) is not float or not math.isfinite(got):
+            raise FmiError(f"{where} = {got!r:.40}; allowed: a finite float")
+    else:
+        raise FmiError(f"{where}: unexpected {type(want).__name__} in this instance's state")
 
 
 # ---- the exchange loop -------------------------------------------------------------------------------
@@ -612,6 +827,7 @@ def serve(res: Path, fd: int, master_pid: int):
                     raise FmiError(f"fmi2Instantiate: GUID {guid} does not match this FMU's {cfg['guid']}")
                 cls, lock = load_slave_class(res, cfg)
                 model = Model(cls, name, bool(visible), bool(logging_on), str(res))
+                model.guid = cfg["guid"]
                 slave = model.slave
                 if hasattr(slave, "_out"):
                     from bearing_core.session.cosim_spec import INT_OUTPUT_SPEC, OUTPUT_SPEC
