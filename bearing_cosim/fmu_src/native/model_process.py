@@ -764,10 +764,94 @@ def publish_progress(mm, model, box):
     struct.pack_into("<I", mm, O_PROG, Q_OFF + 8 * 2 * kernels.NOUT)
 
 
-def serve(res: Path, fd: int, master_pid: int):
-    size = os.fstat(fd).st_size
-    mm = mmap.mmap(fd, size)
-    os.close(fd)
+SHM_SIZE = 64 << 20    # the native layer's segment (bearing_fmi2.c SHM_SIZE): the TCP path uses the same layout
+_CHANNEL = None
+
+
+class TcpChannel:
+    """The exchange over a TCP connection of the model server (bearing_cosim/fmu_server.py), instead of shared
+    memory: the same request and response bytes, in length-prefixed frames (bearing_tcp.c). The request is
+    copied into a private segment of the shared-memory layout, so that the loop below serves both alike.
+
+    request frame:  u32 length (of what follows), u32 command, request bytes
+    response frame: u32 length, u32 kind (0: response), i32 status, u32 mode, u32 flags, f64 time, f64 busy,
+                    response bytes
+    """
+    MAX_FRAME = (SHM_SIZE - HDR) // 2
+
+    def __init__(self, fd: int, server_pid: int, idle: float):
+        import socket
+        self.sock = socket.socket(fileno=fd)
+        self.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self.sock.settimeout(0.5)
+        self.server_pid, self.idle = server_pid, idle
+        self.seq = 0
+
+    def _recv(self, n: int, first: bool):
+        """n bytes, None when the connection ends, the server is gone or (first) the master stays idle too long."""
+        buf = bytearray(n)
+        view, got, t0 = memoryview(buf), 0, time.monotonic()
+        while got < n:
+            try:
+                k = self.sock.recv_into(view[got:])
+            except TimeoutError:
+                if os.getppid() != self.server_pid:
+                    return None
+                if first and got == 0 and time.monotonic() - t0 > self.idle:
+                    sys.stderr.write(f"bearing FMU model process: no request for {self.idle:g} s (idle timeout); "
+                                     "closing the connection\n")
+                    return None
+                continue
+            except OSError:
+                return None
+            if k == 0:
+                return None
+            got += k
+        return buf
+
+    def wait(self, mm, words) -> bool:
+        """The next request into mm (command, length, bytes at HDR); False: the connection ended."""
+        head = self._recv(8, True)
+        if head is None:
+            return False
+        n, cmd = struct.unpack("<II", head)
+        if not 4 <= n <= self.MAX_FRAME:
+            sys.stderr.write(f"bearing FMU model process: request frame of {n} bytes; allowed: 4..{self.MAX_FRAME}\n")
+            return False
+        body = self._recv(n - 4, False)
+        if body is None:
+            return False
+        mm[HDR:HDR + n - 4] = body
+        struct.pack_into("<I", mm, O_CMD, cmd)
+        struct.pack_into("<Q", mm, O_REQLEN, n - 4)
+        self.seq = (self.seq + 1) & 0xFFFFFFFF
+        words[O_REQ // 4] = self.seq
+        return True
+
+    def send(self, mm, resp_off: int, length: int):
+        status, mode, flags = struct.unpack_from("<iII", mm, O_STATUS)
+        t, busy = struct.unpack_from("<dd", mm, O_TIME)
+        head = struct.pack("<IIiIIdd", 4 + 24 + 4 + length, 0, status, mode, flags, t, busy)
+        self.sock.settimeout(None)
+        try:
+            self.sock.sendall(head + mm[resp_off:resp_off + length])
+        except OSError:
+            pass
+        self.sock.settimeout(0.5)
+
+
+def serve(res: Path, fd: int, master_pid: int, chan: TcpChannel | None = None):
+    global _CHANNEL
+    if chan is None:
+        size = os.fstat(fd).st_size
+        mm = mmap.mmap(fd, size)
+        os.close(fd)
+    else:
+        size = SHM_SIZE
+        mm = mmap.mmap(-1, size)
+        struct.pack_into("<II", mm, O_MAGIC, MAGIC, PROTOCOL)
+        struct.pack_into("<ii", mm, O_MCPU, -1, -1)
+        _CHANNEL = chan
     words = memoryview(mm).cast("I")
     base = ctypes.addressof(ctypes.c_char.from_buffer(mm))
     req_addr, resp_addr = base + O_REQ, base + O_RESP
@@ -795,6 +879,10 @@ def serve(res: Path, fd: int, master_pid: int):
     import numpy as np
     while True:
         # wait for the next request: a short spin, then sleep on the futex (checking that the master lives)
+        if chan is not None:
+            if not chan.wait(mm, words):
+                return 0
+            spin = 0.0
         t_end = time.perf_counter() + spin
         while words[O_REQ // 4] == last and time.perf_counter() < t_end:
             pass
@@ -994,14 +1082,34 @@ def _finish(mm, words, status, mode, flags, t, t0, length, resp_addr, seq):
     struct.pack_into("<i", mm, O_WCPU, _cpu())
     struct.pack_into("<Qdd", mm, O_RESPLEN, length, t, time.perf_counter() - t0)
     words[O_RESP // 4] = seq
-    _futex_wake(resp_addr)
+    if _CHANNEL is not None:
+        _CHANNEL.send(mm, HDR + (len(mm) - HDR) // 2, length)
+    else:
+        _futex_wake(resp_addr)
 
 
 def main(argv):
     signal.signal(signal.SIGINT, signal.SIG_IGN)   # the master decides; its death ends this process
-    res, fd, master_pid = Path(argv[1]), int(argv[2]), int(argv[3])
     os.environ.pop("NUMBA_CACHE_DIR", None)         # numba's cache lives with the content-addressed code copy
+    if argv[2] == "--tcp":   # <res> --tcp <socket fd> <server pid> <idle timeout [s]>: a model server's instance
+        res, fd, server_pid, idle = Path(argv[1]), int(argv[3]), int(argv[4]), float(argv[5])
+        _die_with_parent()
+        if os.getppid() != server_pid:
+            return 0
+        rc = serve(res, -1, server_pid, TcpChannel(fd, server_pid, idle))
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(rc)   # at once: the server reaps it (interpreter finalisation with numba loaded takes seconds)
+    res, fd, master_pid = Path(argv[1]), int(argv[2]), int(argv[3])
     return serve(res, fd, master_pid)
+
+
+def _die_with_parent():
+    """SIGKILL when the model server that started this process ends (Linux prctl PR_SET_PDEATHSIG)."""
+    try:
+        _libc.prctl(1, signal.SIGKILL, 0, 0, 0)
+    except (AttributeError, OSError):
+        pass
 
 
 if __name__ == "__main__":
