@@ -18,6 +18,7 @@ typedef SOCKET sock_t;
 #include <poll.h>
 #include <sys/mman.h>
 #include <sys/socket.h>
+#include <sys/uio.h>
 #include <time.h>
 #include <unistd.h>
 typedef int sock_t;
@@ -35,9 +36,16 @@ typedef int sock_t;
 #define REPLY_MAX 4096u       /* the largest handshake reply */
 #define FAULT_MAX 65536u      /* the largest fault text */
 
+#define STAGE 65536u /* received bytes not yet consumed: a frame usually arrives whole, in one recv */
+
 struct BTcp {
     sock_t s;
     char peer[300];
+    unsigned char stage[STAGE];
+    size_t have, used; /* stage[used..have) are received and not consumed */
+#ifdef _WIN32
+    DWORD rcvtimeo; /* the SO_RCVTIMEO now set [ms] */
+#endif
 };
 
 static double mono(void) {
@@ -102,19 +110,56 @@ static int send_all(BTcp *t, const unsigned char *p, size_t n, char *err, size_t
     return 0;
 }
 
-/* n bytes by the deadline: 0; -1 closed or failed, -2 timeout (err set). */
-static int recv_all(BTcp *t, unsigned char *p, size_t n, double deadline, char *err, size_t nerr) {
-    while (n) {
+/* a and b in one call (scatter-gather) when the socket takes them whole, else the rest by send_all */
+static int send_two(BTcp *t, const unsigned char *a, size_t na, const unsigned char *b, size_t nb, char *err,
+                    size_t nerr) {
+    size_t sent = 0;
+#ifdef _WIN32
+    WSABUF v[2] = {{(ULONG)na, (CHAR *)a}, {(ULONG)nb, (CHAR *)b}};
+    DWORD k = 0;
+    if (nb < (1u << 30) && WSASend(t->s, v, nb ? 2 : 1, &k, 0, NULL, NULL) == 0) sent = k;
+#else
+    struct iovec v[2] = {{(void *)a, na}, {(void *)b, nb}};
+    struct msghdr m;
+    memset(&m, 0, sizeof m);
+    m.msg_iov = v;
+    m.msg_iovlen = nb ? 2 : 1;
+    ssize_t k = sendmsg(t->s, &m, MSG_NOSIGNAL);
+    if (k > 0) sent = (size_t)k;
+#endif
+    if (sent < na && send_all(t, a + sent, na - sent, err, nerr) != 0) return -1;
+    size_t off = sent > na ? sent - na : 0;
+    return nb > off ? send_all(t, b + off, nb - off, err, nerr) : 0;
+}
+
+/* One recv of what is there into the stage (waiting until the deadline): 0; -1 closed or failed, -2 timeout.
+ * On Windows a blocking recv with a receive timeout (one call; a poll before each recv costs a round trip to
+ * the wine server under wine). */
+static int fill(BTcp *t, double deadline, char *err, size_t nerr) {
+    if (t->used == t->have) t->used = t->have = 0;
+    else if (t->used > STAGE / 2) {
+        memmove(t->stage, t->stage + t->used, t->have - t->used);
+        t->have -= t->used;
+        t->used = 0;
+    }
+    for (;;) {
         double left = deadline - mono();
-        int w = left > 0 ? wait_sock(t->s, 0, left) : 0;
-        if (w == 0) {
+        if (left <= 0) {
             snprintf(err, nerr, "timeout");
             return -2;
         }
 #ifdef _WIN32
-        int k = w < 0 ? -1 : recv(t->s, (char *)p, n > 1u << 30 ? 1 << 30 : (int)n, 0);
+        DWORD ms = left > 2e6 ? 2000000000u : (DWORD)(left * 1000.0) + 1;
+        if (ms > t->rcvtimeo + 50 || ms + 50 < t->rcvtimeo) { /* re-set only when it changed noticeably */
+            setsockopt(t->s, SOL_SOCKET, SO_RCVTIMEO, (const char *)&ms, sizeof ms);
+            t->rcvtimeo = ms;
+        }
+        int k = recv(t->s, (char *)t->stage + t->have, (int)(STAGE - t->have), 0);
+        if (k < 0 && WSAGetLastError() == WSAETIMEDOUT) continue;
 #else
-        ssize_t k = w < 0 ? -1 : recv(t->s, p, n, 0);
+        int w = wait_sock(t->s, 0, left);
+        if (w == 0) continue;
+        ssize_t k = w < 0 ? -1 : recv(t->s, t->stage + t->have, STAGE - t->have, 0);
         if (k < 0 && errno == EINTR) continue;
 #endif
         if (k == 0) {
@@ -129,8 +174,23 @@ static int recv_all(BTcp *t, unsigned char *p, size_t n, double deadline, char *
                      "process was stopped or killed, or the network failed", t->peer, m);
             return -1;
         }
+        t->have += (size_t)k;
+        return 0;
+    }
+}
+
+/* n bytes by the deadline: 0; -1 closed or failed, -2 timeout (err set). */
+static int recv_all(BTcp *t, unsigned char *p, size_t n, double deadline, char *err, size_t nerr) {
+    while (n) {
+        if (t->used == t->have) {
+            int r = fill(t, deadline, err, nerr);
+            if (r != 0) return r;
+        }
+        size_t k = t->have - t->used < n ? t->have - t->used : n;
+        memcpy(p, t->stage + t->used, k);
+        t->used += k;
         p += k;
-        n -= (size_t)k;
+        n -= k;
     }
     return 0;
 }
@@ -306,8 +366,7 @@ int btcp_call(BTcp *t, uint32_t cmd, const unsigned char *req, size_t reqlen, BT
     put32(h, (uint32_t)(4 + reqlen));
     put32(h + 4, cmd);
     double deadline = mono() + timeout;
-    int r = send_all(t, h, 8, err, nerr);
-    if (r == 0 && reqlen) r = send_all(t, req, reqlen, err, nerr);
+    int r = send_two(t, h, 8, req, reqlen, err, nerr);
     if (r == 0) r = recv_all(t, h, 8, deadline, err, nerr);
     if (r != 0) return r;
     uint32_t n = get32(h), kind = get32(h + 4);
