@@ -25,6 +25,7 @@ _API = {
     "TriboQuasiStaticModel": "models.quasistatic_tribo", "solve_tribo_quasistatic": "models.quasistatic_tribo",
     "DynamicModel": "models.dynamics", "DynamicsOptions": "models.dynamics_setup",
     "simulate_profile": "models.dynamics", "read_profile": "models.dynamics", "advance_many": "models.dynamics",
+    "life_at": "models.life", "rating_life": "models.life", "FatigueDamage": "models.life",
     "ThermalData": "heat.thermal",
     # co-simulation session
     "CoSimSession": "session.cosim", "CoSimParameters": "session.cosim", "StepRejected": "session.cosim",

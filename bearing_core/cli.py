@@ -148,6 +148,29 @@ def build_parser() -> argparse.ArgumentParser:
     we.add_argument("--json", action="store_true")
     we.set_defaults(func=cmd_wear)
 
+    li = sub.add_parser("life", help="fatigue rating life: ISO 281 C_r, ISO/TS 16281 reference rating life L10r from "
+                                      "the quasi-static load distribution, ISO 281 modified life L_nmr")
+    li.add_argument("--bearing", required=True, help="preset name, catalogue designation or bearing JSON file")
+    li.add_argument("--speed-rpm", type=_finite("--speed-rpm"), default=None,
+                    help="inner-ring speed [rpm], 0 < speed <= 190000 (outer ring fixed); required without --duty")
+    li.add_argument("--duty", default=None, metavar="CSV",
+                    help="duty cycle of held levels: CSV with columns duration_s, speed_rpm and optionally Fx_N, Fy_N, "
+                         "Fz_N, Mx_Nm, My_Nm (missing: the --fx ... values); Palmgren-Miner damage per cycle and the "
+                         "equivalent lives")
+    _add_loads(li)
+    li.add_argument("--fixed-tilt", action="store_true",
+                    help="inner ring held square by the shaft (Mx, My are reactions); default: free to tilt")
+    li.add_argument("--oil", default="iso-vg32-mineral",
+                    help="oil for the viscosity ratio kappa (default iso-vg32-mineral)")
+    li.add_argument("--oil-temperature-c", type=_finite("--oil-temperature-c"), default=40.0,
+                    help="operating oil temperature [degC] (default 40)")
+    li.add_argument("--contamination", type=_finite("--contamination"), default=1.0,
+                    help="contamination factor e_C of ISO 281 Table 13, 0..1 (default 1: extreme cleanliness)")
+    li.add_argument("--reliability", type=_finite("--reliability"), default=90.0,
+                    help="reliability [%%] for a_1, 90..99.95 (default 90)")
+    li.add_argument("--json", action="store_true", help="print one JSON object")
+    li.set_defaults(func=cmd_life)
+
     _add_build_map_parser(sub)
     pr = sub.add_parser("presets", help="list the bearing presets with their sources")
     pr.add_argument("--json", action="store_true")
@@ -266,6 +289,113 @@ def cmd_quasistatic(a) -> int:
         print("stiffness matrix (rows Fx,Fy,Fz [N], Mx,My [N m]; cols dx,dy,dz [m], tx,ty [rad]):")
         for row in res.stiffness:
             print("  " + " ".join(f"{v:12.4e}" for v in row))
+    return 0
+
+
+def _read_duty(path, a) -> list:
+    """Levels (duration_s, speed_rpm, loads) of a duty-cycle CSV (cmd_life --duty)."""
+    import csv
+    p = Path(path)
+    if not p.is_file():
+        raise _BadArg(f"--duty = {path!r} is invalid; allowed: an existing CSV file (file not found)")
+    cols = ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")
+    default = (a.fx, a.fy, a.fz, a.mx, a.my)
+    levels = []
+    with p.open(newline="") as f:
+        rd = csv.DictReader(f)
+        need = {"duration_s", "speed_rpm"}
+        if rd.fieldnames is None or not need.issubset(rd.fieldnames):
+            raise _BadArg(f"--duty = {path!r} is invalid; allowed: a CSV with columns duration_s, speed_rpm "
+                          f"[, {', '.join(cols)}] (got {rd.fieldnames})")
+        for k, row in enumerate(rd, start=2):
+            try:
+                vals = [float(row["duration_s"]), float(row["speed_rpm"])] + \
+                    [float(row[c]) if row.get(c) not in (None, "") else d for c, d in zip(cols, default)]
+            except ValueError as e:
+                raise _BadArg(f"--duty {path}: line {k} is invalid; allowed: numbers ({e})")
+            if not all(math.isfinite(v) for v in vals):
+                raise _BadArg(f"--duty {path}: line {k} = {vals} is invalid; allowed: finite numbers")
+            levels.append((vals[0], vals[1], tuple(vals[2:])))
+    if not levels:
+        raise _BadArg(f"--duty = {path!r} is invalid; allowed: at least one level (the file has no rows)")
+    return levels
+
+
+def cmd_life(a) -> int:
+    from .bearing.geometry import load_bearing
+    from .models.life import duty_cycle_life, life_at
+
+    if a.duty is not None:
+        if a.speed_rpm is not None:
+            raise _BadArg(f"--speed-rpm = {a.speed_rpm:g} is invalid with --duty; allowed: none (the speeds of the "
+                          "duty CSV)")
+        for flag, v, lo, hi in (("--contamination", a.contamination, 0.0, 1.0),
+                                ("--reliability", a.reliability, 90.0, 99.95)):
+            if not lo <= v <= hi:
+                raise _BadArg(f"{flag} = {v:g} is invalid; allowed: {lo:g} <= value <= {hi:g}")
+        g = load_bearing(a.bearing)
+        dc = duty_cycle_life(g, _read_duty(a.duty, a), oil=a.oil, oil_temperature_c=a.oil_temperature_c,
+                             e_C=a.contamination, reliability_pct=a.reliability, fixed_tilt=a.fixed_tilt)
+        d = dc.to_dict()
+        if a.json:
+            print(json.dumps(d))
+            return 0
+        print(f"bearing {g.name}  duty cycle {a.duty}: {len(dc.levels)} levels, {d['cycle_s']:g} s per cycle" +
+              ("  (inner ring held square)" if a.fixed_tilt else ""))
+        print(f"{'level':>5} {'time':>9} {'speed':>8} {'Fx':>8} {'Fy':>8} {'Fz':>8} {'Mx':>7} {'My':>7} "
+              f"{'L10r':>10} {'L_nmr':>10} {'damage L10r':>12}")
+        print(f"{'':>5} {'s':>9} {'rpm':>8} {'N':>8} {'N':>8} {'N':>8} {'N m':>7} {'N m':>7} {'h':>10} {'h':>10} "
+              f"{'-':>12}")
+        for k, (t, rep) in enumerate(zip(dc.durations_s, dc.levels)):
+            L = rep.loads
+            print(f"{k:5d} {t:9.4g} {rep.speed_rpm:8.5g} {L[0]:8.5g} {L[1]:8.5g} {L[2]:8.5g} {L[3]:7.4g} "
+                  f"{L[4]:7.4g} {rep.rating.L10r_h:10.4g} {rep.L_nmr_h:10.4g} "
+                  f"{t / 3600.0 / rep.rating.L10r_h:12.4e}")
+        print(f"Palmgren-Miner damage per cycle: {dc.damage_L10r:.4e} (L10r), {dc.damage_L_nmr:.4e} (L_nmr)")
+        print(f"equivalent lives: L10r {dc.L10r_h:.4g} h, L_nmr {dc.L_nmr_h:.4g} h")
+        return 0
+    if a.speed_rpm is None:
+        raise _BadArg("--speed-rpm is required (or --duty CSV); allowed: 0 < speed <= 190000 rpm")
+    if not 0.0 < a.speed_rpm <= 190000.0:
+        raise _BadArg(f"--speed-rpm = {a.speed_rpm:g} is invalid; allowed: 0 < speed <= 190000 rpm (the inner ring "
+                      "turning in the positive sense; a rating life in hours needs rotation)")
+    if not 0.0 <= a.contamination <= 1.0:
+        raise _BadArg(f"--contamination = {a.contamination:g} is invalid; allowed: 0 <= e_C <= 1 (ISO 281 Table 13)")
+    if not 90.0 <= a.reliability <= 99.95:
+        raise _BadArg(f"--reliability = {a.reliability:g} is invalid; allowed: 90 <= reliability <= 99.95 %")
+    g = load_bearing(a.bearing)
+    rep = life_at(g, a.speed_rpm, (a.fx, a.fy, a.fz, a.mx, a.my), oil=a.oil, oil_temperature_c=a.oil_temperature_c,
+                  e_C=a.contamination, reliability_pct=a.reliability, fixed_tilt=a.fixed_tilt)
+    d = rep.to_dict()
+    if a.json:
+        print(json.dumps(d))
+        return 0
+    r = rep.rating
+    fmt = lambda x: "infinite" if x is None else f"{x:.4g}"  # noqa: E731
+    print(f"bearing {g.name}  speed {a.speed_rpm:g} rpm  loads Fx {a.fx:g} N  Fy {a.fy:g} N  Fz {a.fz:g} N  "
+          f"Mx {a.mx:g} N m  My {a.my:g} N m" + ("  (inner ring held square)" if a.fixed_tilt else ""))
+    print(f"C_r {rep.C_r/1e3:.2f} kN ({rep.C_r_source})   C_0 {rep.C_0/1e3:.2f} kN (ISO 76 basis)   "
+          f"C_u {rep.C_u/1e3:.3f} kN (ISO 281 Annex B)")
+    print(f"{'quantity':<44} {'value':>12}  unit")
+    rows = [("equivalent ball load, inner ring Q_ei", r.Q_ei, "N"),
+            ("equivalent ball load, outer ring Q_eo", r.Q_eo, "N"),
+            ("inner raceway life L_i", d["L_inner_Mrev"], "10^6 rev"),
+            ("outer raceway life L_o", d["L_outer_Mrev"], "10^6 rev"),
+            ("reference rating life L10r", d["L10r_Mrev"], "10^6 rev"),
+            ("reference rating life L10r", d["L10r_h"], "h"),
+            ("equivalent reference load P = C_r L10r^-1/3", r.P_ref, "N"),
+            (f"viscosity nu ({rep.oil} at {rep.oil_temperature_c:g} degC)", rep.nu_mm2s, "mm^2/s"),
+            ("reference viscosity nu_1 (ISO 281)", rep.nu1_mm2s, "mm^2/s"),
+            ("viscosity ratio kappa", rep.kappa, "-"),
+            ("contamination factor e_C", rep.e_C, "-"),
+            (f"a_1 (reliability {rep.reliability_pct:g} %)", rep.a1, "-"),
+            ("a_ISO", rep.a_iso, "-"),
+            ("modified rating life L_nmr", d["L_nmr_Mrev"], "10^6 rev"),
+            ("modified rating life L_nmr", d["L_nmr_h"], "h")]
+    for nm, v, u in rows:
+        print(f"{nm:<44} {fmt(v):>12}  {u}")
+    for note in rep.notes:
+        print(f"note: {note}")
     return 0
 
 

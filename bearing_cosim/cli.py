@@ -79,6 +79,12 @@ def build_parser():
                    help="comma-separated binaries: linux64 (default), win64 (cross-compiled with mingw-w64 or zig cc; "
                         "its instances run the model on a model server, bearing serve; docs/fmu.md)")
     b.set_defaults(func=cmd_build_fmu)
+    mf = sub.add_parser("build-map-fmu", help="build the operating-map FMU all in C (dist/BearingMapFMU.fmu): the "
+                                            "'map' fidelity level of MAP.nc with no Python, binaries for linux64 and "
+                                            "win64 (cross-compiled) and its C sources")
+    from .map_fmu import add_arguments as _map_fmu_args
+    _map_fmu_args(mf)
+    mf.set_defaults(func=cmd_build_map_fmu)
     v = sub.add_parser("validate-fmu", help="check an FMU with fmpy's validate_fmu; prints every problem, exit "
                                             "status 1 if there is any")
     v.add_argument("fmu", help="FMU file")
@@ -160,6 +166,16 @@ def cmd_validate_fmu(a) -> int:
 def cmd_serve(a) -> int:
     from .fmu_server import run
     return run(a)
+
+
+def cmd_build_map_fmu(a) -> int:
+    from .map_fmu import BuildError, run
+    if not Path(a.map).is_file():
+        raise core_cli._BadArg(f"MAP = {a.map!r} is not a file; build an operating map with: bearing build-map")
+    try:
+        return run(a)
+    except BuildError as e:
+        raise core_cli._BadArg(str(e))
 
 
 def cmd_simulate(a) -> int:

@@ -706,3 +706,67 @@ def skf_bath_drag(inputs):
             out["M_skf_Nm"].append(M_skf)
             out["ratio_to_skf"].append(M / M_skf)
     return out
+
+
+# ------------------------------------------------------------------------------------------------
+# fatigue rating life (bearing_core.bearing.ratings, bearing_core.models.life)
+@kind
+def lundberg_palmgren_fc(inputs):
+    """Lundberg-Palmgren f_c (bearing_core.bearing.ratings.lundberg_palmgren_fc, conformities 0.52 / 0.53 of
+    ISO 281's basis) at each gamma = D cos(alpha) / dm of the case."""
+    from bearing_core.bearing.ratings import lundberg_palmgren_fc as fc
+    fi, fe = inputs.get("fi", 0.52), inputs.get("fe", 0.53)
+    return {"f_c": [fc(g, fi, fe) for g in inputs["gamma"]], "gamma": list(inputs["gamma"])}
+
+
+def _bearing_from_balls(b):
+    """A bearing definition from the ball set of a case (Z, D_mm, dm_mm, alpha_deg, fi, fo); the masses and the
+    cage are placeholders (no rating depends on them)."""
+    from bearing_core.bearing.geometry import from_dict
+    return from_dict({"name": b["name"], "number_of_balls": b["Z"], "ball_diameter_mm": b["D_mm"],
+                      "pitch_diameter_mm": b["dm_mm"], "free_contact_angle_deg": b.get("alpha_deg", 0.0),
+                      "fi": b.get("fi", 0.52), "fo": b.get("fo", 0.53), "width_mm": 10.0,
+                      "inner_ring_mass_kg": 0.1, "outer_ring_mass_kg": 0.1, "inner_ring_inertia_kg_mm2": 10.0,
+                      "inner_ring_tilt_inertia_kg_mm2": 10.0, "cage": {"mass_kg": 0.01, "inertia_kg_mm2": 1.0}})
+
+
+@kind
+def iso281_load_ratings(inputs):
+    """ISO 281:2007 C_r (BearingGeometry.iso281_dynamic_load_rating) and the ISO 76-basis C_0
+    (friction_models.iso76_static_rating: 4200 MPa at the inner contact) of each ball set, in kN."""
+    from bearing_core.lubrication.friction_models import iso76_static_rating
+    out = {"C_r_kN": [], "C_0_kN": [], "bearing": []}
+    for b in inputs["bearings"]:
+        g = _bearing_from_balls(b)
+        out["C_r_kN"].append(g.iso281_dynamic_load_rating / 1e3)
+        out["C_0_kN"].append(iso76_static_rating(g) / 1e3)
+        out["bearing"].append(b["name"])
+    return out
+
+
+@kind
+def iso281_a1(inputs):
+    """Life modification factor for reliability a_1 (models.life.a1_reliability: the Weibull relation behind
+    ISO 281 Table 12) at each reliability [%] of the case."""
+    from bearing_core.models.life import a1_reliability
+    return {"a1": [a1_reliability(R) for R in inputs["reliability_pct"]],
+            "reliability_pct": list(inputs["reliability_pct"])}
+
+
+@kind
+def axial_life_vs_iso281_y(inputs):
+    """Pure axial load: the dynamic equivalent reference load P = C_r L10r^(-1/3) of the ISO/TS 16281-style
+    life from the quasi-static load distribution (models.life.life_at), as P / Fa for each bearing (in the
+    case's order) and each axial load, against ISO 281's P = Y Fa (Fr = 0)."""
+    from bearing_core.bearing.geometry import load_preset
+    from bearing_core.models.life import life_at
+    out = {"P_over_Fa": [], "alpha_i_deg": [], "bearing": [], "Fa_N": []}
+    for name in inputs["bearings"]:
+        g = load_preset(name)
+        for Fa in inputs["Fa_N"]:
+            r = life_at(g, inputs["speed_rpm"], (0.0, 0.0, Fa, 0.0, 0.0))
+            out["P_over_Fa"].append(r.rating.P_ref / Fa)
+            out["alpha_i_deg"].append(math.degrees(float(np.mean(r.result.alpha_i))))
+            out["bearing"].append(name)
+            out["Fa_N"].append(Fa)
+    return out

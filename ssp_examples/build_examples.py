@@ -46,6 +46,9 @@ def build_fmus(dest: Path) -> Path:
     fmus = Path(dest) / "fmus"
     fmus.mkdir(parents=True, exist_ok=True)
     fmu_build.build(fmus, map_file=SHIPPED_MAP if SHIPPED_MAP.is_file() else None)
+    if SHIPPED_MAP.is_file():     # the same map's level all in C (BearingMapFMU.fmu)
+        from bearing_cosim.map_fmu import build_map_fmu
+        build_map_fmu(SHIPPED_MAP, fmus)
     for example, scripts in HELPERS.items():
         for s in scripts:
             src = (HERE / example / "fmus" / s).read_text()
@@ -70,6 +73,7 @@ def make_ssps(dest: Path, fmus: Path) -> list:
             out.append(mod.make(Path(dest) / "drivetrain_map.ssp", mod.MAP_CYCLE, fmu_dir=fmus))
             out.append(mod.make(Path(dest) / "drivetrain_cycle_map.ssp", mod.MAP_DRIVE_CYCLE, fmu_dir=fmus))
             out.append(mod.make(Path(dest) / "drivetrain_cycle_qs.ssp", mod.QS_DRIVE_CYCLE, fmu_dir=fmus))
+            out.append(mod.make(Path(dest) / "drivetrain_cycle_cmap.ssp", mod.C_MAP_DRIVE_CYCLE, fmu_dir=fmus))
     return out
 
 

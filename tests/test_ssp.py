@@ -233,9 +233,11 @@ def test_rotor_bearings_at_quasi_static_statics(build, tmp_path):
         assert 0.35 < r[f"bearing_{b}.cage_speed"][win].mean() / w < 0.5
 
 
-def test_drivetrain_drive_cycle_at_map(build, tmp_path):
+@pytest.mark.parametrize("bearing_fmu", ["BearingFMU", "BearingMapFMU"])
+def test_drivetrain_drive_cycle_at_map(build, tmp_path, bearing_fmu):
     """The drive cycle (make_ssp.drive_cycle) compressed to 4 s, both bearings at fidelity 'map' (the shipped
-    7218B oil map embedded), h = 1e-2 s, run by libcosim: inverter run-up 0-1 s from 573 rpm, base load, full
+    7218B oil map: embedded in BearingFMU, or BearingMapFMU, the level all in C), h = 1e-2 s, run by libcosim:
+    inverter run-up 0-1 s from 573 rpm, base load, full
     load at 1.5 s, part load at 2 s, supply off at 2.5 s, idle at 15 Hz from 3.5 s.
     * every bearing's reaction equals minus the load the duty cycle commanded one step earlier within 0.5 % at
       every step (the map interpolates steady states that balance the load; measured 0.04 %), and the
@@ -252,7 +254,8 @@ def test_drivetrain_drive_cycle_at_map(build, tmp_path):
     if not (ROOT / "maps" / "7218B_oil.nc").is_file():
         pytest.skip("no shipped map maps/7218B_oil.nc")
     cycle = drive_make.drive_cycle(t_runup=1.0, t_step1=1.5, t_step2=2.0, t_off=2.5, t_idle=3.5)
-    d = drive_make.DrivetrainDesign(fidelity="map", speed0=60.0, stop_time=4.0, step=1e-2, duty_cycle=cycle)
+    d = drive_make.DrivetrainDesign(fidelity="map", speed0=60.0, stop_time=4.0, step=1e-2, duty_cycle=cycle,
+                                    bearing_fmu=bearing_fmu)
     ssp = drive_make.make(tmp_path / "cycle.ssp", d, fmu_dir=build["fmus"])
     t0 = time.perf_counter()
     summary, r, code = run_subprocess("libcosim", ssp, tmp_path / "libcosim.npz", env=build["env"], timeout=900)

@@ -80,6 +80,8 @@ class BearingGeometry:
     surface roughness Rq [m] of the balls and raceways (film parameter, mixed lubrication). Defaults
     0.03 um and 0.08 um: typical finishes of precision bearing balls (0.02-0.05 um Rq) and superfinished
     raceways (0.05-0.1 um Rq) (Harris & Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 2 Ch. 4; recalled).
+    dynamic_load_rating: catalogue basic dynamic load rating C_r [N] (0: ISO 281 from the geometry,
+    bearing_core.bearing.ratings); see the property basic_dynamic_load_rating.
     """
 
     name: str
@@ -106,6 +108,7 @@ class BearingGeometry:
     outside_diameter: float = 0.0
     ball_roughness: float = 0.03e-6
     race_roughness: float = 0.08e-6
+    dynamic_load_rating: float = 0.0
 
     def __post_init__(self):
         self.validate()
@@ -123,6 +126,7 @@ class BearingGeometry:
         check_range("alpha0", self.alpha0, 0.0, math.radians(60.0), unit="rad")
         check_range("ball_roughness", self.ball_roughness, 0.0, 5e-6, unit="m")
         check_range("race_roughness", self.race_roughness, 0.0, 5e-6, unit="m")
+        check_range("dynamic_load_rating", self.dynamic_load_rating, 0.0, 1e9, unit="N")
         # Balls must fit the pitch circle: chord between neighbouring ball centres > D.
         chord = self.dm * math.sin(math.pi / self.Z)
         if chord <= self.D:
@@ -197,6 +201,19 @@ class BearingGeometry:
         """Radius of the locus of inner groove curvature centres, dm/2 + (fi - 0.5) D cos(alpha0) [m]
         (Harris & Kotzalas Vol. 2 Ch. 1; seed 003 Eq. 2)."""
         return 0.5 * self.dm + (self.fi - 0.5) * self.D * math.cos(self.alpha0)
+
+    @property
+    def iso281_dynamic_load_rating(self) -> float:
+        """Basic dynamic radial load rating C_r [N] from the geometry, ISO 281:2007 6.1.1 (one row, nominal
+        contact angle alpha0 <= 45 deg; bearing_core.bearing.ratings)."""
+        from .ratings import iso281_dynamic_load_rating
+        return iso281_dynamic_load_rating(self.Z, self.D, self.dm, self.alpha0)
+
+    @property
+    def basic_dynamic_load_rating(self) -> float:
+        """C_r [N] used for rating life: the catalogue value of the bearing file (dynamic_load_rating_N) if
+        given, else ISO 281 from the geometry (iso281_dynamic_load_rating)."""
+        return self.dynamic_load_rating if self.dynamic_load_rating > 0.0 else self.iso281_dynamic_load_rating
 
     # ---- four-point contact (gothic arch), see the module docstring ----------------------------
     @property
@@ -308,7 +325,7 @@ BEARING_FIELDS = (
     "fi", "fo", "inner_groove_radius_mm", "outer_groove_radius_mm", "ring_material", "ball_material", "width_mm",
     "inner_ring_mass_kg", "outer_ring_mass_kg", "inner_ring_inertia_kg_mm2", "inner_ring_tilt_inertia_kg_mm2",
     "cage", "inner_groove_offset_mm", "outer_groove_offset_mm", "split_inner_ring", "bore_diameter_mm",
-    "outside_diameter_mm", "ball_roughness_um", "race_roughness_um",
+    "outside_diameter_mm", "ball_roughness_um", "race_roughness_um", "dynamic_load_rating_N",
 )
 CAGE_FIELDS = ("pocket_clearance_mm", "land_clearance_mm", "guidance", "mass_kg", "inertia_kg_mm2",
                "land_width_mm", "material")
@@ -435,6 +452,8 @@ def from_dict(d: dict) -> BearingGeometry:
         split_inner_ring=split, bore=offs["bore_diameter_mm"], outside_diameter=offs["outside_diameter_mm"],
         ball_roughness=_num(d, "ball_roughness_um", lo_incl=True, default=0.03, unit="um") * 1e-6,
         race_roughness=_num(d, "race_roughness_um", lo_incl=True, default=0.08, unit="um") * 1e-6,
+        dynamic_load_rating=(_num(d, "dynamic_load_rating_N", 0.0, 1e9, unit="N")
+                             if "dynamic_load_rating_N" in d else 0.0),
     )
 
 

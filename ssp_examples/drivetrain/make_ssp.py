@@ -78,6 +78,8 @@ class DrivetrainDesign:
     step: float = 1e-3                    # s
     fidelity: str = "dynamic"             # the bearings' fidelity level (docs/fidelity.md); map: the FMU's embedded map
     duty_cycle: tuple = ()                # Phase rows: loads and motor supply over time (DutyCycle FMU); () constant
+    bearing_fmu: str = "BearingFMU"       # the bearings' FMU: BearingFMU, or BearingMapFMU (the map level all in C,
+    #                                       bearing build-map-fmu; its parameters are the map's: none are set)
 
 
 MAP_CYCLE = DrivetrainDesign(fidelity="map", speed0=60.0, stop_time=60.0)
@@ -86,6 +88,8 @@ operating speed and a minute of running; the bearing FMU must embed a map (beari
 
 MAP_DRIVE_CYCLE = DrivetrainDesign(fidelity="map", speed0=60.0, stop_time=60.0, duty_cycle=CYCLE_60S)
 QS_DRIVE_CYCLE = replace(MAP_DRIVE_CYCLE, fidelity="quasi-static")
+C_MAP_DRIVE_CYCLE = replace(MAP_DRIVE_CYCLE, bearing_fmu="BearingMapFMU")
+"""The 60 s drive cycle with the bearings as BearingMapFMU: the map level in C, no Python beside the master."""
 """The 60 s drive cycle (drive_cycle) at fidelity 'map', from 573 rpm: run-up, two load steps, coast-down and
 idle; the bearing FMU must embed a map."""
 
@@ -104,7 +108,11 @@ def _check_cycle(phases):
 def make(dest, design: DrivetrainDesign | None = None, fmu_dir=None) -> Path:
     d = design or DrivetrainDesign()
     fmu_dir = Path(fmu_dir or HERE.parent / "build" / "fmus")
-    bfmu = fmu_dir / "BearingFMU.fmu"
+    if d.bearing_fmu not in ("BearingFMU", "BearingMapFMU"):
+        raise ValueError(f"bearing_fmu = {d.bearing_fmu!r}; allowed: 'BearingFMU', 'BearingMapFMU'")
+    if d.bearing_fmu == "BearingMapFMU" and d.fidelity != "map":
+        raise ValueError(f"fidelity = {d.fidelity!r} with BearingMapFMU; allowed: 'map'")
+    bfmu = fmu_dir / f"{d.bearing_fmu}.fmu"
     cyc = tuple(d.duty_cycle)
     if cyc:
         _check_cycle(cyc)
@@ -147,26 +155,27 @@ def make(dest, design: DrivetrainDesign | None = None, fmu_dir=None) -> Path:
     for b, (fx, fz) in loads.items():
         if cyc:
             conns += [("duty", f"Fx_{b}", f"bearing_{b}", "Fx"), ("duty", f"Fz_{b}", f"bearing_{b}", "Fz")]
-        comps.append(Component(f"bearing_{b}", "resources/BearingFMU.fmu",
+        starts = [("shaft_speed", d.speed0, "rad/s"), ("Fx", fx, "N"), ("Fz", fz, "N")]
+        if d.bearing_fmu == "BearingFMU":
+            # choices as Enumeration (fmpy) and String twin (libcosim); they agree
+            starts = [("bearing_preset", enumeration_value(bfmu, "bearing_preset", d.bearing), None),
+                      ("bearing", d.bearing, None),
+                      ("coupling_choice", enumeration_value(bfmu, "coupling_choice", "load"), None),
+                      ("coupling", "load", None)] + starts + (
+                [] if d.fidelity == "dynamic" else
+                [("fidelity_choice", enumeration_value(bfmu, "fidelity_choice", d.fidelity), None),
+                 ("fidelity", d.fidelity, None)])
+        comps.append(Component(f"bearing_{b}", f"resources/{d.bearing_fmu}.fmu",
                                [("shaft_speed", "input", "rad/s")]
                                + ([("Fx", "input", "N"), ("Fz", "input", "N")] if cyc else [])
-                               + [(n, "output", u) for n, u in BEARING_OUT],
-                               # choices as Enumeration (fmpy) and String twin (libcosim); they agree
-                               [("bearing_preset", enumeration_value(bfmu, "bearing_preset", d.bearing), None),
-                                ("bearing", d.bearing, None),
-                                ("coupling_choice", enumeration_value(bfmu, "coupling_choice", "load"), None),
-                                ("coupling", "load", None),
-                                ("shaft_speed", d.speed0, "rad/s"), ("Fx", fx, "N"), ("Fz", fz, "N")]
-                               + ([] if d.fidelity == "dynamic" else
-                                  [("fidelity_choice", enumeration_value(bfmu, "fidelity_choice", d.fidelity), None),
-                                   ("fidelity", d.fidelity, None)])))
+                               + [(n, "output", u) for n, u in BEARING_OUT], starts))
         conns += [("shaft", "shaft_speed", f"bearing_{b}", "shaft_speed"),
                   (f"bearing_{b}", "friction_torque", "shaft", f"friction_torque_{b}")]
     desc = (f"Induction motor, shaft inertia {d.inertia:g} kg.m2 and fan load on two {d.bearing} bearings " +
             (f"(loads and motor supply from a {len(cyc)}-phase duty cycle)" if cyc else
              f"(A: Fx {d.load_A[0]:g} N, Fz {d.load_A[1]:g} N; B: Fx {d.load_B[0]:g} N, Fz {d.load_B[1]:g} N)"))
     ssd = ssd_xml("drivetrain", desc, comps, conns, 0.0, d.stop_time, d.step, "ssp_examples/drivetrain/make_ssp.py")
-    fmus = {n: fmu_dir / n for n in ("InductionMotor.fmu", "ShaftInertia.fmu", "FanLoad.fmu", "BearingFMU.fmu")
+    fmus = {n: fmu_dir / n for n in ("InductionMotor.fmu", "ShaftInertia.fmu", "FanLoad.fmu", f"{d.bearing_fmu}.fmu")
             + (("DutyCycle.fmu",) if cyc else ())}
     path = write_ssp(dest, ssd, fmus)
     Path(str(path) + ".json").write_text(json.dumps({"design": asdict(d)}, indent=1))
@@ -178,12 +187,12 @@ def main(argv=None):
     ap.add_argument("--out", default=str(HERE.parent / "build" / "drivetrain.ssp"))
     ap.add_argument("--map-cycle", action="store_true",
                     help="the 60 s drive at fidelity 'map' (MAP_CYCLE) instead of the 3 s run-up from rest")
-    ap.add_argument("--drive-cycle", choices=("map", "quasi-static"),
+    ap.add_argument("--drive-cycle", choices=("map", "quasi-static", "c-map"),
                     help="the 60 s drive cycle (MAP_DRIVE_CYCLE) with the bearings at this fidelity")
     a = ap.parse_args(argv)
     design = MAP_CYCLE if a.map_cycle else None
     if a.drive_cycle:
-        design = replace(MAP_DRIVE_CYCLE, fidelity=a.drive_cycle)
+        design = (C_MAP_DRIVE_CYCLE if a.drive_cycle == "c-map" else replace(MAP_DRIVE_CYCLE, fidelity=a.drive_cycle))
     print(f"wrote {make(a.out, design)}")
 
 
