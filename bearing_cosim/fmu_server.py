@@ -230,7 +230,7 @@ class Server:
                 except OSError:
                     pass
             _log(f"{peer}: instance ended ({'master closed the connection; ' if peer_closed else ''}{why})"
-                 + (f"; its stderr: {tail[-500:]}" if rc not in (0, -9) and tail else ""))
+                 + (f"; its stderr: {tail[-500:]}" if rc != -9 and tail else ""))
         finally:
             if proc.poll() is None:
                 proc.kill()

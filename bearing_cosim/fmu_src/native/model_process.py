@@ -457,13 +457,19 @@ class Model:
         slave = st.get("slave")
         if type(slave) is not dict:
             raise FmiError(f"state field slave is a {type(slave).__name__}; allowed: a map of variable values")
-        want = {v.name: v for v in self.vars.values() if v.causality.name != "output"}
+        # the names this instance's own state holds (the bearing slave: its settable variables; a plain pythonfmu
+        # slave: every variable)
+        own = {k: v for k, v in self.slave._get_fmu_state().items() if k != "_session_state"}
+        by_name = {v.name: v for v in self.vars.values()}
+        want = {n: by_name[n] for n in own if n in by_name}
         names = set(slave) - {"_session_state"}
-        if names != set(want):
-            extra, missing = sorted(names - set(want)), sorted(set(want) - names)
+        if names != set(own):
+            extra, missing = sorted(names - set(own)), sorted(set(own) - names)
             raise FmiError("state variables do not match this FMU's"
                            + (f"; unknown: {', '.join(map(str, extra[:10]))}" if extra else "")
                            + (f"; missing: {', '.join(missing[:10])}" if missing else ""))
+        for n in set(own) - set(want):   # other attributes a slave keeps in its state
+            _check_like(slave[n], own[n], f"state field {n}")
         ranges = getattr(self.slave, "_ranges", {})
         enums = getattr(self.slave, "_enums", {})
         for name, var in want.items():
