@@ -333,6 +333,7 @@ BTcp *btcp_connect(const char *hostport, const char *token, uint32_t protocol, c
     if (gl) memcpy(p + 12, guid, gl);
     p += 12 + gl;
     unsigned char head[8];
+    if (timeout > 30.0) timeout = 30.0; /* a model server answers the handshake at once */
     double deadline = mono() + timeout;
     int r = send_all(t, hello, (size_t)(p - hello), err, nerr);
     if (r == 0) r = recv_all(t, head, 4, deadline, err, nerr);
