@@ -483,3 +483,26 @@ def test_idle_timeout_and_instance_limit(fmus, tmp_path):
     finally:
         p.send_signal(signal.SIGINT)
         p.wait(30)
+
+
+def test_malformed_requests_after_the_handshake(fmus, server):
+    """An accepted connection that sends a 4 GB request frame, or a request whose input count exceeds its bytes:
+    that connection is closed (its model process ends, the reason in a fault frame and the server's log) and the
+    server keeps serving."""
+    for frame, why in ((struct.pack("<II", 0xFFFFFFFF, 6), "request frame of 4294967295 bytes"),
+                       (struct.pack("<III", 8, 6, 0xFFFFFFFF), "malformed request (4294967295 inputs in 4 bytes)")):
+        s = socket.create_connection(("127.0.0.1", server["port"]), timeout=30)
+        s.sendall(_hello(TOKEN, 2, fmus["ticker"]["guid"]))
+        n, code = struct.unpack("<II", s.recv(8))
+        assert code == 0 and s.recv(n - 4) == b"accepted"
+        s.sendall(frame)
+        got = b""
+        while True:
+            b = s.recv(65536)
+            if not b:
+                break
+            got += b
+        s.close()
+        assert why.encode() in got, got[:300]
+        assert _wait(lambda: why in server["log"].read_text())
+    assert _wait(lambda: not _model_pids(server["proc"].pid))

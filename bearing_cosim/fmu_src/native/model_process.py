@@ -822,8 +822,10 @@ class TcpChannel:
             return False
         n, cmd = struct.unpack("<II", head)
         if not 4 <= n <= self.MAX_FRAME:
-            sys.stderr.write(f"bearing FMU model process: request frame of {n} bytes; allowed: 4..{self.MAX_FRAME}\n")
-            return False
+            sys.stderr.write(f"bearing FMU model process: request frame of {n} bytes; allowed: 4..{self.MAX_FRAME}; "
+                             "closing the connection\n")
+            sys.stderr.flush()
+            os._exit(3)     # the server reports the status and this message to the master
         body = self._recv(n - 4, False)
         if body is None:
             return False
@@ -907,6 +909,10 @@ def serve(res: Path, fd: int, master_pid: int, chan: TcpChannel | None = None):
         w = Writer()
         status, flags = OK, 0
         (n_in,) = r.unpack("<I")
+        if chan is not None and 4 + 12 * n_in > struct.unpack_from("<Q", mm, O_REQLEN)[0]:
+            sys.stderr.write(f"bearing FMU model process: malformed request ({n_in} inputs in "
+                             f"{struct.unpack_from('<Q', mm, O_REQLEN)[0]} bytes); closing the connection\n")
+            return 3
         if n_in:
             f_vrs, f_vals = _in_formats(n_in)
             in_vrs, in_vals = r.unpack_s(f_vrs), r.unpack_s(f_vals)
