@@ -821,9 +821,12 @@ static int connect_server(Comp *c, const char *server, const char *guid, char *e
     c->tcp = btcp_connect(server, token && *token ? token : NULL, PROTOCOL, guid ? guid : "", c->init_timeout, why,
                           sizeof why);
     if (!c->tcp) {
-        snprintf(err, nerr, "%s. Start the model server on Linux with `bearing serve` (from Windows: `wsl bearing "
-                 "serve`), or set BEARING_FMU_SERVER=host:port (and BEARING_FMU_TOKEN) to reach another one",
-                 why);
+        if (strncmp(why, "cannot connect", 14) == 0) /* no server there: how to start one */
+            snprintf(err, nerr, "%s. Start the model server on Linux with `bearing serve` (from Windows: `wsl "
+                     "bearing serve`), or set BEARING_FMU_SERVER=host:port (and BEARING_FMU_TOKEN) to reach another "
+                     "one", why);
+        else
+            snprintf(err, nerr, "%s", why);
         return 0;
     }
     return 1;
