@@ -10,6 +10,8 @@ The FMU carries
   * binaries/linux64/<modelIdentifier>.so: the native FMI 2.0 layer (fmu_src/native/bearing_fmi2.c), compiled
     here with the system C compiler ($CC, default gcc); it links no Python and runs the model in a process of
     its own per instance;
+  * with --platforms linux64,win64 also binaries/win64/<modelIdentifier>.dll: the same layer cross-compiled
+    (mingw-w64 or zig cc), whose instances run their model process on a model server (bearing serve, TCP);
   * resources/launch.sh (picks the Python) and resources/model_process.py (serves the slave);
   * resources/code/: bearing_core, pythonfmu and the slave module(s), unrenamed (each instance has its own
     interpreter); resources/model.json: GUID, content hash of the code, slave class, precompiled kernels;
