@@ -506,3 +506,16 @@ def test_malformed_requests_after_the_handshake(fmus, server):
         assert why.encode() in got, got[:300]
         assert _wait(lambda: why in server["log"].read_text())
     assert _wait(lambda: not _model_pids(server["proc"].pid))
+
+
+def test_build_platforms_refused_naming_what_is_missing(tmp_path, monkeypatch):
+    """--platforms names only linux64 and win64; win64 without a cross compiler stops naming the package."""
+    from bearing_cosim import cli, fmu_build
+    assert fmu_build.parse_platforms("linux64, win64") == ("linux64", "win64")
+    with pytest.raises(ValueError, match="--platforms = 'darwin64' is invalid; allowed: .*linux64, win64"):
+        fmu_build.parse_platforms("darwin64")
+    assert cli.main(["build-fmu", "--dest", str(tmp_path), "--platforms", "darwin64"]) == 2
+    monkeypatch.delenv("CC_WIN64", raising=False)
+    monkeypatch.setattr(fmu_build.shutil, "which", lambda name: None)
+    with pytest.raises(RuntimeError, match="apt install gcc-mingw-w64-x86-64-win32"):
+        fmu_build._compile(tmp_path / "x.dll", "win64")
