@@ -16,8 +16,8 @@ from bearing_cosim.fmu_build import _build, build as _build_to, build_variant as
 from bearing_cosim import fmu_build as _fb  # noqa: E402
 
 
-def build(dest=HERE / "dist", reference=False):
-    return _build_to(dest, reference)
+def build(dest=HERE / "dist", reference=False, platforms=("linux64",)):
+    return _build_to(dest, reference, platforms=platforms)
 
 
 def build_variant(class_name, start_values, dest=HERE / "dist"):

@@ -75,6 +75,9 @@ def build_parser():
     b.add_argument("--map", default=None, metavar="FILE",
                    help="embed this operating map (bearing build-map) in resources/: the FMU uses it at fidelity "
                         "'map' when the parameter map_file is empty")
+    b.add_argument("--platforms", default="linux64",
+                   help="comma-separated binaries: linux64 (default), win64 (cross-compiled with mingw-w64 or zig cc; "
+                        "its instances run the model on a model server, bearing serve; docs/fmu.md)")
     b.set_defaults(func=cmd_build_fmu)
     mf = sub.add_parser("build-map-fmu", help="build the operating-map FMU all in C (dist/BearingMapFMU.fmu): the "
                                             "'map' fidelity level of MAP.nc with no Python, binaries for linux64 and "
@@ -86,6 +89,11 @@ def build_parser():
                                             "status 1 if there is any")
     v.add_argument("fmu", help="FMU file")
     v.set_defaults(func=cmd_validate_fmu)
+    from .fmu_server import add_arguments as add_serve
+    sv = sub.add_parser("serve", help="run the model server: FMU instances whose master runs elsewhere (the win64 "
+                                      "FMU, or BEARING_FMU_SERVER set) get their model process here (docs/fmu.md)")
+    add_serve(sv)
+    sv.set_defaults(func=cmd_serve)
     _accept_negative_numbers(p)
     return p
 
@@ -130,7 +138,13 @@ def cmd_build_fmu(a) -> int:
     from .fmu_build import build
     if a.map is not None and not Path(a.map).is_file():
         raise core_cli._BadArg(f"--map = {a.map!r} is not a file")
-    fmu = build(a.dest, reference=a.with_reference, precompile=a.precompile, standalone=a.standalone, map_file=a.map)
+    from .fmu_build import parse_platforms
+    try:
+        platforms = parse_platforms(a.platforms)
+    except ValueError as e:
+        raise core_cli._BadArg(str(e)) from None
+    fmu = build(a.dest, reference=a.with_reference, precompile=a.precompile, standalone=a.standalone, map_file=a.map,
+                platforms=platforms)
     print(f"built {fmu} ({fmu.stat().st_size / 1024:.0f} KiB)")
     return 0
 
@@ -147,6 +161,11 @@ def cmd_validate_fmu(a) -> int:
         print(msg)
     print(f"{a.fmu}: {len(problems)} problem(s)" if problems else f"{a.fmu}: valid (fmpy validate_fmu: no messages)")
     return 1 if problems else 0
+
+
+def cmd_serve(a) -> int:
+    from .fmu_server import run
+    return run(a)
 
 
 def cmd_build_map_fmu(a) -> int:

@@ -10,6 +10,8 @@ The FMU carries
   * binaries/linux64/<modelIdentifier>.so: the native FMI 2.0 layer (fmu_src/native/bearing_fmi2.c), compiled
     here with the system C compiler ($CC, default gcc); it links no Python and runs the model in a process of
     its own per instance;
+  * with --platforms linux64,win64 also binaries/win64/<modelIdentifier>.dll: the same layer cross-compiled
+    (mingw-w64 or zig cc), whose instances run their model process on a model server (bearing serve, TCP);
   * resources/launch.sh (picks the Python) and resources/model_process.py (serves the slave);
   * resources/code/: bearing_core, pythonfmu and the slave module(s), unrenamed (each instance has its own
     interpreter); resources/model.json: GUID, content hash of the code, slave class, precompiled kernels;
@@ -72,14 +74,41 @@ def _metadata() -> dict:
             "copyright": f"Copyright (c) the {name} contributors; released under the {lic} license"}
 
 
-def _compile(out: Path):
-    src = NATIVE / "bearing_fmi2.c"
-    cc = os.environ.get("CC", "gcc")
-    cmd = [cc, "-std=gnu99", "-O2", "-Wall", "-fPIC", "-shared", "-fvisibility=hidden", "-o", str(out), str(src),
-           "-ldl"]
+PLATFORMS = ("linux64", "win64")
+NATIVE_SOURCES = ("bearing_fmi2.c", "bearing_tcp.c")
+WIN64_PACKAGE = "gcc-mingw-w64-x86-64-win32"
+
+
+def win64_compiler() -> list | None:
+    """The C cross compiler for win64: $CC_WIN64, else mingw-w64's gcc, else zig cc; None if there is none."""
+    if os.environ.get("CC_WIN64"):
+        return os.environ["CC_WIN64"].split()
+    if shutil.which("x86_64-w64-mingw32-gcc"):
+        return ["x86_64-w64-mingw32-gcc"]
+    if shutil.which("zig"):
+        return ["zig", "cc", "-target", "x86_64-windows-gnu"]
+    return None
+
+
+def _compile(out: Path, platform: str = "linux64"):
+    """The native FMI layer for platform: linux64 with the system C compiler ($CC, default gcc), win64
+    cross-compiled (win64_compiler; the remote model only: a model server runs the model)."""
+    srcs = [str(NATIVE / f) for f in NATIVE_SOURCES]
+    if platform == "linux64":
+        cmd = [os.environ.get("CC", "gcc"), "-std=gnu99", "-O2", "-Wall", "-fPIC", "-shared", "-fvisibility=hidden",
+               "-o", str(out), *srcs, "-ldl"]
+    elif platform == "win64":
+        cc = win64_compiler()
+        if cc is None:
+            raise RuntimeError(f"--platforms win64 needs a C cross compiler for Windows: mingw-w64 (apt install "
+                               f"{WIN64_PACKAGE}) or zig (zig cc); set CC_WIN64 to use another")
+        cmd = [*cc, "-std=gnu99", "-O2", "-Wall", "-D__USE_MINGW_ANSI_STDIO=1", "-shared", "-static-libgcc", "-s", "-o",
+               str(out), *srcs, "-lws2_32"]
+    else:
+        raise ValueError(f"platform = {platform!r} is invalid; allowed: {', '.join(PLATFORMS)}")
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
-        raise RuntimeError(f"compiling the native FMI layer failed ({' '.join(cmd)}):\n{r.stderr}")
+        raise RuntimeError(f"compiling the native FMI layer for {platform} failed ({' '.join(cmd)}):\n{r.stderr}")
 
 
 def _code_files(slave_sources: dict) -> list:
@@ -169,7 +198,8 @@ def _precompile(code: Path):
 
 
 def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, reference: bool = False,
-           precompile: bool = False, standalone: bool = False, resources: dict | None = None) -> Path:
+           precompile: bool = False, standalone: bool = False, resources: dict | None = None,
+           platforms=("linux64",)) -> Path:
     """slave_sources: {module name: source text}; main_module holds class_name. standalone: bundle the runtime
     (resources/python/) and the precompiled kernels. resources: {file name: bytes} put into resources/ (part of
     the content hash, hence of the GUID)."""
@@ -200,7 +230,7 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, r
         for k, v in resources.items():     # beside the slave module: the model process runs a copy of code/
             (code / k).write_bytes(v)
         (res / "native").mkdir()
-        for f in ("bearing_fmi2.c", "fmi2_min.h"):
+        for f in (*NATIVE_SOURCES, "bearing_tcp.h", "fmi2_min.h"):
             shutil.copyfile(NATIVE / f, res / "native" / f)
 
         xml = _model_description(code, list(slave_sources), main_module, class_name)
@@ -235,11 +265,16 @@ def _build(class_name: str, slave_sources: dict, main_module: str, dest: Path, r
             (res / "build_python.txt").write_text(sys.executable + "\n", encoding="utf-8")
         (res / "model.json").write_text(json.dumps(cfg, indent=1) + "\n", encoding="utf-8")
         binaries = {}
-        if sys.platform.startswith("linux"):
+        if sys.platform.startswith("linux") and "linux64" in platforms:
             so = stage / "binaries" / "linux64" / f"{model_id}.so"
             so.parent.mkdir(parents=True)
             _compile(so)
             binaries[so] = 0o755
+        if "win64" in platforms:   # the same FMI layer; its instances reach a model server (bearing serve)
+            dll = stage / "binaries" / "win64" / f"{model_id}.dll"
+            dll.parent.mkdir(parents=True)
+            _compile(dll, "win64")
+            binaries[dll] = 0o755
 
         fmu = dest / f"{model_id}.fmu"
         doc = stage / "documentation"
@@ -516,7 +551,7 @@ definition. SI units; display units rpm, degC, deg, mm.</p>
 
 
 def build(dest: Path | str = "dist", reference: bool = False, precompile: bool = False,
-          standalone: bool = False, map_file: Path | str | None = None) -> Path:
+          standalone: bool = False, map_file: Path | str | None = None, platforms=("linux64",)) -> Path:
     """Build dest/BearingFMU.fmu; ``reference`` also runs the cross-check experiment on it (fmpy, a few seconds
     to a minute with an empty numba cache) and ships <id>_in.csv, _ref.opt, _ref.csv and a plot in
     documentation/ (copies of the CSV/opt files next to the FMU). map_file: an operating map (bearing build-map)
@@ -532,8 +567,19 @@ def build(dest: Path | str = "dist", reference: bool = False, precompile: bool =
             raise BearingInputError("--map", str(map_file), "an operating map of bearing build-map",
                                     f"missing {', '.join(missing)}")
         res["operating_map.nc"] = Path(map_file).read_bytes()
+    platforms = parse_platforms(platforms)
     return _build("BearingFMU", {"bearing_fmu": (FMU_SRC / "bearing_fmu.py").read_text()}, "bearing_fmu",
-                  Path(dest), reference, precompile, standalone, resources=res)
+                  Path(dest), reference, precompile, standalone, resources=res, platforms=platforms)
+
+
+def parse_platforms(value) -> tuple:
+    """'linux64,win64' or a sequence of names -> a tuple of known platform names (ValueError naming the value)."""
+    names = [p.strip() for p in (value.split(",") if isinstance(value, str) else value) if p.strip()]
+    bad = [p for p in names if p not in PLATFORMS]
+    if bad or not names:
+        raise ValueError(f"--platforms = {','.join(names) or value!r} is invalid; allowed: a comma-separated list of "
+                         f"{', '.join(PLATFORMS)}")
+    return tuple(dict.fromkeys(names))
 
 
 def build_variant(class_name: str, start_values: dict, dest: Path | str = "dist") -> Path:
@@ -571,9 +617,12 @@ def main(argv=None):
                          "numba, llvmlite) and the precompiled kernels: the FMU needs no installed Python")
     ap.add_argument("--map", default=None, metavar="FILE",
                     help="embed this operating map (bearing build-map): used at fidelity 'map' when map_file is empty")
+    ap.add_argument("--platforms", default="linux64",
+                    help="comma-separated binaries to build: linux64 (default), win64 (cross-compiled with mingw-w64 "
+                         "or zig cc; its instances run the model on a model server, bearing serve)")
     a = ap.parse_args(argv)
     fmu = build(a.dest, reference=a.with_reference, precompile=a.precompile, standalone=a.standalone,
-                map_file=a.map)
+                map_file=a.map, platforms=a.platforms)
     print(f"built {fmu} ({fmu.stat().st_size / 1024:.0f} KiB)")
     return 0
 

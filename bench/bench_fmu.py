@@ -19,6 +19,15 @@ overhead's own cost without the cache misses that other processes on a shared ma
 integration. On a loaded machine the wall times vary from run to run; the overheads are the robust figures.
 
     python bench/bench_fmu.py [--t-end 0.2] [--fmu dist/BearingFMU.fmu] [--cache DIR] [--json]
+
+``--transport``: the model server's TCP transport against the shared memory. The C host (tests/c_host/host.c,
+its ``repeat`` command: the median wall time of fmi2DoStep) runs the do-nothing slave of bench/fmpy_floor.py
+(the round trip per step) and the bearing FMU at fidelity 'dynamic', 1 ms steps (the step the transport is
+measured against), each with its local model process (shared memory), through `bearing serve` on 127.0.0.1
+(BEARING_FMU_SERVER, the Linux .so) and, where wine64 and mingw-w64 are installed, the win64 DLL in the host
+cross-compiled for win64 under wine (Winsock through wine). Runs alternated ``--repeat`` times.
+
+    python bench/bench_fmu.py --transport [--t-end 0.1] [--rtt-steps 2000] [--repeat 3] [--json]
 """
 from __future__ import annotations
 
@@ -190,6 +199,100 @@ def _run_worker(fmu, t_end, cache):
     return res
 
 
+def _wine():
+    import shutil
+    for w in (shutil.which("wine64"), "/usr/lib/wine/wine64", shutil.which("wine")):
+        if w and os.path.exists(w):
+            return w
+    return None
+
+
+def transport(a) -> dict:
+    """Round trip per fmi2DoStep over the shared memory, over localhost TCP (Linux .so) and under wine (win64
+    DLL), for the do-nothing slave and the bearing FMU at 'dynamic' (see the module's docstring)."""
+    import re
+    import signal
+    import zipfile
+    from bearing_cosim import fmu_build
+    import fmpy_floor
+    out = {"machine": machine_info(), "step_s": H}
+    with tempfile.TemporaryDirectory(prefix="bench_transport_") as td:
+        tmp = Path(td)
+        win = fmu_build.win64_compiler() is not None and _wine() is not None
+        plats = ("linux64", "win64") if win else ("linux64",)
+        fmus = {"idle": fmu_build._build("Idle", {"idle_slave": fmpy_floor._SLAVE}, "idle_slave", tmp / "idle",
+                                         platforms=plats),
+                "bearing": Path(a.fmu) if a.fmu else fmu_build.build(tmp / "dist", platforms=plats)}
+        info = {}
+        for tag, f in fmus.items():
+            unz = tmp / f"unz_{tag}"
+            with zipfile.ZipFile(f) as z:
+                z.extractall(unz)
+            md = (unz / "modelDescription.xml").read_text()
+            mid = re.search(r'modelIdentifier="([^"]+)"', md).group(1)
+            out_name = "cage_speed" if tag == "bearing" else "v3"
+            vr = re.search(rf'name="{out_name}" valueReference="(\d+)"', md).group(1)
+            info[tag] = {"unz": unz, "guid": re.search(r'guid="([^"]+)"', md).group(1), "id": mid, "vr": vr}
+        host_c = ROOT / "tests" / "c_host" / "host.c"
+        host = tmp / "host"
+        subprocess.run([os.environ.get("CC", "gcc"), "-std=gnu99", "-O2", "-o", str(host), str(host_c), "-ldl"],
+                       check=True)
+        if win:
+            subprocess.run([*fmu_build.win64_compiler(), "-std=gnu99", "-O2", "-o", str(tmp / "host.exe"), str(host_c)],
+                           check=True)
+        cache = Path(a.cache) if a.cache else tmp / "cache"
+        env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "NUMBA_CACHE_DIR")}
+        env["BEARING_FMU_CACHE"] = str(cache)
+        srv = subprocess.Popen([sys.executable, "-m", "bearing_cosim.cli", "serve", "--port", "0", "--fmu",
+                                str(fmus["idle"]), "--fmu", str(fmus["bearing"])], stdout=subprocess.PIPE,
+                               stderr=subprocess.DEVNULL, text=True, env=dict(env, PYTHONPATH=str(ROOT)))
+        port = int(srv.stdout.readline().rsplit(":", 1)[1])
+
+        def run(tag, mode, steps):
+            """The median wall time of fmi2DoStep [us] over steps steps of H."""
+            i = info[tag]
+            script = tmp / f"{tag}_{mode}.txt"
+            script.write_text(f"instantiate 0\nsetup 0\nenter\nexit\noutputs {i['vr']}\nrepeat {steps} {H!r}\nfree\n")
+            e = dict(env)
+            cmd = [str(host), str(i["unz"]), i["id"], i["guid"], str(script)]
+            if mode != "shm":
+                e["BEARING_FMU_SERVER"] = f"127.0.0.1:{port}"
+            if mode == "wine":
+                e["WINEDEBUG"] = "-all"
+                cmd = [_wine(), str(tmp / "host.exe"), "Z:" + str(i["unz"]), i["id"], i["guid"], str(script)]
+            r = subprocess.run(cmd, capture_output=True, text=True, env=e, timeout=3600)
+            line = next((ln for ln in r.stdout.splitlines() if ln.startswith("TIMING ")), None)
+            row = next((ln for ln in r.stdout.splitlines() if ln.startswith("ROW ")), "ROW 3")
+            if r.returncode != 0 or line is None or row.split()[1] != "0":
+                raise RuntimeError(f"{tag} over {mode} failed ({r.returncode}): {r.stdout[-1500:]} {r.stderr[-1500:]}")
+            return float(line.split()[1]) * 1e-3
+
+        try:
+            modes = ("shm", "tcp", "wine") if win else ("shm", "tcp")
+            run("bearing", "shm", 5)      # numba's cache filled (a cold cache compiles here)
+            res = {(t, m): [] for t in ("idle", "bearing") for m in modes}
+            n_dyn = int(round(a.t_end / H))
+            for _ in range(a.repeat):
+                for m in modes:
+                    res[("idle", m)].append(run("idle", m, a.rtt_steps))
+                    res[("bearing", m)].append(run("bearing", m, n_dyn))
+        finally:
+            srv.send_signal(signal.SIGINT)
+            srv.wait(30)
+    for (t, m), v in res.items():
+        out[f"{t}_{m}_us"] = v
+    for m in modes:
+        idle = float(np.median(res[("idle", m)]))
+        out[f"idle_{m}_median_us"] = idle
+        out[f"bearing_{m}_median_us"] = float(np.median(res[("bearing", m)]))
+        if m != "shm":
+            cost = idle - float(np.median(res[("idle", "shm")]))
+            out[f"transport_{m}_us"] = cost
+            out[f"transport_{m}_share_of_dynamic_step"] = cost / out["bearing_shm_median_us"]
+    out["wine"] = win
+    return out
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--t-end", type=float, default=0.2, help="simulated time [s] per run")
@@ -198,7 +301,30 @@ def main(argv=None):
                                                   "is cold)")
     ap.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--json", action="store_true")
+    ap.add_argument("--transport", action="store_true",
+                    help="the model server's TCP transport against the shared memory (see the docstring)")
+    ap.add_argument("--rtt-steps", type=int, default=2000, help="steps of the do-nothing slave per run (--transport)")
+    ap.add_argument("--repeat", type=int, default=3, help="alternated runs per transport (--transport)")
     a = ap.parse_args(argv)
+    if a.transport:
+        if not 0.005 <= a.t_end <= 10.0 or not 20 <= a.rtt_steps <= 10 ** 6 or not 1 <= a.repeat <= 100:
+            ap.error(f"--t-end = {a.t_end}, --rtt-steps = {a.rtt_steps}, --repeat = {a.repeat}: allowed 0.005..10 s, "
+                     "20..1e6, 1..100")
+        out = transport(a)
+        if a.json:
+            print(json.dumps(out))
+        else:
+            print(machine_line(out["machine"]))
+            for m in ("shm", "tcp", "wine"):
+                if f"idle_{m}_median_us" in out:
+                    print(f"{m:5s}: do-nothing slave {out[f'idle_{m}_median_us']:8.1f} us per step (runs "
+                          + ", ".join(f"{x:.1f}" for x in out[f"idle_{m}_us"]) + f"); bearing FMU at 'dynamic', 1 ms "
+                          f"steps {out[f'bearing_{m}_median_us'] / 1e3:.3f} ms per step (runs "
+                          + ", ".join(f"{x / 1e3:.3f}" for x in out[f"bearing_{m}_us"]) + ")")
+                if f"transport_{m}_us" in out:
+                    print(f"       transport over the shared memory: {out[f'transport_{m}_us']:.1f} us per step, "
+                          f"{100 * out[f'transport_{m}_share_of_dynamic_step']:.2f} % of a dynamic 1 ms step")
+        return out
     if a.worker:
         print("RESULT " + json.dumps(worker(a.fmu, a.t_end)))
         return None

@@ -18,34 +18,42 @@
  *    logger, the process is killed and reaped and every later call returns fmi2Error. The model process
  *    exits when the master dies (it watches its parent).
  *  - Instances share nothing: two instances stepped from two threads run in parallel.
+ *  - Remote model (bearing_tcp.c): with BEARING_FMU_SERVER=host:port (always on Windows, default
+ *    127.0.0.1:7410) the instance's model process runs on a model server (bearing serve) and every exchange is
+ *    one request and one response frame over TCP, with the same bytes as in the shared memory.
  *
- * Linux (memfd, futex, posix_spawn); C99 with GNU extensions.
+ * Local model process: Linux (memfd, futex, posix_spawn). Remote: Linux and Windows. C99 with GNU extensions.
  */
 #define _GNU_SOURCE
 #include "fmi2_min.h"
+#include "bearing_tcp.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <limits.h>
-#include <linux/futex.h>
-#include <signal.h>
-#include <spawn.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <math.h>
+#include <time.h>
+#ifdef _WIN32
+#include <sys/types.h>
+#else
+#include <fcntl.h>
+#include <linux/futex.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
-#include <math.h>
 #include <sched.h>
-#include <time.h>
 #include <unistd.h>
 #include <dlfcn.h>
 
 extern char **environ;
+#endif
 
 #define PROTOCOL 2u
 #define SHM_MAGIC 0x58475242u   /* "BRGX" */
@@ -126,6 +134,8 @@ typedef struct {
     unsigned char *ser; /* serialized state of ser_id (fmi2SerializedFMUstateSize, then fmi2SerializeFMUstate) */
     size_t ser_len;
     uint64_t ser_id;
+    BTcp *tcp;          /* the connection to the model server (remote model), else NULL */
+    int remote;         /* the instance's model runs on a model server (c->shm is a private buffer) */
 } Comp;
 
 /* ---------------------------------------------------------------------------------------------- */
@@ -150,7 +160,12 @@ static void log_to(fmi2CallbackLogger logger, fmi2ComponentEnvironment env, cons
     free(fmt);
 }
 
-static void mlog(Comp *c, fmi2Status st, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+#ifdef _WIN32
+#define PRINTF_FORMAT gnu_printf /* mingw-w64's C99 printf (__USE_MINGW_ANSI_STDIO) */
+#else
+#define PRINTF_FORMAT printf
+#endif
+static void mlog(Comp *c, fmi2Status st, const char *fmt, ...) __attribute__((format(PRINTF_FORMAT, 3, 4)));
 static void mlog(Comp *c, fmi2Status st, const char *fmt, ...) {
     char msg[8192];
     va_list ap;
@@ -185,11 +200,21 @@ static void emit_logs(Comp *c, const unsigned char *src, size_t len) {
 /* ---------------------------------------------------------------------------------------------- */
 /* the model process                                                                               */
 
+#ifdef _WIN32
+#include <windows.h>
+static double now(void) {
+    LARGE_INTEGER f, t;
+    QueryPerformanceFrequency(&f);
+    QueryPerformanceCounter(&t);
+    return (double)t.QuadPart / (double)f.QuadPart;
+}
+#else
 static double now(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
+#endif
 
 static double env_seconds(const char *name, double dflt) {
     const char *s = getenv(name);
@@ -199,6 +224,7 @@ static double env_seconds(const char *name, double dflt) {
     return (end != s && v > 0) ? v : dflt;
 }
 
+#ifndef _WIN32
 static volatile uint32_t *word(Comp *c, unsigned off) { return (volatile uint32_t *)(c->shm + off); }
 
 static void futex_wake(volatile uint32_t *w) { syscall(SYS_futex, (uint32_t *)w, FUTEX_WAKE, INT_MAX, NULL, NULL, 0); }
@@ -226,13 +252,19 @@ static void stderr_tail(Comp *c, char *out, size_t n) {
     while (k && (out[k - 1] == '\n' || out[k - 1] == ' ')) out[--k] = '\0';
 }
 
+#else
+static void stderr_tail(Comp *c, char *out, size_t n) { (void)c; if (n) out[0] = '\0'; }
+#endif
+
 /* The model process is gone or useless: kill and reap it, log why, refuse every later call. */
 static void fail(Comp *c, const char *why) {
+#ifndef _WIN32
     if (c->pid > 0) {
         kill(c->pid, SIGKILL);
         while (waitpid(c->pid, NULL, 0) < 0 && errno == EINTR) {}
         c->pid = 0;
     }
+#endif
     char tail[3200];
     stderr_tail(c, tail, sizeof tail);
     mlog(c, fmi2Error, "%s%s%s%s", why, c->seq > 1 ? "; every later call returns fmi2Error (instantiate anew)" : "",
@@ -240,6 +272,7 @@ static void fail(Comp *c, const char *why) {
     c->dead = 1;
 }
 
+#ifndef _WIN32
 static void describe_exit(int status, char *out, size_t n) {
     if (WIFEXITED(status)) snprintf(out, n, "the model process exited with status %d", WEXITSTATUS(status));
     else if (WIFSIGNALED(status))
@@ -498,6 +531,8 @@ static int await(Comp *c, double timeout, const char *fname, double h, double pr
     }
 }
 
+#endif /* the local model process's wait */
+
 /* Request area: the pending inputs, then the command's payload. */
 static unsigned char *req_begin(Comp *c) {
     unsigned char *p = c->shm + HDR;
@@ -519,21 +554,61 @@ static unsigned char *req_begin(Comp *c) {
 static const size_t REQ_CAP = (SHM_SIZE - HDR) / 2;
 static unsigned char *resp_area(Comp *c) { return c->shm + HDR + (SHM_SIZE - HDR) / 2; }
 
+/* The exchange with a model server's process (bearing_tcp.c): the request bytes out, the response's header
+ * fields into this layer's private copy of the shared-memory header and its bytes into the response area, so
+ * that the rest of the layer reads them as from a local model process. 0, or -1 with the instance failed. */
+static int tcp_round(Comp *c, uint32_t cmd, size_t len, double timeout, const char *fname) {
+    BTcpHead h;
+    size_t blen = 0;
+    char err[4096], msg[4400];
+    c->seq++;
+    int r = btcp_call(c->tcp, cmd, c->shm + HDR, len, &h, resp_area(c), REQ_CAP, &blen, timeout, err, sizeof err);
+    if (r != 0) {
+        if (r == -2)
+            snprintf(msg, sizeof msg, "%s: the model server at %s did not answer within %g s (its model process "
+                     "stopped or hung, or the network failed; limit: BEARING_FMU_%s_TIMEOUT); the connection was "
+                     "closed", fname, btcp_peer(c->tcp), timeout, timeout == c->step_timeout ? "STEP" : "INIT");
+        else
+            snprintf(msg, sizeof msg, "%s: %s", fname, err);
+        btcp_close(c->tcp);
+        c->tcp = NULL;
+        fail(c, msg);
+        return -1;
+    }
+    uint64_t rl = blen;
+    memcpy(c->shm + O_STATUS, &h.status, 4);
+    memcpy(c->shm + O_MODE, &h.mode, 4);
+    memcpy(c->shm + O_FLAGS, &h.flags, 4);
+    memcpy(c->shm + O_RESPLEN, &rl, 8);
+    memcpy(c->shm + O_TIME, &h.time, 8);
+    memcpy(c->shm + O_BUSY, &h.busy, 8);
+    return 0;
+}
+
 /* Sends the request ending at `end`, waits, returns the status (fmi2Error if the process failed). Sets
  * body and blen to the response body after the log records (general layout). */
 static fmi2Status exchange(Comp *c, uint32_t cmd, unsigned char *end, double timeout, const char *fname,
                            const unsigned char **body, size_t *blen) {
     uint64_t len = (uint64_t)(end - (c->shm + HDR));
+    double t_send = 0.0;
+    if (c->remote) {
+        if (!c->tcp) return fmi2Error;
+        t_send = now();
+        if (tcp_round(c, cmd, (size_t)len, timeout, fname) != 0) return fmi2Error;
+    } else {
+#ifndef _WIN32
     memcpy(c->shm + O_REQLEN, &len, 8);
     memcpy(c->shm + O_CMD, &cmd, 4);
     double prog0 = cmd == C_STEP ? progress(c) : NAN;
     c->mcpu = sched_getcpu();
     int32_t mcpu = c->mcpu;
     memcpy(c->shm + O_MCPU, &mcpu, 4);
-    double t_send = now();
+    t_send = now();
     __atomic_store_n(word(c, O_REQ), ++c->seq, __ATOMIC_RELEASE);
     futex_wake(word(c, O_REQ));
     if (await(c, timeout, fname, cmd == C_STEP ? c->step_h : 0.0, prog0) != 0) return fmi2Error;
+#endif
+    }
     double t_seen = now();
     int32_t st;
     uint32_t mode;
@@ -625,6 +700,7 @@ static int read_table(Comp *c, const unsigned char *p) {
     return 1;
 }
 
+#ifndef _WIN32
 static int spawn_model(Comp *c, const char *res, char *err, size_t nerr) {
     int shm = (int)syscall(SYS_memfd_create, "bearing_fmu_shm", MFD_CLOEXEC);
     int logfd = (int)syscall(SYS_memfd_create, "bearing_fmu_stderr", MFD_CLOEXEC);
@@ -726,9 +802,44 @@ static int resource_dir(const char *uri, char *out, size_t n) {
     return 1;
 }
 
+#endif /* the local model process */
+
+/* A model server's process for this instance (BEARING_FMU_SERVER): the handshake, and a private buffer in the
+ * layout of the shared memory. */
+static int connect_server(Comp *c, const char *server, const char *guid, char *err, size_t nerr) {
+    c->remote = 1;
+    c->shm = (unsigned char *)btcp_buffer(SHM_SIZE);
+    if (!c->shm) {
+        snprintf(err, nerr, "out of memory");
+        return 0;
+    }
+    uint32_t magic = SHM_MAGIC, ver = PROTOCOL;
+    memcpy(c->shm + O_MAGIC, &magic, 4);
+    memcpy(c->shm + O_VERSION, &ver, 4);
+    const char *token = getenv("BEARING_FMU_TOKEN");
+    char why[4200];
+    c->tcp = btcp_connect(server, token && *token ? token : NULL, PROTOCOL, guid ? guid : "", c->init_timeout, why,
+                          sizeof why);
+    if (!c->tcp) {
+        if (strncmp(why, "cannot connect", 14) == 0) /* no server there: how to start one */
+            snprintf(err, nerr, "%s. Start the model server on Linux with `bearing serve` (from Windows: `wsl "
+                     "bearing serve`), or set BEARING_FMU_SERVER=host:port (and BEARING_FMU_TOKEN) to reach another "
+                     "one", why);
+        else
+            snprintf(err, nerr, "%s", why);
+        return 0;
+    }
+    return 1;
+}
+
 static void free_comp(Comp *c) {
-    if (c->shm) munmap(c->shm, SHM_SIZE);
+    if (c->tcp) btcp_close(c->tcp);
+    c->tcp = NULL;
+    if (c->remote) btcp_buffer_free(c->shm, SHM_SIZE);
+#ifndef _WIN32
+    else if (c->shm) munmap(c->shm, SHM_SIZE);
     if (c->log_fd >= 0) close(c->log_fd);
+#endif
     for (int k = 0; k < c->nvars; k++) free(c->vars[k].s);
     for (size_t k = 0; k < c->nstrs; k++) free(c->strs[k]);
     free(c->strs);
@@ -765,14 +876,20 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
         log_to(logger, env, instanceName, fmi2Error, "logError", "this FMU supports co-simulation only");
         return NULL;
     }
+    const char *server = getenv("BEARING_FMU_SERVER");
+#ifdef _WIN32
+    if (!server || !*server) server = BTCP_DEFAULT_SERVER;
+#else
     char res[4096];
-    if (!resource_dir(fmuResourceLocation, res, sizeof res)) {
+    if ((!server || !*server) && !resource_dir(fmuResourceLocation, res, sizeof res)) {
         char msg[4300];
         snprintf(msg, sizeof msg, "cannot use fmuResourceLocation '%s' (a file: URI is required)",
                  fmuResourceLocation ? fmuResourceLocation : "(null)");
         log_to(logger, env, instanceName, fmi2Error, "logError", msg);
         return NULL;
     }
+#endif
+    (void)fmuResourceLocation;
     Comp *c = (Comp *)calloc(1, sizeof(Comp));
     if (!c) return NULL;
     c->log_fd = -1;
@@ -784,19 +901,34 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
     c->short_score = 1.0;
     c->mcpu = -1;
     c->tail = 100e-6;
+#ifndef _WIN32
     {
         const char *w = getenv("BEARING_FMU_WAIT");
         c->wait_mode = w && !strcmp(w, "auto") ? WAIT_AUTO : w && !strcmp(w, "spin") ? WAIT_SPIN : WAIT_SLEEP;
         c->delay_prev = NAN;
     }
+#endif
     c->init_timeout = env_seconds("BEARING_FMU_INIT_TIMEOUT", 900.0);
     c->step_timeout = env_seconds("BEARING_FMU_STEP_TIMEOUT", 600.0);
-    char err[4600];
-    if (!c->name || !spawn_model(c, res, err, sizeof err)) {
-        mlog(c, fmi2Error, "fmi2Instantiate: cannot start the model process: %s", c->name ? err : "out of memory");
+    char err[8800];
+    if (!c->name) {
         free_comp(c);
         return NULL;
     }
+    if (server && *server) {
+        if (!connect_server(c, server, fmuGUID, err, sizeof err)) {
+            mlog(c, fmi2Error, "fmi2Instantiate: %s", err);
+            free_comp(c);
+            return NULL;
+        }
+    }
+#ifndef _WIN32
+    else if (!spawn_model(c, res, err, sizeof err)) {
+        mlog(c, fmi2Error, "fmi2Instantiate: cannot start the model process: %s", err);
+        free_comp(c);
+        return NULL;
+    }
+#endif
     unsigned char *p = req_begin(c);
     p = wr_str(p, fmuGUID ? fmuGUID : "");
     p = wr_str(p, c->name);
@@ -810,12 +942,14 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
         st = fmi2Error;
     }
     if (st > fmi2Warning) {
-        if (!c->dead) { /* the model refused (GUID ...): it exits by itself */
+#ifndef _WIN32
+        if (!c->dead && c->pid > 0) { /* the model refused (GUID ...): it exits by itself */
             for (int k = 0; k < 100 && waitpid(c->pid, NULL, WNOHANG) == 0; k++) usleep(10000);
             kill(c->pid, SIGKILL);
             waitpid(c->pid, NULL, WNOHANG);
             c->pid = 0;
         }
+#endif
         free_comp(c);
         return NULL;
     }
@@ -834,10 +968,12 @@ FMI2_EXPORT void fmi2FreeInstance(fmi2Component comp) {
             fprintf(stderr, "BEARING_FMU_EXCHANGE_HIST %d %lu %lu %lu %lu %lu\n", k, c->ex_hist[k][0],
                     c->ex_hist[k][1], c->ex_hist[k][2], c->ex_hist[k][3], c->ex_hist[k][4]);
     }
-    if (!c->dead && c->pid > 0) {
+    if (!c->dead && (c->pid > 0 || c->tcp)) {
         unsigned char *p = req_begin(c);
-        exchange(c, C_FREE, p, 30.0, "fmi2FreeInstance", NULL, NULL);
+        exchange(c, C_FREE, p, c->remote && c->step_timeout < 30.0 ? c->step_timeout : 30.0, "fmi2FreeInstance",
+                 NULL, NULL);
     }
+#ifndef _WIN32
     if (c->pid > 0) { /* it exits after answering; a bounded wait, then kill */
         int reaped = 0;
         for (int k = 0; k < 500 && !reaped; k++) {
@@ -851,6 +987,7 @@ FMI2_EXPORT void fmi2FreeInstance(fmi2Component comp) {
         }
         c->pid = 0;
     }
+#endif
     free_comp(c);
 }
 

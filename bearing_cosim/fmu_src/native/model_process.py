@@ -23,7 +23,6 @@ import json
 import math
 import mmap
 import os
-import pickle
 import shutil
 import signal
 import struct
@@ -439,20 +438,242 @@ class Model:
     def serialize(self, sid):
         if sid not in self.states:
             raise FmiError(f"unknown FMU state {sid:#x}")
-        return pickle.dumps((PROTOCOL, self.states[sid]), protocol=4)
+        slave_state, t, mode = self.states[sid]
+        conv = {v.name: _CONV[_KIND.index(type(v).__name__)] for v in self.vars.values()}
+        slave_state = {k: conv[k](v) if k in conv else v for k, v in slave_state.items()}
+        return encode_state({"guid": self.guid, "time": float(t), "mode": mode, "slave": slave_state})
+
+    def check_state(self, st):
+        """A decoded serialised state checked field by field against this instance: the FMU's GUID, the mode
+        and time, every settable variable with its type (and range), and the session's rollback state with the
+        kinds, dtypes and shapes of this instance's session. Returns (slave state, time, mode)."""
+        if st.get("guid") != self.guid:
+            raise FmiError(f"the state is of the FMU with GUID {st.get('guid')!r}; this FMU is {self.guid}")
+        mode, t = st.get("mode"), st.get("time")
+        if mode not in ("init", "step"):
+            raise FmiError(f"state field mode = {mode!r} is invalid; allowed: 'init' or 'step'")
+        if type(t) is not float or not math.isfinite(t):
+            raise FmiError(f"state field time = {t!r} is invalid; allowed: a finite float")
+        slave = st.get("slave")
+        if type(slave) is not dict:
+            raise FmiError(f"state field slave is a {type(slave).__name__}; allowed: a map of variable values")
+        # the names this instance's own state holds (the bearing slave: its settable variables; a plain pythonfmu
+        # slave: every variable)
+        own = {k: v for k, v in self.slave._get_fmu_state().items() if k != "_session_state"}
+        by_name = {v.name: v for v in self.vars.values()}
+        want = {n: by_name[n] for n in own if n in by_name}
+        names = set(slave) - {"_session_state"}
+        if names != set(own):
+            extra, missing = sorted(names - set(own)), sorted(set(own) - names)
+            raise FmiError("state variables do not match this FMU's"
+                           + (f"; unknown: {', '.join(map(str, extra[:10]))}" if extra else "")
+                           + (f"; missing: {', '.join(missing[:10])}" if missing else ""))
+        for n in set(own) - set(want):   # other attributes a slave keeps in its state
+            _check_like(slave[n], own[n], f"state field {n}")
+        ranges = getattr(self.slave, "_ranges", {})
+        enums = getattr(self.slave, "_enums", {})
+        for name, var in want.items():
+            v, kind = slave[name], type(var).__name__
+            ok = {"Real": float, "Integer": int, "Boolean": bool, "String": str}[kind]
+            if type(v) is not ok:
+                raise FmiError(f"state variable {name} = {v!r:.60} is a {type(v).__name__}; allowed: a {kind} "
+                               f"({ok.__name__})")
+            if kind == "Integer" and name in enums and not 1 <= v <= len(enums[name][1]):
+                raise FmiError(f"state variable {name} = {v} is not an item value of its enumeration; allowed: "
+                               f"1..{len(enums[name][1])}")
+            if kind == "Real" and var.causality.name == "parameter" and name in ranges:
+                lo, hi = ranges[name]
+                if not lo <= v <= hi:
+                    raise FmiError(f"state variable {name} = {v!r} is outside the allowed range [{lo:g}, {hi:g}]")
+        sess = getattr(self.slave, "_session", None)
+        got = slave.get("_session_state")
+        if got is not None:
+            if sess is None:
+                raise FmiError("the state holds a running simulation; this instance has none yet (deserialise "
+                               "it after fmi2ExitInitializationMode)")
+            _check_like(got, _session_template(sess), "session state")
+        return slave, t, mode
 
     def deserialize(self, data, sid):
-        try:
-            version, state = pickle.loads(data)
-        except Exception as e:
-            raise FmiError(f"not a serialized state of this FMU ({type(e).__name__}: {e})") from None
-        if version != PROTOCOL:
-            raise FmiError(f"serialized state of protocol {version}, this FMU reads {PROTOCOL}")
+        state = self.check_state(decode_state(data))
         if sid not in self.states:
             sid = self.next_state
             self.next_state += 1
         self.states[sid] = state
         return sid
+
+
+# ---- serialised FMU state: plain data, never pickled -------------------------------------------------
+STATE_MAGIC = b"BRGSTATE"
+STATE_VERSION = 1
+_STATE_HDR = struct.Struct("<8sII")         # magic, format version, body length
+_DTYPES = {1: "<f8", 2: "<i8"}              # the array dtypes a state may hold
+_MAX_DEPTH, _MAX_NDIM, _MAX_ITEMS = 8, 4, 1 << 24
+
+
+def encode_state(obj) -> bytes:
+    """obj (None, bool, int, float, str, tuple/list, dict with str keys, numpy float64/int64 arrays and scalars)
+    as tagged little-endian binary behind a versioned header."""
+    import numpy as np
+    out = []
+
+    def enc(x):
+        if x is None:
+            out.append(b"N")
+        elif isinstance(x, (bool, np.bool_)):
+            out.append(b"T" if x else b"F")
+        elif isinstance(x, (int, np.integer)):
+            out.append(b"i" + struct.pack("<q", int(x)))
+        elif isinstance(x, (float, np.floating)):
+            out.append(b"d" + struct.pack("<d", float(x)))
+        elif isinstance(x, str):
+            b = x.encode("utf-8")
+            out.append(b"s" + struct.pack("<I", len(b)) + b)
+        elif isinstance(x, (tuple, list)):
+            out.append(b"t" + struct.pack("<I", len(x)))
+            for v in x:
+                enc(v)
+        elif isinstance(x, dict):
+            out.append(b"m" + struct.pack("<I", len(x)))
+            for k, v in x.items():
+                enc(str(k))
+                enc(v)
+        elif isinstance(x, np.ndarray):
+            code = {np.dtype("<f8"): 1, np.dtype("<i8"): 2}.get(x.dtype.newbyteorder("<") if x.dtype.byteorder == ">"
+                                                             else x.dtype)
+            if code is None or x.ndim > _MAX_NDIM:
+                raise FmiError(f"cannot serialise an array of {x.dtype} with {x.ndim} dimensions")
+            out.append(b"a" + struct.pack(f"<BB{x.ndim}I", code, x.ndim, *x.shape)
+                       + np.ascontiguousarray(x, dtype=_DTYPES[code]).tobytes())
+        else:
+            raise FmiError(f"cannot serialise a {type(x).__name__} in the FMU state")
+
+    enc(obj)
+    body = b"".join(out)
+    return _STATE_HDR.pack(STATE_MAGIC, STATE_VERSION, len(body)) + body
+
+
+def decode_state(data: bytes):
+    """The inverse of encode_state; every length is checked against the bytes there are. Raises FmiError naming
+    what is wrong."""
+    import numpy as np
+    data = bytes(data)
+    if len(data) < _STATE_HDR.size or data[:8] != STATE_MAGIC:
+        raise FmiError(f"not a serialized state of this FMU ({len(data)} bytes without the {STATE_MAGIC.decode()} "
+                       "header)")
+    _, version, n = _STATE_HDR.unpack_from(data)
+    if version != STATE_VERSION:
+        raise FmiError(f"serialized state format version {version}; this FMU reads version {STATE_VERSION}")
+    if n != len(data) - _STATE_HDR.size:
+        raise FmiError(f"serialized state body length {n} does not match the {len(data) - _STATE_HDR.size} bytes "
+                       "given")
+    pos = [_STATE_HDR.size]
+
+    def take(k):
+        if k < 0 or pos[0] + k > len(data):
+            raise FmiError(f"serialized state truncated at byte {pos[0]} (needs {k} more)")
+        b = data[pos[0]:pos[0] + k]
+        pos[0] += k
+        return b
+
+    def count():
+        (k,) = struct.unpack("<I", take(4))
+        if k > len(data) - pos[0]:
+            raise FmiError(f"serialized state: a count of {k} at byte {pos[0] - 4} exceeds the remaining bytes")
+        return k
+
+    def dec(depth):
+        if depth > _MAX_DEPTH:
+            raise FmiError(f"serialized state nested deeper than {_MAX_DEPTH}")
+        tag = take(1)
+        if tag == b"N":
+            return None
+        if tag in (b"T", b"F"):
+            return tag == b"T"
+        if tag == b"i":
+            return struct.unpack("<q", take(8))[0]
+        if tag == b"d":
+            return struct.unpack("<d", take(8))[0]
+        if tag == b"s":
+            try:
+                return take(count()).decode("utf-8")
+            except UnicodeDecodeError:
+                raise FmiError(f"serialized state: a string before byte {pos[0]} is not UTF-8") from None
+        if tag == b"t":
+            return tuple(dec(depth + 1) for _ in range(count()))
+        if tag == b"m":
+            out = {}
+            for _ in range(count()):
+                k = dec(depth + 1)
+                if type(k) is not str:
+                    raise FmiError(f"serialized state: a map key before byte {pos[0]} is a {type(k).__name__}")
+                out[k] = dec(depth + 1)
+            return out
+        if tag == b"a":
+            code, ndim = struct.unpack("<BB", take(2))
+            if code not in _DTYPES or ndim > _MAX_NDIM:
+                raise FmiError(f"serialized state: array of dtype code {code} with {ndim} dimensions; allowed: "
+                               f"float64 or int64, at most {_MAX_NDIM} dimensions")
+            shape = struct.unpack(f"<{ndim}I", take(4 * ndim))
+            size = math.prod(shape)
+            if size > _MAX_ITEMS:
+                raise FmiError(f"serialized state: array of shape {shape} exceeds {_MAX_ITEMS} items")
+            return np.frombuffer(take(8 * size), dtype=_DTYPES[code]).reshape(shape).astype(_DTYPES[code][1:])
+        raise FmiError(f"serialized state: unknown tag {tag!r} at byte {pos[0] - 1}")
+
+    obj = dec(0)
+    if pos[0] != len(data):
+        raise FmiError(f"serialized state: {len(data) - pos[0]} bytes after its end")
+    if type(obj) is not dict:
+        raise FmiError("serialized state: not a map of fields")
+    return obj
+
+
+def _session_template(sess):
+    """What the session's get_state of this instance may return: its own state, with the implicit integrator's
+    workspace (absent until its first implicit step) of this bearing's size."""
+    import numpy as np
+    cur = sess.get_state()
+    if cur is not None and not isinstance(cur[0], str) and len(cur) == 8 and cur[7] is None:
+        K = sys.modules["bearing_core.models.dynamics"].K
+        cur = cur[:7] + (tuple(K.rosw_workspace(int(sess.model.P[K.P_NB]))),)
+    return cur
+
+
+def _check_like(got, want, where):
+    """got has the kinds of want: None, str (equal), float, int, bool, tuples of the same length, arrays of the
+    same dtype and shape; the implicit integrator's workspace (the last item of the dynamic state) may be None."""
+    import numpy as np
+    if isinstance(want, np.ndarray):
+        if not isinstance(got, np.ndarray) or got.dtype != want.dtype or got.shape != want.shape:
+            desc = f"an array of {got.dtype} {got.shape}" if isinstance(got, np.ndarray) else type(got).__name__
+            raise FmiError(f"{where} is {desc}; allowed: an array of {want.dtype} {want.shape}")
+    elif isinstance(want, tuple):
+        if type(got) is not tuple or len(got) != len(want):
+            raise FmiError(f"{where} is {type(got).__name__}"
+                           + (f" of {len(got)} items" if isinstance(got, tuple) else "")
+                           + f"; allowed: {len(want)} items")
+        for k, (g, w) in enumerate(zip(got, want)):
+            if k == 7 and len(want) == 8 and g is None:
+                continue
+            _check_like(g, w, f"{where}[{k}]")
+    elif want is None:
+        if got is not None:
+            raise FmiError(f"{where} is a {type(got).__name__}; allowed: None for this instance's parameters")
+    elif isinstance(want, str):
+        if got != want:
+            raise FmiError(f"{where} = {got!r:.40}; allowed: {want!r}")
+    elif isinstance(want, (bool, np.bool_)):
+        if type(got) is not bool:
+            raise FmiError(f"{where} is a {type(got).__name__}; allowed: a bool")
+    elif isinstance(want, (int, np.integer)):
+        if type(got) is not int:
+            raise FmiError(f"{where} is a {type(got).__name__}; allowed: an int")
+    elif isinstance(want, (float, np.floating)):
+        if type(got) is not float or not math.isfinite(got):
+            raise FmiError(f"{where} = {got!r:.40}; allowed: a finite float")
+    else:
+        raise FmiError(f"{where}: unexpected {type(want).__name__} in this instance's state")
 
 
 # ---- the exchange loop -------------------------------------------------------------------------------
@@ -549,10 +770,96 @@ def publish_progress(mm, model, box):
     struct.pack_into("<I", mm, O_PROG, Q_OFF + 8 * 2 * kernels.NOUT)
 
 
-def serve(res: Path, fd: int, master_pid: int):
-    size = os.fstat(fd).st_size
-    mm = mmap.mmap(fd, size)
-    os.close(fd)
+SHM_SIZE = 64 << 20    # the native layer's segment (bearing_fmi2.c SHM_SIZE): the TCP path uses the same layout
+_CHANNEL = None
+
+
+class TcpChannel:
+    """The exchange over a TCP connection of the model server (bearing_cosim/fmu_server.py), instead of shared
+    memory: the same request and response bytes, in length-prefixed frames (bearing_tcp.c). The request is
+    copied into a private segment of the shared-memory layout, so that the loop below serves both alike.
+
+    request frame:  u32 length (of what follows), u32 command, request bytes
+    response frame: u32 length, u32 kind (0: response), i32 status, u32 mode, u32 flags, f64 time, f64 busy,
+                    response bytes
+    """
+    MAX_FRAME = (SHM_SIZE - HDR) // 2
+
+    def __init__(self, fd: int, server_pid: int, idle: float):
+        import socket
+        self.sock = socket.socket(fileno=fd)
+        self.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self.sock.settimeout(0.5)
+        self.server_pid, self.idle = server_pid, idle
+        self.seq = 0
+
+    def _recv(self, n: int, first: bool):
+        """n bytes, None when the connection ends, the server is gone or (first) the master stays idle too long."""
+        buf = bytearray(n)
+        view, got, t0 = memoryview(buf), 0, time.monotonic()
+        while got < n:
+            try:
+                k = self.sock.recv_into(view[got:])
+            except TimeoutError:
+                if os.getppid() != self.server_pid:
+                    return None
+                if first and got == 0 and time.monotonic() - t0 > self.idle:
+                    sys.stderr.write(f"bearing FMU model process: no request for {self.idle:g} s (idle timeout); "
+                                     "closing the connection\n")
+                    return None
+                continue
+            except OSError:
+                return None
+            if k == 0:
+                return None
+            got += k
+        return buf
+
+    def wait(self, mm, words) -> bool:
+        """The next request into mm (command, length, bytes at HDR); False: the connection ended."""
+        head = self._recv(8, True)
+        if head is None:
+            return False
+        n, cmd = struct.unpack("<II", head)
+        if not 4 <= n <= self.MAX_FRAME:
+            sys.stderr.write(f"bearing FMU model process: request frame of {n} bytes; allowed: 4..{self.MAX_FRAME}; "
+                             "closing the connection\n")
+            sys.stderr.flush()
+            os._exit(3)     # the server reports the status and this message to the master
+        body = self._recv(n - 4, False)
+        if body is None:
+            return False
+        mm[HDR:HDR + n - 4] = body
+        struct.pack_into("<I", mm, O_CMD, cmd)
+        struct.pack_into("<Q", mm, O_REQLEN, n - 4)
+        self.seq = (self.seq + 1) & 0xFFFFFFFF
+        words[O_REQ // 4] = self.seq
+        return True
+
+    def send(self, mm, resp_off: int, length: int):
+        status, mode, flags = struct.unpack_from("<iII", mm, O_STATUS)
+        t, busy = struct.unpack_from("<dd", mm, O_TIME)
+        head = struct.pack("<IIiIIdd", 4 + 24 + 4 + length, 0, status, mode, flags, t, busy)
+        self.sock.settimeout(None)
+        try:
+            self.sock.sendall(head + mm[resp_off:resp_off + length])
+        except OSError:
+            pass
+        self.sock.settimeout(0.5)
+
+
+def serve(res: Path, fd: int, master_pid: int, chan: TcpChannel | None = None):
+    global _CHANNEL
+    if chan is None:
+        size = os.fstat(fd).st_size
+        mm = mmap.mmap(fd, size)
+        os.close(fd)
+    else:
+        size = SHM_SIZE
+        mm = mmap.mmap(-1, size)
+        struct.pack_into("<II", mm, O_MAGIC, MAGIC, PROTOCOL)
+        struct.pack_into("<ii", mm, O_MCPU, -1, -1)
+        _CHANNEL = chan
     words = memoryview(mm).cast("I")
     base = ctypes.addressof(ctypes.c_char.from_buffer(mm))
     req_addr, resp_addr = base + O_REQ, base + O_RESP
@@ -580,6 +887,10 @@ def serve(res: Path, fd: int, master_pid: int):
     import numpy as np
     while True:
         # wait for the next request: a short spin, then sleep on the futex (checking that the master lives)
+        if chan is not None:
+            if not chan.wait(mm, words):
+                return 0
+            spin = 0.0
         t_end = time.perf_counter() + spin
         while words[O_REQ // 4] == last and time.perf_counter() < t_end:
             pass
@@ -598,6 +909,10 @@ def serve(res: Path, fd: int, master_pid: int):
         w = Writer()
         status, flags = OK, 0
         (n_in,) = r.unpack("<I")
+        if chan is not None and 4 + 12 * n_in > struct.unpack_from("<Q", mm, O_REQLEN)[0]:
+            sys.stderr.write(f"bearing FMU model process: malformed request ({n_in} inputs in "
+                             f"{struct.unpack_from('<Q', mm, O_REQLEN)[0]} bytes); closing the connection\n")
+            return 3
         if n_in:
             f_vrs, f_vals = _in_formats(n_in)
             in_vrs, in_vals = r.unpack_s(f_vrs), r.unpack_s(f_vals)
@@ -612,6 +927,7 @@ def serve(res: Path, fd: int, master_pid: int):
                     raise FmiError(f"fmi2Instantiate: GUID {guid} does not match this FMU's {cfg['guid']}")
                 cls, lock = load_slave_class(res, cfg)
                 model = Model(cls, name, bool(visible), bool(logging_on), str(res))
+                model.guid = cfg["guid"]
                 slave = model.slave
                 if hasattr(slave, "_out"):
                     from bearing_core.session.cosim_spec import INT_OUTPUT_SPEC, OUTPUT_SPEC
@@ -778,14 +1094,34 @@ def _finish(mm, words, status, mode, flags, t, t0, length, resp_addr, seq):
     struct.pack_into("<i", mm, O_WCPU, _cpu())
     struct.pack_into("<Qdd", mm, O_RESPLEN, length, t, time.perf_counter() - t0)
     words[O_RESP // 4] = seq
-    _futex_wake(resp_addr)
+    if _CHANNEL is not None:
+        _CHANNEL.send(mm, HDR + (len(mm) - HDR) // 2, length)
+    else:
+        _futex_wake(resp_addr)
 
 
 def main(argv):
     signal.signal(signal.SIGINT, signal.SIG_IGN)   # the master decides; its death ends this process
-    res, fd, master_pid = Path(argv[1]), int(argv[2]), int(argv[3])
     os.environ.pop("NUMBA_CACHE_DIR", None)         # numba's cache lives with the content-addressed code copy
+    if argv[2] == "--tcp":   # <res> --tcp <socket fd> <server pid> <idle timeout [s]>: a model server's instance
+        res, fd, server_pid, idle = Path(argv[1]), int(argv[3]), int(argv[4]), float(argv[5])
+        _die_with_parent()
+        if os.getppid() != server_pid:
+            return 0
+        rc = serve(res, -1, server_pid, TcpChannel(fd, server_pid, idle))
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(rc)   # at once: the server reaps it (interpreter finalisation with numba loaded takes seconds)
+    res, fd, master_pid = Path(argv[1]), int(argv[2]), int(argv[3])
     return serve(res, fd, master_pid)
+
+
+def _die_with_parent():
+    """SIGKILL when the model server that started this process ends (Linux prctl PR_SET_PDEATHSIG)."""
+    try:
+        _libc.prctl(1, signal.SIGKILL, 0, 0, 0)
+    except (AttributeError, OSError):
+        pass
 
 
 if __name__ == "__main__":
