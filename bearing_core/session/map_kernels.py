@@ -316,3 +316,59 @@ def quasistatic_step(u, i_speed, i_oring, ring_idx, ring_ok, check_ring, w_lo, w
     res[0] = wc
     res[1] = fl
     return 0
+
+
+# ---- the map level's stiffness outputs: an addition of its own (map_step and steady_level_outputs unchanged) ----
+
+@_exact
+def map_stiffness(axes, ptr, strides, kvals, zero_scaled, zero_flags, x, cs, sn, idx, w, kbuf, i_k, out):
+    """The map level's 5 x 5 stiffness at the map coordinates x into out[i_k:i_k + 25] (row-major; rows Fx, Fy,
+    Fz, Mx, My, columns dx, dy, dz, tx, ty; K = d(load)/d(pose) [N/m, N/rad, N m/m, N m/rad]; docs/fidelity.md).
+
+    1. K0 = the multilinear interpolation (interp_multilinear, the cell and weights of the outputs) of the map's
+       variables stiffness_<row><col> (kvals: n_points x 25, row-major; the Jones-Harris stiffness at the
+       grid point's speed and loads, bearing_core.maps.build_map) at x; zero_scaled (25 zeros: no entry is
+       speed-scaled), zero_flags (n_points zeros) and kbuf (25) are work arrays;
+    2. turned with the radial load (cs, sn) = (cos, sin) of its direction (a map without fy_N and my_Nm axes is
+       read along x: cs = 1, sn = 0 otherwise), K = R K0 R^T with R = diag(Rz, 1, Rz), Rz = [[cs, -sn], [sn, cs]]
+       acting on the (x, y) and (tx, ty) index pairs, the z row and column turned as vectors: the stiffness of
+       the axisymmetric bearing seen in the frame turned by the load angle, as the x-y outputs are
+       (steady_level_outputs' rot: out_x = cs a - sn b, out_y = sn a + cs b).
+    Returns False (out unchanged) if x lies outside the grid or an entry is not finite."""
+    d, fl = interp_multilinear(axes, ptr, strides, kvals, zero_scaled, zero_flags, x, idx, w, kbuf)
+    if d >= 0:
+        return False
+    # K R^T, then R (K R^T): index pairs (0, 1) and (3, 4) turn, index 2 stays
+    for i in range(5):
+        for p in (0, 3):
+            a = kbuf[5 * i + p]
+            b = kbuf[5 * i + p + 1]
+            kbuf[5 * i + p] = cs * a - sn * b
+            kbuf[5 * i + p + 1] = sn * a + cs * b
+    for j in range(5):
+        for p in (0, 3):
+            a = kbuf[5 * p + j]
+            b = kbuf[5 * (p + 1) + j]
+            kbuf[5 * p + j] = cs * a - sn * b
+            kbuf[5 * (p + 1) + j] = sn * a + cs * b
+    for k in range(25):
+        if not math.isfinite(kbuf[k]):
+            return False
+    for k in range(25):
+        out[i_k + k] = kbuf[k]
+    return True
+
+
+@_exact
+def map_stiffness_u(u, i_fx, i_fy, rotate, axes, ptr, strides, kvals, zero_scaled, zero_flags, x, idx, w, kbuf, i_k,
+                    out):
+    """map_stiffness after map_step: the radial load's direction from the inputs u (cosim_spec.INPUT_NAMES order)
+    as map_step computes it (bit for bit), the map coordinates x that map_step wrote."""
+    cs = 1.0
+    sn = 0.0
+    if rotate:
+        fr = math.sqrt(u[i_fx] * u[i_fx] + u[i_fy] * u[i_fy])
+        if fr > 0.0:
+            cs = u[i_fx] / fr
+            sn = u[i_fy] / fr
+    return map_stiffness(axes, ptr, strides, kvals, zero_scaled, zero_flags, x, cs, sn, idx, w, kbuf, i_k, out)
