@@ -134,7 +134,7 @@ def test_map_stiffness_turned_with_the_load_against_jones_harris_differences():
     angle = 2 * (2 * math.pi / g.Z)
     s, inp = _map_session(ROOT / "maps" / "7218B_oil.nc", angle)
     K_init = _K(s.values)                        # the checked path (initialize)
-    s.step(0.0, 1e-3, inp)                       # the one-call step (map_step, then map_stiffness_u)
+    s.step(0.0, 1e-3, inp)                       # the one-call step (map_step_stiffness)
     K = _K(s.values)
     assert np.array_equal(K, K_init)
     w = inp["shaft_speed"]

@@ -78,7 +78,7 @@ MAP_OUTPUTS = ("reaction_Fx", "reaction_Fy", "reaction_Fz", "reaction_Mx", "reac
 means of the dynamic model), 'cage_speed_eq26' the seed 000 Eq. 26 cage speed [rad/s], 'cage_time_constant' [s]
 the relaxation time of the cage speed, 'cage_speed_cv' the cage speed's standard deviation over the last window
 relative to its mean, 'steady' 1 if the steadiness criterion was met, else 0. The stiffness variables
-(MAP_STIFFNESS) give the stiffness outputs (MapLevel.stiffness_fast / stiffness_into; a map without them still
+(MAP_STIFFNESS) give the stiffness outputs (map_kernels.map_step_stiffness, MapLevel.stiffness_into; a map without them still
 runs, its stiffness outputs 0, with a warning); skid_class is for the user and not read here."""
 MAP_STIFFNESS = tuple(f"stiffness_{a}{b}" for a in ("x", "y", "z", "tx", "ty") for b in ("x", "y", "z", "tx", "ty"))
 """The map's stiffness variables (bearing_core.maps.build_map: the Jones-Harris 5 x 5 stiffness at the grid point's
@@ -261,7 +261,7 @@ class MapLevel:
         from .output_map import OUTPUT_INDEX
         missing = [v for v in MAP_STIFFNESS if v not in m["vars"]]
         self.stiffness_missing = ""
-        self.stiffness_fast = self.stiffness_into = None
+        self.stiffness_into = None
         if missing:
             self.stiffness_missing = (
                 f"the operating map {self.path} has no stiffness variables ({', '.join(missing[:3])}, ...): the "
@@ -275,23 +275,19 @@ class MapLevel:
         self.kvalues = np.ascontiguousarray(kv)
         i_k = OUTPUT_INDEX[STIFFNESS_NAMES[0]]
         assert all(OUTPUT_INDEX[n] == i_k + k for k, n in enumerate(STIFFNESS_NAMES))
-        zs, zf = np.zeros(25, dtype=np.int64), np.zeros(npts, dtype=np.int64)
         kbuf = np.zeros(25)
-        idx, w = np.zeros(len(shape), dtype=np.int64), np.zeros(len(shape))
-        fast_args = (ix["Fx"], ix["Fy"], self.rotate, self.axes_flat, self.ptr, self.strides, self.kvalues, zs, zf,
-                     self.x_fast, idx, w, kbuf, i_k)
-        kern_u, kern = MK.map_stiffness_u, MK.map_stiffness
+        # the one-call step: map_step and then the stiffness on the cell its interpolation left
+        # (map_kernels.map_step_stiffness), its arguments after map_step's level arguments
+        self.step_kernel = MK.map_step_stiffness
+        self.step_args = self.step_args + (self.kvalues, kbuf, i_k)
+        kern = MK.map_stiffness
 
-        def stiffness_fast(u, out):
-            """After map_step at the inputs u (array, INPUT_NAMES order): the stiffness into out."""
-            return kern_u(u, *fast_args, out)
+        def stiffness_into(cs, sn, out):
+            """After steady_into (whose interpolation left its cell in self._idx, self._w), the radial load's
+            direction (cs, sn): the stiffness into out; False if an entry is not finite."""
+            return kern(self.strides, self.kvalues, self._idx, self._w, cs, sn, kbuf, i_k, out)
 
-        def stiffness_into(x, cs, sn, out):
-            """After the checked path at the map coordinates x, load direction (cs, sn): the stiffness into out."""
-            return kern(self.axes_flat, self.ptr, self.strides, self.kvalues, zs, zf, x, cs, sn, idx, w, kbuf, i_k,
-                        out)
-
-        self.stiffness_fast, self.stiffness_into = stiffness_fast, stiffness_into
+        self.stiffness_into = stiffness_into
 
     def _check_parameters(self, p):
         try:
@@ -747,8 +743,7 @@ class SteadySession:
         # inputs pass; anything refused goes through the checked path, which names the reason
         self._fast = getattr(level, "step_kernel", None)
         # a level whose stiffness outputs are computed apart from its steady values (MapLevel: interpolated and
-        # turned by map_kernels.map_stiffness after the step's outputs)
-        self._stiff_fast = getattr(level, "stiffness_fast", None)
+        # turned by map_kernels.map_stiffness after the step's outputs; its one-call step does the same)
         self._stiff_into = getattr(level, "stiffness_into", None)
         if getattr(level, "stiffness_missing", ""):
             self.warnings.append(level.stiffness_missing)
@@ -784,8 +779,6 @@ class SteadySession:
                       self._temps, self.level.inertia, self.w_prev, c0, c1, c2, self._ib, self._new,
                       self._res) != 0:
             return False
-        if self._stiff_fast is not None and not self._stiff_fast(u, self._new):
-            return False
         self._note_flags(int(self._res[1]), self.level.x_fast, h)
         self.w_prev = float(u[self._i_speed])
         if self._i_oil >= 0:
@@ -807,7 +800,7 @@ class SteadySession:
             raise BearingInputError("inputs", self.level.point_text(x),
                                     "an operating point where the map has values",
                                     f"{self.level.describe()} has no value for {bad[:4]} there (a failed grid point)")
-        if self._stiff_into is not None and not self._stiff_into(x, cs, sn, self._new):
+        if self._stiff_into is not None and not self._stiff_into(cs, sn, self._new):
             raise BearingInputError("inputs", self.level.point_text(x), "an operating point where the map has values",
                                     f"{self.level.describe()} has no finite stiffness there (a failed grid point)")
         self._note_flags(fl, x, h)
