@@ -42,6 +42,9 @@ def test_spec_names_units():
     units = {n: u for n, u, _ in OUTPUT_SPEC}
     assert units["stiffness[1,1]"] == "N/m" and units["stiffness[2,4]"] == "N/rad"
     assert units["stiffness[4,3]"] == "N.m/m" and units["stiffness[5,5]"] == "N.m/rad"
+    from bearing_core.maps.build_map import STIFFNESS_NAMES as BUILT
+    from bearing_core.session.fidelity import MAP_STIFFNESS
+    assert BUILT == MAP_STIFFNESS             # what bearing build-map writes is what the map level reads
 
 
 # ---- quasi-static level --------------------------------------------------------------------------------------------
