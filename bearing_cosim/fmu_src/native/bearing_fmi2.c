@@ -1364,6 +1364,10 @@ FMI2_EXPORT fmi2Status fmi2GetDirectionalDerivative(fmi2Component comp, const fm
                                                     fmi2Real df[]) {
     COMP(comp);
     const char *fname = "fmi2GetDirectionalDerivative";
+    if (c->dead) {
+        mlog(c, fmi2Error, "%s: the model process is gone; instantiate anew", fname);
+        return fmi2Error;
+    }
     if (c->mode != M_STEP) {
         mlog(c, fmi2Error, "%s: called before fmi2ExitInitializationMode; allowed after it (the stiffness is that of "
              "the last communication point)", fname);
