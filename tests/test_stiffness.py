@@ -3,6 +3,7 @@ Fy, Fz, Mx, My, columns dx, dy, dz, tx, ty) against central finite differences o
 FMU's fmi2GetDirectionalDerivative against them (docs/fidelity.md "Stiffness", docs/fmu.md "Directional
 derivatives")."""
 import math
+import os
 import sys
 from pathlib import Path
 
@@ -11,7 +12,15 @@ import pytest
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
+sys.path.insert(0, str(HERE))
+from test_fmu import fmu  # noqa: E402,F401  (session fixture: the FMU built once, its kernel cache shared)
+
 RPM = math.pi / 30
+# the quasi-static level solves with the cage kernels, which compile for ~2 CPU minutes: as in
+# tests/test_fidelity_quasistatic.py, those tests run with BEARING_TEST_QS_CAGE=1
+needs_solves = pytest.mark.skipif(os.environ.get("BEARING_TEST_QS_CAGE") != "1",
+                                  reason="solves with the quasi-static cage kernels: set BEARING_TEST_QS_CAGE=1 (they "
+                                         "compile for ~2 CPU minutes)")
 POSE = ("dx", "dy", "dz", "tx", "ty")
 LOADS = ("Fx", "Fy", "Fz", "Mx", "My")
 REACTIONS = tuple("reaction_" + n for n in LOADS)
@@ -75,6 +84,7 @@ def _fd_reactions(s, inp, t, h=(1e-9, 1e-9, 1e-9, 1e-8, 1e-8)):
     return F, t
 
 
+@needs_solves
 def test_quasistatic_stiffness_is_the_derivative_of_its_reactions(qs_disp):
     """Displacement coupling: central differences of the level's reactions in the ring pose give its stiffness
     outputs (<= 1e-4), at the first solution and after the pose moved far enough for a re-solve."""
@@ -93,6 +103,7 @@ def test_quasistatic_stiffness_is_the_derivative_of_its_reactions(qs_disp):
     assert _rel(F1, K1) <= 1e-4, (F1, K1)
 
 
+@needs_solves
 def test_quasistatic_load_coupling_stiffness_inverts_the_compliance():
     """Load coupling: the ring pose follows the loads; central differences of ir_x..ir_ty in Fx..My (the
     compliance) times the stiffness outputs is the identity (<= 1e-4)."""
@@ -204,11 +215,10 @@ def test_dynamic_tangent_stiffness():
 
 # ---- the FMU: fmi2GetDirectionalDerivative ----------------------------------------------------------------------------
 
-@pytest.fixture(scope="module")
-def fmu_path(tmp_path_factory):
-    sys.path.insert(0, str(ROOT))
-    from build_fmu import build
-    return str(build(tmp_path_factory.mktemp("dist_stiffness")))
+@pytest.fixture
+def fmu_path(fmu, monkeypatch):
+    monkeypatch.setenv("BEARING_FMU_CACHE", fmu["cache"])     # the model processes' kernel cache of the FMU tests
+    return fmu["path"]
 
 
 def _open(path, params, inputs):
@@ -225,7 +235,12 @@ def _open(path, params, inputs):
     f.enterInitializationMode()
     f.setReal([vr[k] for k in inputs], list(inputs.values()))
     f.exitInitializationMode()
-    return f, vr, md
+    return f, vr
+
+
+def _close(f):
+    f.terminate()
+    f.freeInstance()
 
 
 def test_fmu_model_structure(fmu_path):
@@ -239,15 +254,41 @@ def test_fmu_model_structure(fmu_path):
     assert deps["cage_speed"] == [] and deps["stiffness[1,1]"] == []
 
 
-def test_fmu_directional_derivative(fmu_path):
-    """Quasi-static level, displacement coupling: d reaction / d pose = -stiffness; map level, load coupling:
-    d ir / d load = stiffness^-1 (the same numbers as the outputs: inverted in the FMI layer)."""
+def test_fmu_directional_derivative_load_coupling(fmu_path):
+    """Map level, load coupling: d ir / d load = stiffness^-1 (inverted in the FMI layer, the same numbers as the
+    outputs' inverse), d reaction / d load = -identity, 0 for the pose inputs and outputs without a dependency; a
+    known that is not an input is refused."""
+    from bearing_core.session.cosim_spec import STIFFNESS_NAMES
+    f, vr = _open(fmu_path, {"fidelity": "map", "map_file": str(ROOT / "maps" / "7218B_oil.nc")},
+                  {"shaft_speed": 2800 * RPM, "Fx": 1000.0, "Fy": 600.0, "Fz": 3500.0})
+    try:
+        f.doStep(0.0, 1e-3)
+        K = np.array(f.getReal([vr[n] for n in STIFFNESS_NAMES])).reshape(5, 5)
+        assert 1e8 < K[0, 0] < 5e8
+        J = np.array([f.getDirectionalDerivative([vr[k] for k in IR], [vr[n]], [1.0]) for n in LOADS]).T
+        assert np.allclose(J, np.linalg.inv(K), rtol=1e-9, atol=0.0)
+        assert np.max(np.abs(K @ J - np.eye(5))) < 1e-9
+        dv = np.array([10.0, -20.0, 5.0, 0.1, -0.3])
+        d = f.getDirectionalDerivative([vr[k] for k in IR] + [vr["cage_speed"]], [vr[k] for k in LOADS], dv.tolist())
+        assert np.allclose(d[:5], J @ dv, rtol=1e-12, atol=1e-20) and d[5] == 0.0
+        d = f.getDirectionalDerivative([vr[k] for k in REACTIONS], [vr["Fy"]], [1.0])
+        assert d == [0.0, -1.0, 0.0, 0.0, 0.0]
+        d = f.getDirectionalDerivative([vr[k] for k in REACTIONS], [vr["dx"]], [1.0])   # pose: not used here
+        assert d == [0.0] * 5
+        with pytest.raises(Exception):        # a known that is not an input
+            f.getDirectionalDerivative([vr["reaction_Fx"]], [vr["cage_speed"]], [1.0])
+    finally:
+        _close(f)
+
+
+@needs_solves
+def test_fmu_directional_derivative_displacement_coupling(fmu_path):
+    """Quasi-static level, displacement coupling: d reaction / d pose = -stiffness, d ir / d pose = identity."""
     from bearing_core.session.cosim_spec import STIFFNESS_NAMES
     pose = {"dx": 1.22e-4, "dy": 1.6e-5, "dz": -9.4e-6, "tx": -3.0e-4, "ty": 2.29e-3}
-    f, vr, _ = _open(fmu_path, {"fidelity": "quasi-static", "coupling": "displacement"},
-                     {"shaft_speed": 3000 * RPM, **pose})
+    f, vr = _open(fmu_path, {"fidelity": "quasi-static", "coupling": "displacement"},
+                  {"shaft_speed": 3000 * RPM, **pose})
     try:
-        f.setReal([vr[k] for k in pose], list(pose.values()))
         f.doStep(0.0, 1e-3)
         K = np.array(f.getReal([vr[n] for n in STIFFNESS_NAMES])).reshape(5, 5)
         assert K[0, 0] > 1e8
@@ -256,26 +297,9 @@ def test_fmu_directional_derivative(fmu_path):
             assert np.array_equal(np.array(d), -K[:, j])
             d = f.getDirectionalDerivative([vr[k] for k in IR], [vr[n]], [2.0])
             assert np.array_equal(np.array(d), 2.0 * np.eye(5)[:, j])
-        # a combination of directions, and an output without a dependency
         dv = np.array([1e-6, -2e-6, 5e-7, 1e-5, -3e-5])
         d = f.getDirectionalDerivative([vr[k] for k in REACTIONS] + [vr["cage_speed"]], [vr[k] for k in POSE],
                                        dv.tolist())
         assert np.allclose(d[:5], -K @ dv, rtol=1e-12, atol=0.0) and d[5] == 0.0
-        with pytest.raises(Exception):        # a known that is not an input
-            f.getDirectionalDerivative([vr["reaction_Fx"]], [vr["cage_speed"]], [1.0])
     finally:
-        f.terminate()
-        f.freeInstance()
-    f, vr, _ = _open(fmu_path, {"fidelity": "map", "map_file": str(ROOT / "maps" / "7218B_oil.nc")},
-                     {"shaft_speed": 2800 * RPM, "Fx": 1000.0, "Fy": 600.0, "Fz": 3500.0})
-    try:
-        f.doStep(0.0, 1e-3)
-        K = np.array(f.getReal([vr[n] for n in STIFFNESS_NAMES])).reshape(5, 5)
-        J = np.array([f.getDirectionalDerivative([vr[k] for k in IR], [vr[n]], [1.0]) for n in LOADS]).T
-        assert np.allclose(J, np.linalg.inv(K), rtol=1e-9, atol=0.0)
-        assert np.max(np.abs(K @ J - np.eye(5))) < 1e-9
-        d = f.getDirectionalDerivative([vr[k] for k in REACTIONS], [vr["Fy"]], [1.0])
-        assert d == [0.0, -1.0, 0.0, 0.0, 0.0]
-    finally:
-        f.terminate()
-        f.freeInstance()
+        _close(f)

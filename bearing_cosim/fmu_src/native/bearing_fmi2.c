@@ -1254,8 +1254,8 @@ static fmi2Status unsupported(fmi2Component comp, const char *what) {
 /*
  * The bearing's stiffness K (outputs stiffness[i,j], i, j = 1..5; rows Fx, Fy, Fz [N], Mx, My [N m], the load on the
  * inner ring; columns dx, dy, dz [m], tx, ty [rad], its pose) is K = d(load)/d(pose) = -d(reaction)/d(pose)
- * (bearing_core.session.cosim_spec; docs/fmu.md "Directional derivatives"). With the (unknown output, known input)
- * pairs the ModelStructure declares (reaction_Fx..My and ir_x..ir_ty on Fx..My and dx..ty):
+ * (bearing_core.session.cosim_spec; docs/fmu.md "Stiffness and directional derivatives"). With the (unknown
+ * output, known input) pairs the ModelStructure declares (reaction_Fx..My and ir_x..ir_ty on Fx..My and dx..ty):
  *   coupling = displacement (the pose dx..ty is an input):  d reaction_i / d pose_j = -K[i][j],
  *                                                           d ir_i / d pose_j = delta_ij (the pose itself);
  *   coupling = load (the loads Fx..My are inputs):           d ir_i / d load_j = (K^-1)[i][j] (the compliance),
