@@ -11,7 +11,7 @@ import pytest
 
 from bearing_core.errors import BearingInputError
 from bearing_core.session.cosim import CoSimParameters, CoSimSession, StepRejected
-from bearing_core.session.fidelity import MAP_OUTPUTS, SPEED_SCALED, GROSS_SKID_SLIP
+from bearing_core.session.fidelity import MAP_OUTPUTS, MAP_STIFFNESS, SPEED_SCALED, GROSS_SKID_SLIP
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -48,6 +48,10 @@ def synthetic_map(path, fz_linear=False):
     import xarray as xr
     n, fx, fz = np.meshgrid(*[np.array(v) for v in AXES.values()], indexing="ij")
     data = {nm: (list(AXES), np.asarray(field(nm, n, fx, fz), dtype=float) * np.ones(n.shape)) for nm in MAP_OUTPUTS}
+    for k, nm in enumerate(MAP_STIFFNESS):   # the stiffness variables (map_kernels.map_stiffness): distinct fields
+        i, j = divmod(k, 5)
+        scale = 1e8 if i == j else 1e7 * (1 + k % 3)
+        data[nm] = (list(AXES), scale * (1.0 + (k + 1) * 1e-4 * fx / 1000.0 + 2e-5 * (k + 2) * fz / 1000.0 + n / 2e4))
     ds = xr.Dataset(data, coords={k: np.array(v) for k, v in AXES.items()})
     ds.attrs.update(bearing="7218B", level="synthetic", parameters=json.dumps(PARAMS), grid=json.dumps(AXES))
     ds.to_netcdf(str(path), engine="scipy")
@@ -232,6 +236,8 @@ def test_one_call_step_equals_the_checked_path(smap):
             t += 1e-3
     assert fast.warnings == checked.warnings and len(fast.warnings) > 0
     assert 10 < refused < 200
+    from bearing_core.session.output_map import OUTPUT_INDEX
+    assert fast.values[OUTPUT_INDEX["stiffness[1,1]"]] > 0.0     # the turned stiffness outputs were compared too
 
 
 def test_parameters_the_map_was_not_built_for_are_refused(smap):

@@ -53,7 +53,8 @@ def test_fmutool_check_no_messages(fmu):
 def test_metadata_units_and_structure(fmu):
     """Version/license from pyproject.toml; display units rpm (factor 30/pi) and degC (offset -273.15) as FMI 2.0
     DisplayUnit (display = factor * value + offset, FMI 2.0.4 section 2.2.2); quantities; Modelica unit syntax;
-    outputs without direct feedthrough (dependencies="")."""
+    outputs without direct feedthrough (dependencies="") but the ring's reactions and pose, which depend on the ring
+    inputs (docs/fmu.md "Stiffness and directional derivatives")."""
     import tomllib
     proj = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
     md = _md(fmu["path"])
@@ -73,7 +74,15 @@ def test_metadata_units_and_structure(fmu):
     assert _var(md, "friction_torque").find("Real").get("quantity") == "Torque"
     assert float(_var(md, "reaction_Fx").find("Real").get("nominal")) > 0
     outs = md.find("ModelStructure/Outputs")
-    assert len(outs) > 0 and all(u.get("dependencies") == "" for u in outs)
+    names = [sv.get("name") for sv in md.find("ModelVariables")]
+    ring = {"reaction_Fx", "reaction_Fy", "reaction_Fz", "reaction_Mx", "reaction_My", "ir_x", "ir_y", "ir_z",
+            "ir_tx", "ir_ty"}
+    ring_inputs = sorted(["Fx", "Fy", "Fz", "Mx", "My", "dx", "dy", "dz", "tx", "ty"])
+    assert len(outs) > 0
+    for u in outs:   # the ring outputs depend on the ring inputs (fmi2GetDirectionalDerivative); no other feedthrough
+        name = names[int(u.get("index")) - 1]
+        deps = sorted(names[int(i) - 1] for i in u.get("dependencies").split())
+        assert deps == (ring_inputs if name in ring else []), (name, deps)
 
 
 def test_guid_is_a_content_hash(fmu, tmp_path):

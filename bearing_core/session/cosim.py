@@ -150,6 +150,8 @@ class CoSimSession:
         self._x = np.zeros(2 * K.NOUT + len(SK.EXTRA_NAMES))
         self._ext = np.zeros(SK.N_EXT)
         self._ext_isothermal = False   # ext holds the (constant) temperatures of a model without the network
+        from ..models.tangent_stiffness import TangentStiffness
+        self._tangent = TangentStiffness()
         self._films = None
         self._saved = None          # rollback buffers of the step in progress (_save)
         self._in_key = None         # (inputs as given, model geometry) of the last validated inputs
@@ -463,6 +465,18 @@ class CoSimSession:
             self._ext_isothermal = m.thermal is None
         ext[6] = 1.0 if self.thermal_runaway else 0.0
         ext[7] = m.oil_fraction_used()
+        # the tangent stiffness of the contact state at this instant, balls held (models.tangent_stiffness: five
+        # right-hand-side calls, at communication points only)
+        try:
+            ext[SK.EXT_STIFFNESS:] = self._tangent(m, diag).ravel()
+        except FloatingPointError as e:
+            raise StepRejected(str(e))
+        if self.p.fixed_tilt and self.p.coupling == "load":
+            # the ring held square: the tilts are no degrees of freedom, their rows and columns 0 (as at the
+            # quasi-static level), so that the compliance over the free coordinates is the translational one
+            kt = ext[SK.EXT_STIFFNESS:].reshape(5, 5)
+            kt[3:, :] = 0.0
+            kt[:, 3:] = 0.0
         if q0 is None:
             q1 = q0 = diag
             h = 0.0

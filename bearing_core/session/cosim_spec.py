@@ -90,6 +90,21 @@ OUTPUT_SPEC += (
                                "oil_fraction if > 0, else the oil supply's cavity oil content at the running speed "
                                "(bearing_core.lubrication.oil_supply)"),
 )
+# The bearing's 5 x 5 stiffness (docs/fidelity.md "Stiffness"), FMI 2 array-element names stiffness[i,j], i, j = 1..5:
+# rows Fx, Fy, Fz [N], Mx, My [N m] (the load on the inner ring), columns dx, dy, dz [m], tx, ty [rad] (its pose).
+# Sign: K[i,j] = d(load_i)/d(pose_j) = -d(reaction_i)/d(pose_j) (a restoring bearing has positive diagonal entries;
+# the Jones-Harris convention of bearing_core.models.quasistatic). What each fidelity level gives: STIFFNESS_DESC.
+STIFFNESS_ROWS = (("Fx", "N"), ("Fy", "N"), ("Fz", "N"), ("Mx", "N.m"), ("My", "N.m"))
+STIFFNESS_COLS = (("dx", "m"), ("dy", "m"), ("dz", "m"), ("tx", "rad"), ("ty", "rad"))
+STIFFNESS_NAMES = tuple(f"stiffness[{i + 1},{j + 1}]" for i in range(5) for j in range(5))
+"""The 25 stiffness outputs, row-major (stiffness[i,j] at STIFFNESS_NAMES[5 (i - 1) + (j - 1)])."""
+STIFFNESS_DESC = ("the levels' stiffness: dynamic, tangent of the reactions at the current contact state with the "
+                  "balls held; quasi-static, the derivative of the level's reactions along its solution; map, the "
+                  "map's Jones-Harris stiffness turned with the radial load")
+OUTPUT_SPEC += tuple(
+    (STIFFNESS_NAMES[5 * i + j], f"{ru}/{cu}",
+     f"bearing stiffness d({rn} load on the inner ring)/d({cn}) = -d(reaction_{rn})/d({cn}) ({STIFFNESS_DESC})")
+    for i, (rn, ru) in enumerate(STIFFNESS_ROWS) for j, (cn, cu) in enumerate(STIFFNESS_COLS))
 OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUT_SPEC)
 
 # Integer outputs (FMI Integer variables)

@@ -77,8 +77,13 @@ MAP_OUTPUTS = ("reaction_Fx", "reaction_Fy", "reaction_Fz", "reaction_Mx", "reac
 """Variables a map holds (besides its axes): the session outputs of the steady state at each grid point (window
 means of the dynamic model), 'cage_speed_eq26' the seed 000 Eq. 26 cage speed [rad/s], 'cage_time_constant' [s]
 the relaxation time of the cage speed, 'cage_speed_cv' the cage speed's standard deviation over the last window
-relative to its mean, 'steady' 1 if the steadiness criterion was met, else 0. Further variables (stiffness_*,
-skid_class) are for the user and not read here."""
+relative to its mean, 'steady' 1 if the steadiness criterion was met, else 0. The stiffness variables
+(MAP_STIFFNESS) give the stiffness outputs (map_kernels.map_step_stiffness, MapLevel.stiffness_into; a map without them still
+runs, its stiffness outputs 0, with a warning); skid_class is for the user and not read here."""
+MAP_STIFFNESS = tuple(f"stiffness_{a}{b}" for a in ("x", "y", "z", "tx", "ty") for b in ("x", "y", "z", "tx", "ty"))
+"""The map's stiffness variables (bearing_core.maps.build_map: the Jones-Harris 5 x 5 stiffness at the grid point's
+speed and loads, K = d(load)/d(pose), rows x, y, z, tx, ty of the load, columns of the pose), row-major in the
+order of the outputs stiffness[1,1] .. stiffness[5,5]."""
 ROTATED = (("reaction_Fx", "reaction_Fy"), ("reaction_Mx", "reaction_My"), ("ir_x", "ir_y"), ("ir_tx", "ir_ty"))
 """x-y vectors turned with the radial load (maps without fy_N and my_Nm axes: a load (Fx, Fy) is read at the radial
 load hypot(Fx, Fy) along x and these outputs are turned by its direction; the bearing is axisymmetric)."""
@@ -245,6 +250,44 @@ class MapLevel:
                           np.array([q[4] for q in self._q]),
                           self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags,
                           self.x_fast, np.zeros(len(shape), dtype=np.int64), np.zeros(len(shape)))
+        self._init_stiffness(m, shape, ix)
+
+    def _init_stiffness(self, m, shape, ix):
+        """The stiffness outputs' arrays (map_kernels.map_stiffness): the map's MAP_STIFFNESS variables as
+        (n_points x 25); a map without them (built before bearing build-map wrote them) leaves the outputs 0 and
+        says so in stiffness_missing (SteadySession logs it as a warning)."""
+        from . import map_kernels as MK
+        from .cosim_spec import STIFFNESS_NAMES
+        from .output_map import OUTPUT_INDEX
+        missing = [v for v in MAP_STIFFNESS if v not in m["vars"]]
+        self.stiffness_missing = ""
+        self.stiffness_into = None
+        if missing:
+            self.stiffness_missing = (
+                f"the operating map {self.path} has no stiffness variables ({', '.join(missing[:3])}, ...): the "
+                "outputs stiffness[i,j] hold 0 and fmi2GetDirectionalDerivative is refused; rebuild the map with "
+                "bearing build-map, which writes them")
+            return
+        npts = int(np.prod(shape))
+        kv = np.empty((npts, 25))
+        for k, nm in enumerate(MAP_STIFFNESS):
+            kv[:, k] = np.asarray(m["vars"][nm], dtype=float).reshape(shape).ravel()
+        self.kvalues = np.ascontiguousarray(kv)
+        i_k = OUTPUT_INDEX[STIFFNESS_NAMES[0]]
+        assert all(OUTPUT_INDEX[n] == i_k + k for k, n in enumerate(STIFFNESS_NAMES))
+        kbuf = np.zeros(25)
+        # the one-call step: map_step and then the stiffness on the cell its interpolation left
+        # (map_kernels.map_step_stiffness), its arguments after map_step's level arguments
+        self.step_kernel = MK.map_step_stiffness
+        self.step_args = self.step_args + (self.kvalues, kbuf, i_k)
+        kern = MK.map_stiffness
+
+        def stiffness_into(cs, sn, out):
+            """After steady_into (whose interpolation left its cell in self._idx, self._w), the radial load's
+            direction (cs, sn): the stiffness into out; False if an entry is not finite."""
+            return kern(self.strides, self.kvalues, self._idx, self._w, cs, sn, kbuf, i_k, out)
+
+        self.stiffness_into = stiffness_into
 
     def _check_parameters(self, p):
         try:
@@ -561,11 +604,13 @@ class QuasiStaticLevel:
         """The session's outputs at a solution (the dynamic session's output path), kept as the base of the
         linear updates."""
         from .output_map import point_outputs
+        from . import session_kernels as SK
         s = self.model.dynamic_setup(res.omega, res.T_oil)
         ext = self._ext
         ext[:] = 0.0
         ext[0:4] = res.T_oil
         ext[7] = s.oil_fraction_used()
+        ext[SK.EXT_STIFFNESS:] = self.stiffness(res).ravel()
         films = np.zeros((4, res.bd.shape[0]))
         if not point_outputs(res.bd, self.geometry, s.film_parameters(), res.diag, ext, films, self._work, self._full):
             from ..errors import ConvergenceError
@@ -585,6 +630,36 @@ class QuasiStaticLevel:
         if self.tracker._since_refresh == 0:
             self.cage_growth, self.cage_whirl_frequency = self.model.cage_centre_stability(res)
             self._unstable = FLAG_CAGE_UNSTEADY if self.cage_growth > 0.0 else 0
+
+    def stiffness(self, res) -> np.ndarray:
+        """The level's 5 x 5 stiffness K = d(load)/d(pose) = -d(reaction)/d(pose) at the solution res [N/m, N/rad,
+        N m/m, N m/rad; rows Fx, Fy, Fz, Mx, My, columns dx, dy, dz, tx, ty]: the derivative of the level's own
+        reactions, which between re-solves follow the linear update y0 + S (x - p0) on the solution's sensitivity S
+        (models.quasistatic_cage.QuasiStaticCageModel._sensitivity: central secants over warm re-solves of the
+        whole bearing, balls and cage re-equilibrated, at +-2e-7 m / +-2e-6 rad of the pose with displacement
+        coupling, +-2 % of the load scale with load coupling; Broyden updates along the inputs' path between
+        them, QuasiStaticTracker). Displacement coupling: K = -dS[Fx..My]/d(dx..ty). Load coupling: the pose
+        follows the loads, C = dS[dx..ty]/d(Fx..My), and K = C^-1 over the pose's free coordinates (with
+        fixed_tilt the tilts are held: their rows and columns are 0). Zero without a sensitivity."""
+        from ..models.quasistatic_cage import OUTPUT_NAMES as QS_NAMES
+        K = np.zeros((5, 5))
+        S = getattr(res, "sensitivity", None)
+        if S is None:
+            return K
+        if self.disp:
+            i = QS_NAMES.index("Fx")
+            K[:] = -S[i:i + 5, 1:6]
+            return K
+        i = QS_NAMES.index("dx")
+        C = S[i:i + 5, 1:6]
+        free = [k for k in range(5) if np.any(C[k] != 0.0) and np.any(C[:, k] != 0.0)]
+        if free:
+            try:
+                K[np.ix_(free, free)] = np.linalg.inv(C[np.ix_(free, free)])
+            except np.linalg.LinAlgError:
+                from ..errors import ConvergenceError
+                raise ConvergenceError(f"quasi-static level: singular compliance at {self.point_text(res.inputs())}")
+        return K
 
     def _sync_kernel(self, res):
         """The one-call step's copy of the tracker's state at a new solution."""
@@ -667,6 +742,11 @@ class SteadySession:
         # a level with a one-call step kernel (query, values, outputs: MapLevel.step_kernel) takes it while its
         # inputs pass; anything refused goes through the checked path, which names the reason
         self._fast = getattr(level, "step_kernel", None)
+        # a level whose stiffness outputs are computed apart from its steady values (MapLevel: interpolated and
+        # turned by map_kernels.map_stiffness after the step's outputs; its one-call step does the same)
+        self._stiff_into = getattr(level, "stiffness_into", None)
+        if getattr(level, "stiffness_missing", ""):
+            self.warnings.append(level.stiffness_missing)
         self._i_speed = INPUT_NAMES.index("shaft_speed")
         self._res = np.zeros(2)
 
@@ -720,6 +800,9 @@ class SteadySession:
             raise BearingInputError("inputs", self.level.point_text(x),
                                     "an operating point where the map has values",
                                     f"{self.level.describe()} has no value for {bad[:4]} there (a failed grid point)")
+        if self._stiff_into is not None and not self._stiff_into(cs, sn, self._new):
+            raise BearingInputError("inputs", self.level.point_text(x), "an operating point where the map has values",
+                                    f"{self.level.describe()} has no finite stiffness there (a failed grid point)")
         self._note_flags(fl, x, h)
         if self._i_oil >= 0:
             self._new[self._i_oil] = self._oil

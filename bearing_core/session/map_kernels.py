@@ -316,3 +316,86 @@ def quasistatic_step(u, i_speed, i_oring, ring_idx, ring_ok, check_ring, w_lo, w
     res[0] = wc
     res[1] = fl
     return 0
+
+
+# ---- the map level's stiffness outputs: an addition of its own (map_step and steady_level_outputs unchanged) ----
+
+@_exact
+def map_stiffness(strides, kvals, idx, w, cs, sn, kbuf, i_k, out):
+    """The map level's 5 x 5 stiffness into out[i_k:i_k + 25] (row-major; rows Fx, Fy, Fz, Mx, My, columns dx, dy,
+    dz, tx, ty; K = d(load)/d(pose) [N/m, N/rad, N m/m, N m/rad]; docs/fidelity.md "Stiffness"), after
+    interp_multilinear at the same map coordinates, whose cell idx and weights w it takes:
+
+    1. K0 = the multilinear interpolation of the map's variables stiffness_<row><col> (kvals: n_points x 25,
+       row-major; the Jones-Harris stiffness at the grid point's speed and loads, bearing_core.maps.build_map) on
+       that cell, corner by corner as interp_multilinear (the same corner order, weights and skip of zero
+       weights; no entry is speed-scaled); kbuf (25) a work array;
+    2. turned with the radial load's direction (cs, sn) = (cos, sin) (a map without fy_N and my_Nm axes is read
+       along x; cs = 1, sn = 0 otherwise): K = R K0 R^T with R = diag(Rz, 1, Rz), Rz = [[cs, -sn], [sn, cs]],
+       on the (x, y) and (tx, ty) index pairs: the stiffness of the axisymmetric bearing seen turned by the load
+       angle, as steady_level_outputs turns the x-y outputs (out_x = cs a - sn b, out_y = sn a + cs b).
+    Returns False (out unchanged) if an entry is not finite."""
+    nd = idx.shape[0]
+    for k in range(25):
+        kbuf[k] = 0.0
+    for c in range(1 << nd):
+        wt = 1.0
+        off = 0
+        for d in range(nd):
+            if (c >> d) & 1:
+                wt *= w[d]
+                off += (idx[d] + 1) * strides[d]
+            else:
+                wt *= 1.0 - w[d]
+                off += idx[d] * strides[d]
+            if wt == 0.0:
+                break
+        if wt == 0.0:
+            continue
+        for k in range(25):
+            kbuf[k] += wt * kvals[off, k]
+    # K R^T (columns), then R (K R^T) (rows): index pairs (0, 1) and (3, 4) turn, index 2 stays
+    for i in range(5):
+        for p in (0, 3):
+            a = kbuf[5 * i + p]
+            b = kbuf[5 * i + p + 1]
+            kbuf[5 * i + p] = cs * a - sn * b
+            kbuf[5 * i + p + 1] = sn * a + cs * b
+    for j in range(5):
+        for p in (0, 3):
+            a = kbuf[5 * p + j]
+            b = kbuf[5 * (p + 1) + j]
+            kbuf[5 * p + j] = cs * a - sn * b
+            kbuf[5 * (p + 1) + j] = sn * a + cs * b
+    for k in range(25):
+        if not math.isfinite(kbuf[k]):
+            return False
+    for k in range(25):
+        out[i_k + k] = kbuf[k]
+    return True
+
+
+@_exact
+def map_step_stiffness(u, i_speed, i_fx, i_fy, i_oring, zero_in, rotate, rpm, qkind, qidx, qval, qlo, qhi, qtol,
+                       axes, ptr, strides, values, speed_scaled, flags, x, idx, w, kvals, kbuf, i_k,
+                       ss, i_tau, src, rot, wc0, h, temps, inertia, shaft0, csr_min, skid_tol, skid_min, ib, out, res):
+    """map_step (unchanged: its arguments, outputs and return value), then the stiffness outputs (map_stiffness on
+    the cell idx, w that map_step's interpolation left; kvals, kbuf, i_k its arguments), the radial load's
+    direction from the inputs u as map_step computes it (bit for bit). One call per communication point (a second
+    kernel call would cost about as much as the map level's whole step). Returns map_step's code, or 1 if the
+    stiffness is not finite (the checked path then names the point)."""
+    rc = map_step(u, i_speed, i_fx, i_fy, i_oring, zero_in, rotate, rpm, qkind, qidx, qval, qlo, qhi, qtol,
+                  axes, ptr, strides, values, speed_scaled, flags, x, idx, w, ss, i_tau,
+                  src, rot, wc0, h, temps, inertia, shaft0, csr_min, skid_tol, skid_min, ib, out, res)
+    if rc != 0:
+        return rc
+    cs = 1.0
+    sn = 0.0
+    if rotate:
+        fr = math.sqrt(u[i_fx] * u[i_fx] + u[i_fy] * u[i_fy])
+        if fr > 0.0:
+            cs = u[i_fx] / fr
+            sn = u[i_fy] / fr
+    if not map_stiffness(strides, kvals, idx, w, cs, sn, kbuf, i_k, out):
+        return 1
+    return 0

@@ -13,6 +13,7 @@ from numba import njit
 
 from ..numerics.compare import same_point  # noqa: F401  (the session's cheap unchanged-point test)
 from ..models.dynamics_kernels import contact_films
+from .cosim_spec import STIFFNESS_NAMES
 
 # Strict IEEE arithmetic here (no fastmath): with the reciprocal flag LLVM computes a division as a
 # multiplication by the reciprocal in a vectorised loop body but divides in its scalar remainder, so which
@@ -25,10 +26,12 @@ EXTRA_NAMES = ("cage_shaft_ratio", "cage_shaft_ratio_theory", "skid_ratio", "fil
                "film_parameter_min", "cage_slip_ratio", "skid_state",
                # copied from the ext argument (thermal network or isothermal oil, runaway flag)
                "temperature_ball", "temperature_outer_ring", "temperature_inner_ring", "temperature_oil",
-               "heat_to_ambient", "heat_to_oil_flow", "thermal_runaway", "oil_fraction_used")
-N_EXT = 8
+               "heat_to_ambient", "heat_to_oil_flow", "thermal_runaway", "oil_fraction_used") + STIFFNESS_NAMES
+N_EXT = 8 + len(STIFFNESS_NAMES)
 """Entries of the ext argument: T ball, outer ring, inner ring, oil [K], heat to ambient, to the oil flow [W],
-thermal runaway flag (0 / 1), cavity oil fraction used [-]."""
+thermal runaway flag (0 / 1), cavity oil fraction used [-], then the 5 x 5 stiffness row-major (ext[EXT_STIFFNESS:],
+cosim_spec.STIFFNESS_NAMES: N/m, N/rad, N m/m, N m/rad)."""
+EXT_STIFFNESS = 8
 # positions in the ch argument of the channels the derived quantities need
 CH_SHAFT, CH_CAGE, CH_CAGE_EQ26, CH_CAGE_PR_OUTER, CH_OUTER = range(5)
 

@@ -26,6 +26,7 @@ _UNITS = {
     "rad/s": dict(rad=1, s=-1), "N": dict(kg=1, m=1, s=-2), "N.m": dict(kg=1, m=2, s=-2),
     "W": dict(kg=1, m=2, s=-3), "Pa": dict(kg=1, m=-1, s=-2), "N/m": dict(kg=1, s=-2), "Pa.s": dict(kg=1, m=-1, s=-1),
     "K": dict(K=1), "m3/s": dict(m=3, s=-1),
+    "N/rad": dict(kg=1, m=1, s=-2, rad=-1), "N.m/m": dict(kg=1, m=1, s=-2), "N.m/rad": dict(kg=1, m=2, s=-2, rad=-1),
     "1": dict(),
 }
 # Modelica unit syntax (FMI 2.0 section 2.2.2) for unit strings written otherwise in the tables
@@ -38,6 +39,7 @@ _DISPLAY_DEFAULT = {"rad/s": "rpm", "K": "degC", "rad": "deg"}
 # FMI quantity of each unit
 _QUANTITY = {"m": "Length", "m/s": "Velocity", "m/s2": "Acceleration", "rad": "Angle", "rad/s": "AngularVelocity",
              "N": "Force", "N.m": "Torque", "W": "Power", "Pa": "Pressure", "N/m": "TranslationalSpringConstant",
+             "N.m/rad": "RotationalSpringConstant",
              "Pa.s": "DynamicViscosity", "K": "ThermodynamicTemperature", "m3/s": "VolumeFlowRate"}
 # typical magnitudes (FMI nominal) of the quantities in this bearing model, for masters' error control
 _NOMINAL = {"m": 1e-5, "m/s": 1e-3, "m/s2": 10.0, "rad": 1e-3, "rad/s": 100.0, "N": 1e3, "N.m": 1.0, "W": 100.0,
@@ -323,9 +325,19 @@ class BearingFMU(Fmi2Slave):
                 integer.set("max", str(int(self._ranges[name][1])))
         ms = root.find("ModelStructure")
         outs = ms.find("Outputs")
+        # fmi2GetDirectionalDerivative (native/bearing_fmi2.c, from the stiffness outputs; docs/fmu.md): the reactions
+        # and the ring pose depend on the ring inputs, the pose dx..ty (coupling displacement: d reaction / d pose =
+        # -stiffness) and the loads Fx..My (coupling load: d pose / d load = stiffness^-1), as FMI 2.0 requires of
+        # the pairs a directional derivative covers; every other output is a function of the state at the
+        # communication point (no dependency)
+        root.find("CoSimulation").set("providesDirectionalDerivative", "true")
+        index = {sv.get("name"): str(i + 1) for i, sv in enumerate(root.find("ModelVariables"))}
+        ring_inputs = " ".join(index[n] for n in ("Fx", "Fy", "Fz", "Mx", "My", "dx", "dy", "dz", "tx", "ty"))
+        ring_outputs = {index[n] for n in ("reaction_Fx", "reaction_Fy", "reaction_Fz", "reaction_Mx", "reaction_My",
+                                           "ir_x", "ir_y", "ir_z", "ir_tx", "ir_ty")}
         if outs is not None:
-            for u in outs:   # no direct feedthrough: outputs are functions of the state at the communication point
-                u.set("dependencies", "")
+            for u in outs:
+                u.set("dependencies", ring_inputs if u.get("index") in ring_outputs else "")
             init = SubElement(ms, "InitialUnknowns")
             for u in outs:
                 SubElement(init, "Unknown", index=u.get("index"))

@@ -91,6 +91,7 @@ typedef struct {
     double r;
     int i;
     char *s;
+    char *name; /* the variable's name (fmi2GetDirectionalDerivative finds its variables by name) */
 } Var;
 
 typedef struct {
@@ -681,7 +682,7 @@ static int read_table(Comp *c, const unsigned char *p) {
         v->caus = p[1];
         p += 4;
         v->out_idx = rd_i32(&p);
-        free(rd_str(&p)); /* name: not needed here */
+        v->name = rd_str(&p);
         if (v->vr > maxvr) maxvr = v->vr;
         if (v->out_idx >= 0 && (unsigned)v->out_idx + 1 > maxout) maxout = (unsigned)v->out_idx + 1;
     }
@@ -840,7 +841,10 @@ static void free_comp(Comp *c) {
     else if (c->shm) munmap(c->shm, SHM_SIZE);
     if (c->log_fd >= 0) close(c->log_fd);
 #endif
-    for (int k = 0; k < c->nvars; k++) free(c->vars[k].s);
+    for (int k = 0; k < c->nvars; k++) {
+        free(c->vars[k].s);
+        free(c->vars[k].name);
+    }
     for (size_t k = 0; k < c->nstrs; k++) free(c->strs[k]);
     free(c->strs);
     free(c->vars);
@@ -1381,11 +1385,201 @@ static fmi2Status unsupported(fmi2Component comp, const char *what) {
     return exchange(c, C_UNSUPPORTED, p, c->init_timeout, what, NULL, NULL);
 }
 
-FMI2_EXPORT fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference u[], size_t nu,
-                                                    const fmi2ValueReference z[], size_t nz, const fmi2Real dv[],
+/* ---------------------------------------------------------------------------------------------- */
+/* fmi2GetDirectionalDerivative: served here from this layer's own copy of the stiffness outputs      */
+/* (the outputs of the last communication point, as fmi2GetReal serves them; no model-process call).  */
+/*
+ * The bearing's stiffness K (outputs stiffness[i,j], i, j = 1..5; rows Fx, Fy, Fz [N], Mx, My [N m], the load on the
+ * inner ring; columns dx, dy, dz [m], tx, ty [rad], its pose) is K = d(load)/d(pose) = -d(reaction)/d(pose)
+ * (bearing_core.session.cosim_spec; docs/fmu.md "Stiffness and directional derivatives"). With the (unknown
+ * output, known input) pairs the ModelStructure declares (reaction_Fx..My and ir_x..ir_ty on Fx..My and dx..ty):
+ *   coupling = displacement (the pose dx..ty is an input):  d reaction_i / d pose_j = -K[i][j],
+ *                                                           d ir_i / d pose_j = delta_ij (the pose itself);
+ *   coupling = load (the loads Fx..My are inputs):           d ir_i / d load_j = (K^-1)[i][j] (the compliance),
+ *                                                           d reaction_i / d load_j = -delta_ij (the steady balance
+ *                                                           reaction = -load);
+ * every other pair 0. K^-1 is taken over the pose's free coordinates: a coordinate whose row and column of K are
+ * all zero (the tilts with fixed_tilt) has zero compliance. fmi2GetDirectionalDerivative computes
+ * dvUnknown = J dvKnown with J these derivatives (FMI 2.0 section 2.1.9). Allowed after
+ * fmi2ExitInitializationMode (the stiffness is that of the last communication point). */
+
+#define DD_N 5
+/* the variables it reads and serves, by name (value references are the same for every instance of this FMU,
+ * so they are looked up once per process; concurrent first calls compute the same values) */
+static const char *const DD_LOAD[DD_N] = {"Fx", "Fy", "Fz", "Mx", "My"};
+static const char *const DD_POSE[DD_N] = {"dx", "dy", "dz", "tx", "ty"};
+static const char *const DD_REAC[DD_N] = {"reaction_Fx", "reaction_Fy", "reaction_Fz", "reaction_Mx", "reaction_My"};
+static const char *const DD_IR[DD_N] = {"ir_x", "ir_y", "ir_z", "ir_tx", "ir_ty"};
+static struct {
+    int ready;                   /* 1 once the indices below are set (atomic) */
+    int load[DD_N], pose[DD_N];  /* indices into Comp.vars of the inputs */
+    int reac[DD_N], ir[DD_N];    /* ... of the outputs */
+    int k[DD_N * DD_N];          /* ... of stiffness[i,j], row-major */
+    int coupling;                /* ... of the String parameter coupling */
+} dd_ix;
+
+static int dd_find(const Comp *c, const char *name) {
+    for (int k = 0; k < c->nvars; k++)
+        if (c->vars[k].name && strcmp(c->vars[k].name, name) == 0) return k;
+    return -1;
+}
+
+/* The indices of dd_ix; 0 (with the missing name in *missing) if a variable is absent. */
+static int dd_lookup(const Comp *c, const char **missing) {
+    if (__atomic_load_n(&dd_ix.ready, __ATOMIC_ACQUIRE)) return 1;
+    char name[32];
+    for (int i = 0; i < DD_N; i++) {
+        if ((dd_ix.load[i] = dd_find(c, DD_LOAD[i])) < 0) { *missing = DD_LOAD[i]; return 0; }
+        if ((dd_ix.pose[i] = dd_find(c, DD_POSE[i])) < 0) { *missing = DD_POSE[i]; return 0; }
+        if ((dd_ix.reac[i] = dd_find(c, DD_REAC[i])) < 0) { *missing = DD_REAC[i]; return 0; }
+        if ((dd_ix.ir[i] = dd_find(c, DD_IR[i])) < 0) { *missing = DD_IR[i]; return 0; }
+        for (int j = 0; j < DD_N; j++) {
+            snprintf(name, sizeof name, "stiffness[%d,%d]", i + 1, j + 1);
+            if ((dd_ix.k[DD_N * i + j] = dd_find(c, name)) < 0) { *missing = "stiffness[i,j]"; return 0; }
+        }
+    }
+    if ((dd_ix.coupling = dd_find(c, "coupling")) < 0) { *missing = "coupling"; return 0; }
+    __atomic_store_n(&dd_ix.ready, 1, __ATOMIC_RELEASE);
+    return 1;
+}
+
+/* inv = A^-1 over the free coordinates of A (row and column not all zero; the others' rows and columns 0), by
+ * Gauss-Jordan elimination with partial pivoting. Returns 0 if none is free or a pivot is below 1e-12 of the
+ * largest entry (singular). */
+static int dd_inverse(const double A[DD_N][DD_N], double inv[DD_N][DD_N]) {
+    int fr[DD_N], n = 0;
+    double amax = 0.0;
+    for (int i = 0; i < DD_N; i++) {
+        int nz = 0;
+        for (int j = 0; j < DD_N; j++) {
+            if (A[i][j] != 0.0 || A[j][i] != 0.0) nz = 1;
+            if (fabs(A[i][j]) > amax) amax = fabs(A[i][j]);
+        }
+        if (nz) fr[n++] = i;
+    }
+    for (int i = 0; i < DD_N; i++)
+        for (int j = 0; j < DD_N; j++) inv[i][j] = 0.0;
+    if (n == 0) return 0;
+    double a[DD_N][2 * DD_N];
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            a[i][j] = A[fr[i]][fr[j]];
+            a[i][n + j] = i == j ? 1.0 : 0.0;
+        }
+    for (int col = 0; col < n; col++) {
+        int piv = col;
+        for (int r = col + 1; r < n; r++)
+            if (fabs(a[r][col]) > fabs(a[piv][col])) piv = r;
+        if (!(fabs(a[piv][col]) > 1e-12 * amax)) return 0;
+        if (piv != col)
+            for (int j = 0; j < 2 * n; j++) {
+                double t = a[col][j];
+                a[col][j] = a[piv][j];
+                a[piv][j] = t;
+            }
+        double d = a[col][col];
+        for (int j = 0; j < 2 * n; j++) a[col][j] /= d;
+        for (int r = 0; r < n; r++) {
+            if (r == col || a[r][col] == 0.0) continue;
+            double f = a[r][col];
+            for (int j = 0; j < 2 * n; j++) a[r][j] -= f * a[col][j];
+        }
+    }
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) inv[fr[i]][fr[j]] = a[i][n + j];
+    return 1;
+}
+
+static int dd_slot(const int ix[DD_N], int var) {
+    for (int i = 0; i < DD_N; i++)
+        if (ix[i] == var) return i;
+    return -1;
+}
+
+FMI2_EXPORT fmi2Status fmi2GetDirectionalDerivative(fmi2Component comp, const fmi2ValueReference z[], size_t nz,
+                                                    const fmi2ValueReference u[], size_t nu, const fmi2Real dv[],
                                                     fmi2Real df[]) {
-    (void)u; (void)nu; (void)z; (void)nz; (void)dv; (void)df;
-    return unsupported(c, "fmi2GetDirectionalDerivative");
+    COMP(comp);
+    const char *fname = "fmi2GetDirectionalDerivative";
+    if (c->dead) {
+        mlog(c, fmi2Error, "%s: the model process is gone; instantiate anew", fname);
+        return fmi2Error;
+    }
+    if (c->mode != M_STEP) {
+        mlog(c, fmi2Error, "%s: called before fmi2ExitInitializationMode; allowed after it (the stiffness is that of "
+             "the last communication point)", fname);
+        return fmi2Error;
+    }
+    if ((nz && (!z || !df)) || (nu && (!u || !dv))) {
+        mlog(c, fmi2Error, "%s: a NULL array with nUnknown = %zu, nKnown = %zu", fname, nz, nu);
+        return fmi2Error;
+    }
+    const char *missing = "";
+    if (!dd_lookup(c, &missing)) {
+        mlog(c, fmi2Error, "%s: this FMU has no variable %s", fname, missing);
+        return fmi2Error;
+    }
+    /* the knowns: Real inputs; the unknowns: Real outputs */
+    for (size_t k = 0; k < nu; k++) {
+        Var *v = local_var(c, u[k], T_REAL);
+        if (!v || v->caus != CAUS_INPUT) {
+            mlog(c, fmi2Error, "%s: vKnown_ref[%zu] = %u is not a Real input; allowed: the inputs (the derivatives "
+                 "are those of the outputs reaction_Fx..My and ir_x..ir_ty with respect to Fx..My and dx..ty)",
+                 fname, k, (unsigned)u[k]);
+            return fmi2Error;
+        }
+    }
+    for (size_t k = 0; k < nz; k++) {
+        Var *v = local_var(c, z[k], T_REAL);
+        if (!v || v->caus != CAUS_OUTPUT) {
+            mlog(c, fmi2Error, "%s: vUnknown_ref[%zu] = %u is not a Real output; allowed: the outputs", fname, k,
+                 (unsigned)z[k]);
+            return fmi2Error;
+        }
+    }
+    const char *cpl = c->vars[dd_ix.coupling].s;
+    int disp = cpl && strcmp(cpl, "displacement") == 0;
+    double K[DD_N][DD_N], C[DD_N][DD_N];
+    int any = 0;
+    for (int i = 0; i < DD_N; i++)
+        for (int j = 0; j < DD_N; j++) {
+            K[i][j] = c->vars[dd_ix.k[DD_N * i + j]].r;
+            if (!isfinite(K[i][j])) {
+                mlog(c, fmi2Error, "%s: stiffness[%d,%d] = %g is not finite", fname, i + 1, j + 1, K[i][j]);
+                return fmi2Error;
+            }
+            any |= K[i][j] != 0.0;
+        }
+    int need_c = 0;
+    if (!disp)
+        for (size_t k = 0; k < nz && !need_c; k++) need_c = dd_slot(dd_ix.ir, c->by_vr[z[k]]) >= 0;
+    if (need_c && !dd_inverse((const double(*)[DD_N])K, C)) {
+        mlog(c, fmi2Error, "%s: the stiffness of the last communication point is %s, so the compliance d ir/d load "
+             "(its inverse) does not exist%s", fname, any ? "singular" : "zero",
+             any ? "" : " (fidelity map with an operating map without stiffness variables: rebuild it with "
+                        "bearing build-map)");
+        return fmi2Error;
+    }
+    for (size_t a = 0; a < nz; a++) {
+        int vz = c->by_vr[z[a]];
+        int ir = dd_slot(dd_ix.ir, vz), re = dd_slot(dd_ix.reac, vz);
+        double acc = 0.0;
+        for (size_t b = 0; b < nu; b++) {
+            int vu = c->by_vr[u[b]];
+            int jp = dd_slot(dd_ix.pose, vu), jl = dd_slot(dd_ix.load, vu);
+            double d = 0.0;
+            if (disp && jp >= 0) {
+                if (re >= 0) d = -K[re][jp];
+                else if (ir >= 0) d = ir == jp ? 1.0 : 0.0;
+            } else if (!disp && jl >= 0) {
+                if (ir >= 0) d = C[ir][jl];
+                else if (re >= 0) d = re == jl ? -1.0 : 0.0;
+            }
+            acc += d * dv[b];
+        }
+        df[a] = acc;
+    }
+    return fmi2OK;
 }
 FMI2_EXPORT fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t n,
                                                    const fmi2Integer order[], const fmi2Real v[]) {
