@@ -196,6 +196,19 @@ def test_variables_tables_match_the_fmus(site, fmus):
             assert row == _expected_row(v), (fmu, v.name)
 
 
+def test_fmu_documentation_has_the_same_table(fmus):
+    """Each FMU's own documentation/index.html carries the table the site is generated from (one generator)."""
+    import zipfile
+    from xml.etree import ElementTree as ET
+    from bearing_cosim.fmu_build import variable_rows, variables_table_html
+    for fmu in ("BearingFMU", "BearingMapFMU"):
+        with zipfile.ZipFile(fmus / "dist" / f"{fmu}.fmu") as z:
+            xml = ET.fromstring(z.read("modelDescription.xml"))
+            html = z.read("documentation/index.html").decode()
+        assert variables_table_html(xml) in html, fmu
+        assert len(variable_rows(xml)) == len(xml.find("ModelVariables"))
+
+
 def test_bearing_docs_serves_the_site(tmp_path):
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
