@@ -94,6 +94,10 @@ def build_parser():
                                       "FMU, or BEARING_FMU_SERVER set) get their model process here (docs/fmu.md)")
     add_serve(sv)
     sv.set_defaults(func=cmd_serve)
+    d = sub.add_parser("docs", help="serve the manual (MkDocs site of docs/ in the source tree) on a local address: "
+                                    "python -m mkdocs serve")
+    d.add_argument("--dev-addr", default="127.0.0.1:8000", help="IP:PORT to serve on (default 127.0.0.1:8000)")
+    d.set_defaults(func=cmd_docs)
     _accept_negative_numbers(p)
     return p
 
@@ -176,6 +180,14 @@ def cmd_build_map_fmu(a) -> int:
         return run(a)
     except BuildError as e:
         raise core_cli._BadArg(str(e))
+
+
+def cmd_docs(a) -> int:
+    import subprocess
+    root = Path(__file__).resolve().parent.parent
+    if not (root / "mkdocs.yml").is_file():
+        raise core_cli._BadArg(f"no mkdocs.yml in {root}: the manual is served from a source tree (git clone)")
+    return subprocess.call([sys.executable, "-m", "mkdocs", "serve", "--dev-addr", a.dev_addr], cwd=root)
 
 
 def cmd_simulate(a) -> int:

@@ -486,11 +486,13 @@ _SOURCES = (
 )
 
 
-def documentation_html(xml, ref_files: bool = False) -> str:
-    """documentation/index.html: model, variables (unit, start, range, description), sources, reference run."""
-    from html import escape
-    mid = xml.find("CoSimulation").get("modelIdentifier")
-    de = xml.find("DefaultExperiment")
+VARIABLE_COLUMNS = ("name", "causality", "variability", "type", "unit", "start", "range", "description")
+
+
+def variable_rows(xml) -> list:
+    """One tuple per model variable, in the order of VARIABLE_COLUMNS, from a model description (ElementTree
+    element of modelDescription.xml): the content of the variables table of documentation/index.html and of the
+    manual's FMU pages."""
     types = {st.get("name"): {it.get("value"): it.get("name") for it in st.find("Enumeration")}
              for st in (xml.find("TypeDefinitions") or [])}
     rows = []
@@ -503,9 +505,40 @@ def documentation_html(xml, ref_files: bool = False) -> str:
         unit = t.get("unit", "") + (f" (display {t.get('displayUnit')})" if t.get("displayUnit") else "")
         items = (", ".join(f"{v} = {n}" for v, n in types[t.get("declaredType")].items())
                  if t.tag == "Enumeration" else "")
-        rows.append("<tr>" + "".join(f"<td>{escape(str(c))}</td>" for c in (
+        rows.append(tuple(str(c) for c in (
             sv.get("name"), sv.get("causality"), sv.get("variability"), t.tag, unit, start, rng,
-            (sv.get("description") or "") + (f" [items: {items}]" if items else ""))) + "</tr>")
+            (sv.get("description") or "") + (f" [items: {items}]" if items else ""))))
+    return rows
+
+
+def variables_table_html(xml) -> str:
+    """The variables of a model description as an HTML table (name, causality, variability, type, unit, start,
+    range, description)."""
+    from html import escape
+    head = "<tr>" + "".join(f"<th>{c}</th>" for c in VARIABLE_COLUMNS) + "</tr>"
+    body = ["<tr>" + "".join(f"<td>{escape(c)}</td>" for c in row) + "</tr>" for row in variable_rows(xml)]
+    return "<table>" + head + "\n" + "\n".join(body) + "\n</table>"
+
+
+def variables_table_markdown(xml) -> str:
+    """The variables of a model description as a Markdown table (names as code; in the other cells & and < as
+    entities, | and Markdown's emphasis, code and link characters escaped)."""
+    def cell(c):
+        c = c.replace("&", "&amp;").replace("<", "&lt;")
+        for ch in "\\`*_[]>|":
+            c = c.replace(ch, "\\" + ch)
+        return c
+    lines = ["| " + " | ".join(VARIABLE_COLUMNS) + " |", "|" + "---|" * len(VARIABLE_COLUMNS)]
+    for row in variable_rows(xml):
+        lines.append("| " + " | ".join([f"`{row[0]}`"] + [cell(c) for c in row[1:]]) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def documentation_html(xml, ref_files: bool = False) -> str:
+    """documentation/index.html: model, variables (unit, start, range, description), sources, reference run."""
+    from html import escape
+    mid = xml.find("CoSimulation").get("modelIdentifier")
+    de = xml.find("DefaultExperiment")
     ref = ""
     if ref_files:
         ref = (f"<h2>Reference run</h2><p>The default experiment ({de.get('startTime')} to {de.get('stopTime')} s, "
@@ -540,10 +573,7 @@ Choice parameters are Enumerations with String twins (set either); geometry para
 definition. SI units; display units rpm, degC, deg, mm.</p>
 {ref}
 <h2>Variables</h2>
-<table><tr><th>name</th><th>causality</th><th>variability</th><th>type</th><th>unit</th><th>start</th>
-<th>range</th><th>description</th></tr>
-{chr(10).join(rows)}
-</table>
+{variables_table_html(xml)}
 <h2>Sources</h2><ul>{''.join(f'<li>{escape(s)}</li>' for s in _SOURCES)}</ul>
 <p>OSP model description (libcosim): <code>{mid}_OspModelDescription.xml</code> in this folder.</p>
 </body></html>
