@@ -131,7 +131,7 @@ def model_description(desc: dict, guid: str) -> Element:
         "modelIdentifier": MODEL_ID, "needsExecutionTool": "false", "canHandleVariableCommunicationStepSize": "true",
         "canInterpolateInputs": "false", "maxOutputDerivativeOrder": "0", "canRunAsynchronuously": "false",
         "canBeInstantiatedOnlyOncePerProcess": "false", "canNotUseMemoryManagementFunctions": "true",
-        "canGetAndSetFMUstate": "true", "canSerializeFMUstate": "true", "providesDirectionalDerivative": "false"})
+        "canGetAndSetFMUstate": "true", "canSerializeFMUstate": "true", "providesDirectionalDerivative": "true"})
     sf = SubElement(cs, "SourceFiles")
     for s in C_SOURCES:
         if s.suffix == ".c":
@@ -219,8 +219,14 @@ def model_description(desc: dict, guid: str) -> Element:
         index += 1
     ms = SubElement(root, "ModelStructure")
     outs = SubElement(ms, "Outputs")
+    # fmi2GetDirectionalDerivative (model.c): the reactions and the ring pose depend on the ring inputs, as in
+    # BearingFMU; every other output is a function of the state at the communication point (no dependency)
+    index = {sv.get("name"): str(i + 1) for i, sv in enumerate(mv)}
+    ring_inputs = " ".join(index[n] for n in ("Fx", "Fy", "Fz", "Mx", "My", "dx", "dy", "dz", "tx", "ty"))
+    ring_outputs = {index[n] for n in ("reaction_Fx", "reaction_Fy", "reaction_Fz", "reaction_Mx", "reaction_My",
+                                       "ir_x", "ir_y", "ir_z", "ir_tx", "ir_ty")}
     for i in out_index:
-        SubElement(outs, "Unknown", index=str(i), dependencies="")
+        SubElement(outs, "Unknown", index=str(i), dependencies=ring_inputs if str(i) in ring_outputs else "")
     init = SubElement(ms, "InitialUnknowns")
     for i in out_index:
         SubElement(init, "Unknown", index=str(i))

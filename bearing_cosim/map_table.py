@@ -32,6 +32,9 @@ Format version 1 (every integer little-endian; f64 IEEE 754 little-endian; str =
       str value names[n_vals]; i32 speed_scaled[n_vals]; i32 i_tau
       f64 values[n_points * n_vals] (C order over the axes, then the value); i32 flags[n_points]
       str flag texts[2]                        the warning's words for flag 1 (gross skid) and 2 (unsteady cage)
+      u32 has_k; i32 i_k; f64 kvals[n_points * 25] if has_k   the stiffness K = d(load)/d(pose) at each grid point
+                                               (row-major 5 x 5) and the output index of stiffness[1,1]
+      str stiffness_missing                    the warning of a map without stiffness variables ('' if it has them)
       str output names[n_out_real + n_out_int]; i32 src[n_out]
       u32 n_rot; i32 rot[2 n_rot]; u32 n_ib; i32 ib[n_ib]
       f64 temps[7], inertia [kg m^2], csr_min [rad/s], skid_tol, skid_min [rad/s]
@@ -231,6 +234,17 @@ def build_table(map_path, guid: str = "") -> tuple[bytes, dict]:
     w.i32a(flags)
     w.str(lv.FLAG_TEXT[FLAG_GROSS_SKID])
     w.str(lv.FLAG_TEXT[FLAG_CAGE_UNSTEADY])
+    # the stiffness outputs (map_kernels.map_stiffness): the map's stiffness variables, or the warning of a map
+    # without them (the outputs then hold 0)
+    if getattr(lv, "stiffness_into", None) is not None:
+        from bearing_core.session.cosim_spec import STIFFNESS_NAMES
+        w.u32(1)
+        w.i32((OUTPUT_NAMES + INT_OUTPUT_NAMES).index(STIFFNESS_NAMES[0]))
+        w.f64a(np.asarray(lv.kvalues).ravel())
+    else:
+        w.u32(0)
+        w.i32(-1)
+    w.str(getattr(lv, "stiffness_missing", ""))
     for nm in OUTPUT_NAMES + INT_OUTPUT_NAMES:
         w.str(nm)
     w.i32a(st._src)

@@ -137,7 +137,7 @@ def test_equals_bearing_fmu_at_fidelity_map(built, key):
     start = {"oil_temperature": 323.15} if key == "small" else {}
     c = run_fmu(str(built["fmus"][key]), start, rows)
     p = run_fmu(str(built["bearing"]), bearing_start(built["maps"][key], start), rows, outputs=c["names"])
-    assert c["init"] == p["init"] == 0, (c["logs"][:3], p["logs"][:3])
+    assert c["init"] == p["init"] <= 1, (c["logs"][:3], p["logs"][:3])
     assert len(c["status"]) >= 300 and c["status"] == p["status"]
     assert {1, 2} <= set(c["status"]) or key == "solid", set(c["status"])   # warnings and refusals exercised
     assert 2 in c["status"]
@@ -466,3 +466,52 @@ def test_cli_build_and_simulate(built, tmp_path):
     assert r.returncode == 0, r.stderr[-2000:]
     s = json.loads((tmp_path / "o" / "fmu_simulation_summary.json").read_text())
     assert 0.35 < s["final_cage_shaft_ratio"] < 0.5 and s["final_friction_torque_Nm"] > 0.0
+
+
+def _jacobian(fmu, start, inputs):
+    """d(ir_x..ir_ty, reaction_Fx..My)/d(Fx..My) by fmi2GetDirectionalDerivative after one step at inputs, and
+    the stiffness outputs; (None, message) if the call fails."""
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+    md = read_model_description(str(fmu))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    s = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(fmu)), modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName="dd")
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    for k, v in start.items():
+        setter = s.setString if isinstance(v, str) else (s.setBoolean if isinstance(v, bool) else s.setReal)
+        setter([vr[k]], [v])
+    s.setReal([vr[k] for k in inputs], list(inputs.values()))
+    s.exitInitializationMode()
+    s.doStep(currentCommunicationPoint=0.0, communicationStepSize=1e-3)
+    unknown = [vr[n] for n in ("ir_x", "ir_y", "ir_z", "ir_tx", "ir_ty", "reaction_Fx", "reaction_Fy", "reaction_Fz",
+                               "reaction_Mx", "reaction_My")]
+    known = [vr[n] for n in ("Fx", "Fy", "Fz", "Mx", "My")]
+    try:
+        J = np.array([s.getDirectionalDerivative(unknown, known, list(np.eye(5)[j])) for j in range(5)]).T
+    except Exception as e:      # noqa: BLE001 - fmpy raises on fmi2Error
+        J = None, str(e)
+    K = np.array(s.getReal([vr[f"stiffness[{i},{j}]"] for i in range(1, 6) for j in range(1, 6)])).reshape(5, 5)
+    s.terminate()
+    s.freeInstance()
+    return J, K
+
+
+def test_directional_derivative_equals_bearing_fmu(built):
+    """fmi2GetDirectionalDerivative of the C FMU (coupling load): d ir/d load is the inverse of the stiffness outputs
+    (turned with a rotating radial load), d reaction/d load = -I, and both equal BearingFMU's at fidelity = map; a
+    map without stiffness variables refuses it with Error."""
+    for inputs in ({"shaft_speed": 4000 * RPM, "Fx": 700.0, "Fy": 900.0, "Fz": 2600.0},
+                   {"shaft_speed": 9000 * RPM, "Fx": -1500.0, "Fy": 0.0, "Fz": 5000.0}):
+        Jc, Kc = _jacobian(built["fmus"]["oil"], {}, inputs)
+        Jp, Kp = _jacobian(built["bearing"], bearing_start(built["maps"]["oil"]), inputs)
+        assert np.array_equal(Kc, Kp)
+        scale = np.abs(Jc[:5]).max()
+        assert np.abs(Jc[:5] - Jp[:5]).max() <= 1e-9 * scale
+        assert np.array_equal(Jc[5:], -np.eye(5)) and np.array_equal(Jp[5:], -np.eye(5))
+        free = [k for k in range(5) if np.any(Kc[k] != 0)]
+        assert np.allclose((Kc @ Jc[:5])[np.ix_(free, free)], np.eye(len(free)), atol=1e-8)
+    J, _K = _jacobian(built["fmus"]["small"], {}, {"shaft_speed": 2000 * RPM, "Fx": 300.0, "Fz": 2000.0})
+    assert J[0] is None

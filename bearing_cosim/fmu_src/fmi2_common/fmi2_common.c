@@ -607,11 +607,43 @@ FMI2_EXPORT fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2V
     (void)vr, (void)nvr, (void)order, (void)value;
     return unsupported(c, "fmi2GetRealOutputDerivatives", "maxOutputDerivativeOrder = 0");
 }
-FMI2_EXPORT fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown[], size_t nU,
-                                                    const fmi2ValueReference vKnown[], size_t nK,
+/* FMI 2.0 section 2.1.9, co-simulation: the derivatives of Real outputs with respect to Real inputs at the last
+   communication point (the model gives them: model_directional_derivative) */
+FMI2_EXPORT fmi2Status fmi2GetDirectionalDerivative(fmi2Component comp, const fmi2ValueReference vUnknown[],
+                                                    size_t nU, const fmi2ValueReference vKnown[], size_t nK,
                                                     const fmi2Real dvKnown[], fmi2Real dvUnknown[]) {
-    (void)vUnknown, (void)nU, (void)vKnown, (void)nK, (void)dvKnown, (void)dvUnknown;
-    return unsupported(c, "fmi2GetDirectionalDerivative", "providesDirectionalDerivative = false");
+    const char *fn = "fmi2GetDirectionalDerivative";
+    Instance *c = valid(comp);
+    if (!c) return fmi2Error;
+    if (c->mode != MODE_STEP) {
+        fmu_log(c, fmi2Error, "%s: not allowed in %s mode; allowed after fmi2ExitInitializationMode (the derivatives "
+                "are those of the last communication point)", fn, MODE_NAME[c->mode]);
+        return fmi2Error;
+    }
+    if ((nU && (!vUnknown || !dvUnknown)) || (nK && (!vKnown || !dvKnown))) {
+        fmu_log(c, fmi2Error, "%s: a NULL array with nUnknown = %lu, nKnown = %lu", fn, (unsigned long)nU,
+                (unsigned long)nK);
+        return fmi2Error;
+    }
+    VarInfo info;
+    for (size_t k = 0; k < nK; k++)
+        if (!model_var(c->model, vKnown[k], &info) || info.type != VT_REAL || info.causality != VC_INPUT) {
+            fmu_log(c, fmi2Error, "%s: vKnown_ref[%lu] = %u is not a Real input; allowed: the inputs", fn,
+                    (unsigned long)k, vKnown[k]);
+            return fmi2Error;
+        }
+    for (size_t k = 0; k < nU; k++)
+        if (!model_var(c->model, vUnknown[k], &info) || info.type != VT_REAL || info.causality != VC_OUTPUT) {
+            fmu_log(c, fmi2Error, "%s: vUnknown_ref[%lu] = %u is not a Real output; allowed: the outputs", fn,
+                    (unsigned long)k, vUnknown[k]);
+            return fmi2Error;
+        }
+    char err[1024];
+    if (model_directional_derivative(c->model, vUnknown, nU, vKnown, nK, dvKnown, dvUnknown, err, sizeof err)) {
+        fmu_log(c, fmi2Error, "%s: %s", fn, err);
+        return fmi2Error;
+    }
+    return fmi2OK;
 }
 
 /* ---- FMU states ------------------------------------------------------------------------------------------------

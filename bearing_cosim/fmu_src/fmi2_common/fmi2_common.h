@@ -106,6 +106,10 @@ int model_initialize(Instance *c, void *m, double t0, char *err, size_t n);
    unless the step succeeds */
 int model_step(Instance *c, void *m, double t, double h, char *err, size_t n);
 double model_time(void *m);
+/* fmi2GetDirectionalDerivative: df = J dv, J = d(unknowns z)/d(knowns u) at the last communication point (z Real
+   outputs, u Real inputs, checked by the layer); 0, or -1 with the reason in err */
+int model_directional_derivative(void *m, const fmi2ValueReference *z, size_t nz, const fmi2ValueReference *u,
+                                 size_t nu, const double *dv, double *df, char *err, size_t n);
 /* the model's guid (FMU states carry it) */
 const char *model_guid(void *m);
 /* the mutable state as little-endian bytes of model_state_size(m) bytes, and back (0, or -1 with the reason) */

@@ -69,6 +69,10 @@ typedef struct {
     char **in_names;
     double in_start[MAX_IN];
     char *flag_text[2]; /* MapLevel.FLAG_TEXT of FLAG_GROSS_SKID, FLAG_CAGE_UNSTEADY */
+    int has_k, i_k;     /* the map holds the stiffness; the output index of stiffness[1,1] */
+    double *kvals;      /* n_points x 25: K = d(load)/d(pose) at each grid point, row-major */
+    char *stiffness_missing;
+    int o_reac[5], o_ir[5], i_load[5]; /* reaction_Fx..My, ir_x..ir_ty, inputs Fx..My (directional derivative) */
     int i_speed, i_fx, i_fy, i_oring, rotate, n_zero;
     int zero_in[MAX_IN];
     Axis ax[MAX_AXES];
@@ -97,7 +101,9 @@ typedef struct {
     int last_flags;
     double *out; /* n_out: the outputs at the last communication point */
     /* ---- work (no allocation per step) ---- */
-    double *new_out, *ss;
+    double *new_out, *ss, kbuf[25];
+    int defer;              /* initialisation: the flags' warning waits in pending (logged after the others) */
+    char pending[2048];
     double x[MAX_AXES], w[MAX_AXES];
     int idx[MAX_AXES];
 } Model;
@@ -207,6 +213,7 @@ void model_delete(void *mp) {
     if (!m) return;
     free_strs(m->in_names, m->n_in);
     free(m->flag_text[0]), free(m->flag_text[1]);
+    free(m->kvals), free(m->stiffness_missing);
     free(m->guid), free(m->level), free(m->bearing), free(m->map_name), free(m->provenance), free(m->path);
     for (int d = 0; d < MAX_AXES; d++) free(m->ax[d].name);
     free(m->axes);
@@ -334,6 +341,15 @@ static int parse_table(Model *m, Rd *r) {
     for (int i = 0; i < m->n_points; i++) RANGE(m->flags[i], 0, 3, "flags");
     m->flag_text[0] = rd_str(r, "flag text");
     m->flag_text[1] = rd_str(r, "flag text");
+    m->has_k = (int)rd_u32(r, "has_k");
+    m->i_k = rd_i32(r, "i_k");
+    RANGE(m->has_k, 0, 1, "has_k");
+    if (r->err[0]) return 0;
+    if (m->has_k) {
+        RANGE(m->i_k, 0, m->n_out_real - 25, "i_k");
+        m->kvals = rd_f64a(r, (size_t)m->n_points * 25, "stiffness values");
+    }
+    m->stiffness_missing = rd_str(r, "stiffness warning");
     m->out_names = (char **)calloc((size_t)m->n_out, sizeof(char *));
     if (!m->out_names) return 0;
     for (int k = 0; k < m->n_out && !r->err[0]; k++) m->out_names[k] = rd_str(r, "output name");
@@ -488,6 +504,26 @@ void *model_new(Instance *c, const char *resource_dir, const char *guid) {
         fmu_log(c, fmi2Error, "fmi2Instantiate: %s: %s", path, r.err[0] ? r.err : "out of memory");
         model_delete(m);
         return NULL;
+    }
+    {   /* the ring variables of the directional derivative, by name */
+        static const char *const reac[5] = {"reaction_Fx", "reaction_Fy", "reaction_Fz", "reaction_Mx", "reaction_My"};
+        static const char *const ir[5] = {"ir_x", "ir_y", "ir_z", "ir_tx", "ir_ty"};
+        static const char *const load[5] = {"Fx", "Fy", "Fz", "Mx", "My"};
+        for (int i = 0; i < 5; i++) {
+            m->o_reac[i] = m->o_ir[i] = m->i_load[i] = -1;
+            for (int k = 0; k < m->n_out_real; k++) {
+                if (!strcmp(m->out_names[k], reac[i])) m->o_reac[i] = k;
+                if (!strcmp(m->out_names[k], ir[i])) m->o_ir[i] = k;
+            }
+            for (int k = 0; k < m->n_in; k++)
+                if (!strcmp(m->in_names[k], load[i])) m->i_load[i] = k;
+            if (m->o_reac[i] < 0 || m->o_ir[i] < 0 || m->i_load[i] < 0) {
+                fmu_log(c, fmi2Error, "fmi2Instantiate: %s: corrupt table (no %s, %s or %s)", path, reac[i], ir[i],
+                        load[i]);
+                model_delete(m);
+                return NULL;
+            }
+        }
     }
     if (guid && *guid && strcmp(guid, m->guid)) {
         fmu_log(c, fmi2Error, "fmi2Instantiate: GUID %s does not match this FMU's %s", guid, m->guid);
@@ -758,8 +794,10 @@ static int query(Model *m, const double *u, double *x, double *cs, double *sn, c
     return 0;
 }
 
-/* map_kernels.interp_multilinear: all values at x into m->ss; returns the cell's validity flags */
-static int interp_multilinear(Model *m, const double *x) {
+/* map_kernels.interp_multilinear: the nv values per grid point of values at x into out (those flagged in
+   speed_scaled times x[0]); returns the cell's validity flags (flags NULL: 0) */
+static int interp_multilinear(Model *m, const double *x, const double *values, int nv, const int *speed_scaled,
+                              const int *flags, double *out) {
     int nd = m->n_axes;
     for (int d = 0; d < nd; d++) {
         const Axis *a = &m->ax[d];
@@ -780,8 +818,6 @@ static int interp_multilinear(Model *m, const double *x) {
         m->idx[d] = lo;
         m->w[d] = (x[d] - ax[lo]) / (ax[lo + 1] - ax[lo]);
     }
-    int nv = m->n_vals;
-    double *out = m->ss;
     for (int k = 0; k < nv; k++) out[k] = 0.0;
     int fl = 0;
     for (int cnr = 0; cnr < (1 << nd); cnr++) {
@@ -798,12 +834,13 @@ static int interp_multilinear(Model *m, const double *x) {
             if (wt == 0.0) break;
         }
         if (wt == 0.0) continue;
-        fl |= m->flags[off];
-        const double *row = m->values + off * nv;
+        if (flags) fl |= flags[off];
+        const double *row = values + off * nv;
         for (int k = 0; k < nv; k++) out[k] += wt * row[k];
     }
-    for (int k = 0; k < nv; k++)
-        if (m->speed_scaled[k] != 0) out[k] *= x[0];
+    if (speed_scaled)
+        for (int k = 0; k < nv; k++)
+            if (speed_scaled[k] != 0) out[k] *= x[0];
     return fl;
 }
 
@@ -859,6 +896,30 @@ static double steady_level_outputs(Model *m, double cs, double sn, double wc0, d
     return wc;
 }
 
+/* map_kernels.map_stiffness: the map's stiffness K0 interpolated at x (the outputs' cell and weights), turned
+   with the radial load's direction, K = R K0 R^T with R = diag(Rz, 1, Rz), Rz = [[cs, -sn], [sn, cs]] on the
+   (x, y) and (tx, ty) pairs: columns first, then rows; into new_out[i_k:i_k + 25]. 0 if an entry is not finite. */
+static int map_stiffness(Model *m, const double *x, double cs, double sn) {
+    double *k = m->kbuf;
+    interp_multilinear(m, x, m->kvals, 25, NULL, NULL, k);
+    for (int i = 0; i < 5; i++)
+        for (int p = 0; p <= 3; p += 3) {
+            double a = k[5 * i + p], b = k[5 * i + p + 1];
+            k[5 * i + p] = cs * a - sn * b;
+            k[5 * i + p + 1] = sn * a + cs * b;
+        }
+    for (int j = 0; j < 5; j++)
+        for (int p = 0; p <= 3; p += 3) {
+            double a = k[5 * p + j], b = k[5 * (p + 1) + j];
+            k[5 * p + j] = cs * a - sn * b;
+            k[5 * (p + 1) + j] = sn * a + cs * b;
+        }
+    for (int q = 0; q < 25; q++)
+        if (!isfinite(k[q])) return 0;
+    for (int q = 0; q < 25; q++) m->new_out[m->i_k + q] = k[q];
+    return 1;
+}
+
 /* MapLevel.point_text */
 static void point_text(Model *m, const double *x, char *buf, size_t n) {
     size_t k = 0;
@@ -878,8 +939,13 @@ static int note_flags(Instance *c, Model *m, int fl, const double *x, double h) 
             size_t k = strlen(what);
             snprintf(what + k, sizeof what - k, "%s%s", k ? " and " : "", m->flag_text[1]);
         }
-        fmu_log(c, fmi2Warning, "t = %.6g s: the operating point (%s) entered a region of %s, where fidelity 'map' is "
-                "least accurate (docs/fidelity.md); use fidelity 'dynamic' for this operation", m->t + h, pt, what);
+        char msg[sizeof m->pending];
+        snprintf(msg, sizeof msg, "t = %.6g s: the operating point (%s) entered a region of %s, where fidelity 'map' "
+                 "is least accurate (docs/fidelity.md); use fidelity 'dynamic' for this operation", m->t + h, pt, what);
+        if (m->defer)
+            memcpy(m->pending, msg, sizeof msg);
+        else
+            fmu_log(c, fmi2Warning, "%s", msg);
         warned = 1;
     }
     m->last_flags = fl;
@@ -891,7 +957,7 @@ static double evaluate(Instance *c, Model *m, double h, int *warned, char *err, 
     double cs, sn;
     double *x = m->x;
     if (query(m, m->u, x, &cs, &sn, err, n)) return NAN;
-    int fl = interp_multilinear(m, x);
+    int fl = interp_multilinear(m, x, m->values, m->n_vals, m->speed_scaled, m->flags, m->ss);
     double w = m->u[m->i_speed];
     double tau = m->ss[m->i_tau];
     double wc = steady_level_outputs(m, cs, sn, m->wc, h, tau, w, h > 0.0 ? m->w_prev : w);
@@ -909,6 +975,14 @@ static double evaluate(Instance *c, Model *m, double h, int *warned, char *err, 
         snprintf(err, n, "inputs = '%s' is invalid; allowed: an operating point where the map has values (operating map "
                  "%s (%s level, %s) has no value for %s there (a failed grid point))", pt, m->path, m->level,
                  m->bearing, names);
+        return NAN;
+    }
+    if (m->has_k && !map_stiffness(m, x, cs, sn)) {
+        char pt[600];
+        point_text(m, x, pt, sizeof pt);
+        snprintf(err, n, "inputs = '%s' is invalid; allowed: an operating point where the map has values (operating map "
+                 "%s (%s level, %s) has no finite stiffness there (a failed grid point))", pt, m->path, m->level,
+                 m->bearing);
         return NAN;
     }
     *warned = note_flags(c, m, fl, x, h);
@@ -929,8 +1003,16 @@ int model_initialize(Instance *c, void *mp, double t0, char *err, size_t n) {
     m->w_prev = 0.0;
     m->last_flags = 0;
     int warned = 0;
+    m->defer = 1; /* SteadySession: the level's warnings of its construction first, then the flags' */
+    m->pending[0] = 0;
     double wc = evaluate(c, m, 0.0, &warned, err, n);
+    m->defer = 0;
     if (!isfinite(wc)) return fmi2Error;
+    if (m->stiffness_missing[0]) {
+        fmu_log(c, fmi2Warning, "%s", m->stiffness_missing);
+        warned = 1;
+    }
+    if (m->pending[0]) fmu_log(c, fmi2Warning, "%s", m->pending);
     m->wc = wc;
     m->w_prev = m->u[m->i_speed];
     memcpy(m->out, m->new_out, (size_t)m->n_out * 8);
@@ -1037,6 +1119,97 @@ int model_state_load(void *mp, const unsigned char *p, size_t size, char *err, s
     for (int k = 0; k < m->n_par; k++, r += 8 + STR_CAP) {
         m->par[k].num = le_get_f64(r);
         memcpy(m->par[k].str, r + 8, STR_CAP);
+    }
+    return 0;
+}
+
+/* ---- directional derivatives (load coupling): from the stiffness outputs of the last communication point ----
+ * K = d(load)/d(pose) (outputs stiffness[i,j]; rows Fx..My, columns dx..ty). With the loads Fx..My the inputs:
+ *   d ir_i / d load_j = (K^-1)[i][j] (the compliance, over the pose's free coordinates: a coordinate whose row and
+ *   column of K are zero has zero compliance), d reaction_i / d load_j = -delta_ij (the steady balance
+ *   reaction = -load); every other pair 0. As BearingFMU's fmi2GetDirectionalDerivative at fidelity = map. */
+
+/* C = K^-1 over the free coordinates by Gauss-Jordan elimination with partial pivoting; 0 if K is zero or singular
+   (a pivot below 1e-12 of K's largest entry) */
+static int compliance(const double K[25], double C[25]) {
+    int free_[5], n = 0;
+    double kmax = 0.0;
+    for (int i = 0; i < 5; i++) {
+        int used = 0;
+        for (int j = 0; j < 5; j++) {
+            used |= K[5 * i + j] != 0.0 || K[5 * j + i] != 0.0;
+            kmax = fabs(K[5 * i + j]) > kmax ? fabs(K[5 * i + j]) : kmax;
+        }
+        if (used) free_[n++] = i;
+    }
+    for (int q = 0; q < 25; q++) C[q] = 0.0;
+    if (n == 0) return 0;
+    double aug[5][10];
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            aug[i][j] = K[5 * free_[i] + free_[j]];
+            aug[i][n + j] = (i == j) ? 1.0 : 0.0;
+        }
+    for (int col = 0; col < n; col++) {
+        int best = col;
+        for (int r = col + 1; r < n; r++)
+            if (fabs(aug[r][col]) > fabs(aug[best][col])) best = r;
+        if (!(fabs(aug[best][col]) > 1e-12 * kmax)) return 0;
+        for (int j = 0; j < 2 * n && best != col; j++) {
+            double t = aug[col][j];
+            aug[col][j] = aug[best][j];
+            aug[best][j] = t;
+        }
+        double pivot = aug[col][col];
+        for (int j = 0; j < 2 * n; j++) aug[col][j] /= pivot;
+        for (int r = 0; r < n; r++)
+            if (r != col && aug[r][col] != 0.0) {
+                double f = aug[r][col];
+                for (int j = 0; j < 2 * n; j++) aug[r][j] -= f * aug[col][j];
+            }
+    }
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) C[5 * free_[i] + free_[j]] = aug[i][n + j];
+    return 1;
+}
+
+static int slot(const int ix[5], int k) {
+    for (int i = 0; i < 5; i++)
+        if (ix[i] == k) return i;
+    return -1;
+}
+
+int model_directional_derivative(void *mp, const fmi2ValueReference *z, size_t nz, const fmi2ValueReference *u,
+                                 size_t nu, const double *dv, double *df, char *err, size_t n) {
+    Model *m = (Model *)mp;
+    double K[25], C[25];
+    int any = 0, need_c = 0;
+    for (int q = 0; q < 25; q++) {
+        K[q] = m->has_k ? m->out[m->i_k + q] : 0.0;
+        any |= K[q] != 0.0;
+    }
+    for (size_t a = 0; a < nz; a++) need_c |= slot(m->o_ir, (int)(z[a] - VR_OUTPUT)) >= 0;
+    if (need_c && !compliance(K, C)) {
+        snprintf(err, n, "the stiffness of the last communication point is %s, so the compliance d ir/d load (its "
+                 "inverse) does not exist%s", any ? "singular" : "zero",
+                 any ? "" : " (fidelity map with an operating map without stiffness variables: rebuild it with "
+                            "bearing build-map)");
+        return -1;
+    }
+    for (size_t a = 0; a < nz; a++) {
+        int oz = (int)(z[a] - VR_OUTPUT);
+        int ir = slot(m->o_ir, oz), re = slot(m->o_reac, oz);
+        double acc = 0.0;
+        for (size_t b = 0; b < nu; b++) {
+            int jl = slot(m->i_load, (int)u[b]);
+            double d = 0.0;
+            if (jl >= 0 && ir >= 0)
+                d = C[5 * ir + jl];
+            else if (jl >= 0 && re >= 0)
+                d = re == jl ? -1.0 : 0.0;
+            acc += d * dv[b];
+        }
+        df[a] = acc;
     }
     return 0;
 }
