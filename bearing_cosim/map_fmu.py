@@ -24,7 +24,7 @@ from xml.etree.ElementTree import Element, SubElement, tostring
 
 FMU_SRC = Path(__file__).resolve().parent / "fmu_src"
 C_SOURCES = (FMU_SRC / "fmi2_common" / "fmi2_common.c", FMU_SRC / "fmi2_common" / "fmi2_common.h",
-             FMU_SRC / "map" / "model.c", FMU_SRC / "map" / "config.h")
+             FMU_SRC / "native" / "fmi2_min.h", FMU_SRC / "map" / "model.c", FMU_SRC / "map" / "config.h")
 MODEL_ID = "BearingMapFMU"
 VR_OUTPUT = 1000
 VR_PARAMETER = 5000

@@ -432,93 +432,42 @@ static int check_set(Instance *c, const char *fn, size_t nvr, const fmi2ValueRef
 
 #define ANY_GET (M(MODE_INSTANTIATED) | M(MODE_INIT) | M(MODE_STEP) | M(MODE_TERMINATED) | M(MODE_FAILED))
 
-FMI2_EXPORT fmi2Status fmi2GetReal(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr, fmi2Real value[]) {
-    CHECK("fmi2GetReal", ANY_GET)
-    if (!check_get(c, "fmi2GetReal", nvr, vr, value, VT_REAL)) return fmi2Error;
-    for (size_t i = 0; i < nvr; i++) value[i] = model_get_real(c->model, vr[i]);
-    return fmi2OK;
-}
+/* fmi2Get<Type> and fmi2Set<Type>: the checks above, then the model's getter or setter per value reference (a
+   set is all or nothing up to the model's own refusal, which is logged) */
+#define GETTER(FN, CTYPE, VT, GET)                                                                            \
+    FMI2_EXPORT fmi2Status FN(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr, CTYPE value[]) { \
+        CHECK(#FN, ANY_GET)                                                                                   \
+        if (!check_get(c, #FN, nvr, vr, value, VT)) return fmi2Error;                                        \
+        for (size_t i = 0; i < nvr; i++) value[i] = GET(c->model, vr[i]);                                   \
+        return fmi2OK;                                                                                        \
+    }
+GETTER(fmi2GetReal, fmi2Real, VT_REAL, model_get_real)
+GETTER(fmi2GetInteger, fmi2Integer, VT_INTEGER, model_get_integer)
+GETTER(fmi2GetBoolean, fmi2Boolean, VT_BOOLEAN, model_get_boolean)
+GETTER(fmi2GetString, fmi2String, VT_STRING, model_get_string)
 
-FMI2_EXPORT fmi2Status fmi2GetInteger(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr,
-                                      fmi2Integer value[]) {
-    CHECK("fmi2GetInteger", ANY_GET)
-    if (!check_get(c, "fmi2GetInteger", nvr, vr, value, VT_INTEGER)) return fmi2Error;
-    for (size_t i = 0; i < nvr; i++) value[i] = model_get_integer(c->model, vr[i]);
-    return fmi2OK;
-}
-
-FMI2_EXPORT fmi2Status fmi2GetBoolean(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr,
-                                      fmi2Boolean value[]) {
-    CHECK("fmi2GetBoolean", ANY_GET)
-    if (!check_get(c, "fmi2GetBoolean", nvr, vr, value, VT_BOOLEAN)) return fmi2Error;
-    for (size_t i = 0; i < nvr; i++) value[i] = model_get_boolean(c->model, vr[i]);
-    return fmi2OK;
-}
-
-FMI2_EXPORT fmi2Status fmi2GetString(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr,
-                                     fmi2String value[]) {
-    CHECK("fmi2GetString", ANY_GET)
-    if (!check_get(c, "fmi2GetString", nvr, vr, value, VT_STRING)) return fmi2Error;
-    for (size_t i = 0; i < nvr; i++) value[i] = model_get_string(c->model, vr[i]);
-    return fmi2OK;
-}
-
-FMI2_EXPORT fmi2Status fmi2SetReal(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr,
-                                   const fmi2Real value[]) {
-    CHECK("fmi2SetReal", M(MODE_INSTANTIATED) | M(MODE_INIT) | M(MODE_STEP) | M(MODE_TERMINATED) | M(MODE_FAILED))
-    if (!check_set(c, "fmi2SetReal", nvr, vr, value, VT_REAL)) return fmi2Error;
-    char err[1024];
-    for (size_t i = 0; i < nvr; i++)
-        if (model_set_real(c->model, vr[i], value[i], err, sizeof err)) {
-            fmu_log(c, fmi2Error, "fmi2SetReal: %s", err);
-            return fmi2Error;
-        }
-    return fmi2OK;
-}
-
-FMI2_EXPORT fmi2Status fmi2SetInteger(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr,
-                                      const fmi2Integer value[]) {
-    CHECK("fmi2SetInteger", M(MODE_INSTANTIATED) | M(MODE_INIT) | M(MODE_STEP) | M(MODE_TERMINATED) | M(MODE_FAILED))
-    if (!check_set(c, "fmi2SetInteger", nvr, vr, value, VT_INTEGER)) return fmi2Error;
-    char err[1024];
-    for (size_t i = 0; i < nvr; i++)
-        if (model_set_integer(c->model, vr[i], value[i], err, sizeof err)) {
-            fmu_log(c, fmi2Error, "fmi2SetInteger: %s", err);
-            return fmi2Error;
-        }
-    return fmi2OK;
-}
-
-FMI2_EXPORT fmi2Status fmi2SetBoolean(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr,
-                                      const fmi2Boolean value[]) {
-    CHECK("fmi2SetBoolean", M(MODE_INSTANTIATED) | M(MODE_INIT) | M(MODE_STEP) | M(MODE_TERMINATED) | M(MODE_FAILED))
-    if (!check_set(c, "fmi2SetBoolean", nvr, vr, value, VT_BOOLEAN)) return fmi2Error;
-    char err[1024];
-    for (size_t i = 0; i < nvr; i++)
-        if (model_set_boolean(c->model, vr[i], value[i], err, sizeof err)) {
-            fmu_log(c, fmi2Error, "fmi2SetBoolean: %s", err);
-            return fmi2Error;
-        }
-    return fmi2OK;
-}
-
-FMI2_EXPORT fmi2Status fmi2SetString(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr,
-                                     const fmi2String value[]) {
-    CHECK("fmi2SetString", M(MODE_INSTANTIATED) | M(MODE_INIT) | M(MODE_STEP) | M(MODE_TERMINATED) | M(MODE_FAILED))
-    if (!check_set(c, "fmi2SetString", nvr, vr, value, VT_STRING)) return fmi2Error;
-    for (size_t i = 0; i < nvr; i++)
-        if (!value[i]) {
-            fmu_log(c, fmi2Error, "fmi2SetString: value %zu is NULL; allowed: a string", i);
-            return fmi2Error;
-        }
-    char err[1024];
-    for (size_t i = 0; i < nvr; i++)
-        if (model_set_string(c->model, vr[i], value[i], err, sizeof err)) {
-            fmu_log(c, fmi2Error, "fmi2SetString: %s", err);
-            return fmi2Error;
-        }
-    return fmi2OK;
-}
+#define ANY_SET (M(MODE_INSTANTIATED) | M(MODE_INIT) | M(MODE_STEP) | M(MODE_TERMINATED) | M(MODE_FAILED))
+#define SETTER(FN, CTYPE, VT, SET, NULLCHECK)                                                                       \
+    FMI2_EXPORT fmi2Status FN(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr, const CTYPE value[]) { \
+        CHECK(#FN, ANY_SET)                                                                                         \
+        if (!check_set(c, #FN, nvr, vr, value, VT)) return fmi2Error;                                              \
+        for (size_t i = 0; i < nvr && NULLCHECK; i++)                                                              \
+            if (!value[i]) {                                                                                       \
+                fmu_log(c, fmi2Error, "%s: value %lu is NULL; allowed: a string", #FN, (unsigned long)i);          \
+                return fmi2Error;                                                                                  \
+            }                                                                                                      \
+        char err[1024];                                                                                            \
+        for (size_t i = 0; i < nvr; i++)                                                                           \
+            if (SET(c->model, vr[i], value[i], err, sizeof err)) {                                                 \
+                fmu_log(c, fmi2Error, "%s: %s", #FN, err);                                                         \
+                return fmi2Error;                                                                                  \
+            }                                                                                                      \
+        return fmi2OK;                                                                                             \
+    }
+SETTER(fmi2SetReal, fmi2Real, VT_REAL, model_set_real, 0)
+SETTER(fmi2SetInteger, fmi2Integer, VT_INTEGER, model_set_integer, 0)
+SETTER(fmi2SetBoolean, fmi2Boolean, VT_BOOLEAN, model_set_boolean, 0)
+SETTER(fmi2SetString, fmi2String, VT_STRING, model_set_string, 1)
 
 /* ---- co-simulation ------------------------------------------------------------------------------------------ */
 FMI2_EXPORT fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real currentCommunicationPoint,
