@@ -83,7 +83,14 @@ def api_markdown() -> str:
     return "\n".join(out)
 
 
+_SSP_README = '--8<-- "ssp_examples/README.md"'
+
+
 def on_page_markdown(markdown: str, page, config, files):
+    if _SSP_README in markdown:
+        # the SSP examples' README, included with its links into docs/ made relative to the manual's pages
+        text = (ROOT / "ssp_examples" / "README.md").read_text(encoding="utf-8")
+        markdown = markdown.replace(_SSP_README, text.replace("](../docs/", "](../"))
     if "<!-- fmu-variables:" in markdown:
         markdown = _MARK_FMU.sub(lambda m: fmu_variables_markdown(m.group(1)), markdown)
     if _MARK_API in markdown:

@@ -3,7 +3,8 @@ poses and reactions against a linear-implicit master that uses the bearings' Jac
 both against a reference at 1e-5 s steps.
 
     python ssp_examples/rotor_bearings/jacobian_master.py [--fmu dist/BearingFMU.fmu] [--t-end 0.1] \
-        [--out ssp_examples/rotor_bearings/jacobian_coupling]          # -> .png, .json
+        [--out ssp_examples/rotor_bearings/jacobian_coupling]          # -> .json; the plot: --plot
+        [--plot docs/figures/jacobian_coupling.png]
 
 The system. A rigid steel rotor, mass m = 5 kg, transverse moment of inertia It = 0.02 kg m^2 about its centre of
 mass, polar Ip = 0.004 kg m^2, turning at Omega = 3000 rpm about +z, on two 7218B bearings (BearingFMU.fmu, fidelity
@@ -203,6 +204,8 @@ def main(argv=None):
     ap.add_argument("--fmu", default=str(ROOT / "dist" / "BearingFMU.fmu"))
     ap.add_argument("--t-end", type=float, default=0.1)
     ap.add_argument("--out", default=str(HERE / "jacobian_coupling"))
+    ap.add_argument("--plot", default=str(HERE.parents[1] / "docs" / "figures" / "jacobian_coupling.png"),
+                    help="the plot (PNG; the manual shows docs/figures/jacobian_coupling.png)")
     ap.add_argument("--explicit-steps", default="1e-3,5e-4,2.5e-4,1.25e-4",
                     help="communication steps of the explicit runs [s], comma-separated")
     a = ap.parse_args(argv)
@@ -227,7 +230,7 @@ def main(argv=None):
     out.parent.mkdir(parents=True, exist_ok=True)
     out.with_suffix(".json").write_text(json.dumps(summary, indent=1))
     print(json.dumps(summary, indent=1))
-    plot(runs, out.with_suffix(".png"), t0)
+    plot(runs, Path(a.plot), t0)
 
 
 def plot(runs: dict, path: Path, t0: float):
