@@ -45,7 +45,7 @@ def wine_loader():
 # ---- a small map with other axes: fy_N and oil_temperature_C (no rotation), a failed grid point, flags ---------
 def small_map(path: Path) -> str:
     import xarray as xr
-    from bearing_core.session.fidelity import MAP_OUTPUTS, SPEED_SCALED
+    from bearing_core.session.fidelity import MAP_FATIGUE_RATE, MAP_OUTPUTS, SPEED_SCALED
     axes = {"speed_rpm": [800.0, 1500.0, 3000.0, 4200.0], "fx_N": [0.0, 600.0, 1500.0], "fy_N": [-500.0, 500.0],
             "fz_N": [1200.0, 2500.0, 4000.0], "oil_temperature_C": [30.0, 60.0]}
     rng = np.random.default_rng(11)
@@ -71,6 +71,10 @@ def small_map(path: Path) -> str:
             v = v * n
         data[nm] = (list(axes), v)
     data["friction_torque"][1][0, 0, 0, 0, 0] = np.nan     # a failed grid point
+    # the optional fatigue damage rate [1/s] (speed-proportional at a load; 0, an infinite life, at one corner)
+    rate = n * 1e-11 * (1.0 + 1e-3 * grids[1] + 2e-4 * grids[3]) * (1.0 + 0.05 * rng.standard_normal(shape))
+    rate[0, 0, 0, 0, :] = 0.0
+    data[MAP_FATIGUE_RATE] = (list(axes), rate)
     ds = xr.Dataset(data, coords={k: np.array(v) for k, v in axes.items()})
     params = {"bearing": "7218B", "traction_model": "lubricated", "lubrication": "auto", "friction_coefficient": 0.1,
               "cage_friction_coefficient": 0.1, "lubricant": "generic-mineral-oil", "oil": "", "oil_fraction": 0.002,
@@ -412,10 +416,11 @@ def test_calls_in_wrong_state_return_error(built, host, tmp_path):
     assert r.returncode == 0, r.stderr
     st = [ln for ln in r.stdout.splitlines() if ln.startswith(("STATUS", "ROW"))]
     expect = ["STATUS instantiate 0", "ROW 3", "STATUS exit 3", "STATUS getstate 3", "STATUS setup 0",
-              "STATUS enter 0", "STATUS setup 3", "STATUS enter 3", "STATUS exit 0", "STATUS exit 3",
+              "STATUS enter 0", "STATUS setup 3", "STATUS enter 3", "STATUS exit 1", "STATUS exit 3",
               "STATUS set_real 3", "STATUS set_real 3", "STATUS get_real 3", "STATUS set_int 3", "STATUS terminate 0",
-              "ROW 3", "STATUS set_real 3", "STATUS reset 0", "STATUS setup 0", "STATUS enter 0", "STATUS exit 0",
+              "ROW 3", "STATUS set_real 3", "STATUS reset 0", "STATUS setup 0", "STATUS enter 0", "STATUS exit 1",
               "STATUS free 0"]
+    # (initialisation on the shipped map: Warning, 1, its warning that it has no fatigue_damage_rate)
     assert [s[:len(e)] for s, e in zip(st, expect)] == expect, r.stdout
     assert "not allowed" in r.stdout and "fixed parameter" in r.stdout and "unknown value reference" in r.stdout
 
