@@ -520,3 +520,49 @@ def test_directional_derivative_equals_bearing_fmu(built):
         assert np.allclose((Kc @ Jc[:5])[np.ix_(free, free)], np.eye(len(free)), atol=1e-8)
     J, _K = _jacobian(built["fmus"]["small"], {}, {"shaft_speed": 2000 * RPM, "Fx": 300.0, "Fz": 2000.0})
     assert J[0] is None
+
+
+def test_fatigue_damage_follows_the_fmu_state(built):
+    """The small map carries fatigue_damage_rate: the C FMU's fatigue_damage grows by rate x h per step, and
+    fmi2GetFMUstate / fmi2SetFMUstate and a serialised state bring it back (the damage is part of the state)."""
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+    fmu = str(built["fmus"]["small"])
+    md = read_model_description(fmu)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    unz = extract(fmu)
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unz, modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName="fat")
+    try:
+        s.instantiate()
+        s.setupExperiment(startTime=0.0)
+        s.enterInitializationMode()
+        s.setReal([vr["oil_temperature"], vr["shaft_speed"], vr["Fx"], vr["Fz"]], [323.15, 2000 * RPM, 700.0, 2600.0])
+        s.exitInitializationMode()
+        get = lambda: s.getReal([vr["life_L10r_h"], vr["fatigue_damage"]])  # noqa: E731
+        L0, d0 = get()
+        assert d0 == 0.0 and 0.0 < L0 < 1e12
+        t, h = 0.0, 0.01
+        for _ in range(5):
+            s.doStep(t, h)
+            t += h
+        L, d5 = get()
+        assert L == L0 and d5 == pytest.approx(5 * h / (3600.0 * L0), rel=1e-12)
+        st = s.getFMUstate()
+        ser = s.serializeFMUstate(st)
+        s.setReal([vr["shaft_speed"]], [4000 * RPM])
+        for _ in range(5):
+            s.doStep(t + 0.0, h)
+            t += h
+        assert get()[1] > 2 * d5
+        s.setFMUstate(st)
+        assert get()[1] == d5
+        st2 = s.deSerializeFMUstate(ser)
+        s.setFMUstate(st2)
+        assert get()[1] == d5
+        s.freeFMUstate(st)
+        s.freeFMUstate(st2)
+        s.terminate()
+    finally:
+        s.freeInstance()
+        shutil.rmtree(unz, ignore_errors=True)
