@@ -2,6 +2,7 @@
 Palmgren-Miner sum at a held state, over a duty cycle of two levels, through a rollback, the life at the dynamic
 level against bearing_core.models.life on the same per-ball state, finite values at standstill."""
 import math
+import os
 import sys
 from pathlib import Path
 
@@ -120,6 +121,8 @@ def test_dynamic_standstill_is_finite_and_adds_no_damage():
     assert np.all(np.isfinite(s.values))
 
 
+@pytest.mark.skipif(os.environ.get("BEARING_TEST_QS_CAGE") != "1", reason="solves with the quasi-static cage "
+                    "kernels: set BEARING_TEST_QS_CAGE=1 (they compile for ~2 CPU minutes)")
 def test_quasistatic_damage_is_time_over_held_life():
     s = CoSimSession(CoSimParameters(bearing="7218B", fidelity="quasi-static"))
     u = inputs(3000.0, 2000.0, 3000.0)
