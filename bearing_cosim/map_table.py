@@ -42,6 +42,11 @@ Format version 1 (every integer little-endian; f64 IEEE 754 little-endian; str =
       u32 n_par; per parameter: str name, i32 type (0 Real, 1 Integer, 2 Boolean, 3 String), i32 check
                 (0 the map's build value, 1 a value the level requires, 2 fidelity, 3 map_file, 4 oil temperature
                 axis range, 5 none, 6 the Enumeration item of a checked String), f64 start, str start, str repr of the required value, str detail, u32 n_alt, str alt[]
+      i32 i_rate                               the fatigue damage rate's index in the values (fidelity.MAP_FATIGUE_RATE,
+                                               speed-scaled; -1: the map has none, the fatigue outputs hold 0)
+      i32 i_life, i_damage                     the output indices of life_L10r_h and fatigue_damage
+      f64 life_cap [h]                         the life reported where it is infinite (cosim_spec.LIFE_CAP_H)
+      str fatigue_missing                      the warning of a map without the damage rate ('' if it has it)
       u32 end mark 0x454e4421 ("!DNE")
 """
 from __future__ import annotations
@@ -269,6 +274,11 @@ def build_table(map_path, guid: str = "") -> tuple[bytes, dict]:
         w.u32(len(alts))
         for a in alts:
             w.str(a)
+    # the fatigue outputs (SteadySession._life_into)
+    from bearing_core.session.cosim_spec import LIFE_CAP_H
+    w.i32(st._i_rate, st._i_life, st._i_damage)
+    w.f64(LIFE_CAP_H)
+    w.str(getattr(lv, "fatigue_missing", ""))
     w.u32(END_MARK)
     body = w.bytes()
     size = HEADER + len(body)

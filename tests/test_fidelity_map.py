@@ -11,7 +11,7 @@ import pytest
 
 from bearing_core.errors import BearingInputError
 from bearing_core.session.cosim import CoSimParameters, CoSimSession, StepRejected
-from bearing_core.session.fidelity import MAP_OUTPUTS, MAP_STIFFNESS, SPEED_SCALED, GROSS_SKID_SLIP
+from bearing_core.session.fidelity import MAP_FATIGUE_RATE, MAP_OUTPUTS, MAP_STIFFNESS, SPEED_SCALED, GROSS_SKID_SLIP
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -44,10 +44,18 @@ def field(name, n, fx, fz):
     return base * (1.0 + n / 5000.0)
 
 
-def synthetic_map(path, fz_linear=False):
+def rate_field(n, fx, fz):
+    """The fatigue damage rate [1/s] of the synthetic map: proportional to the speed n [rpm] at a load (as bearing
+    build-map writes it), multilinear per unit speed, so that the interpolation reproduces it exactly."""
+    return n * 1e-12 * (1.0 + fx / 1000.0 + 0.5 * fz / 1000.0)
+
+
+def synthetic_map(path, fz_linear=False, fatigue_rate=True):
     import xarray as xr
     n, fx, fz = np.meshgrid(*[np.array(v) for v in AXES.values()], indexing="ij")
     data = {nm: (list(AXES), np.asarray(field(nm, n, fx, fz), dtype=float) * np.ones(n.shape)) for nm in MAP_OUTPUTS}
+    if fatigue_rate:
+        data[MAP_FATIGUE_RATE] = (list(AXES), rate_field(n, fx, fz))
     for k, nm in enumerate(MAP_STIFFNESS):   # the stiffness variables (map_kernels.map_stiffness): distinct fields
         i, j = divmod(k, 5)
         scale = 1e8 if i == j else 1e7 * (1 + k % 3)
@@ -297,6 +305,11 @@ def test_build_map_on_dask_tiny_grid_resumes_from_cache(tmp_path):
     # the tribological level's outputs are those of its grid points at the corners
     s.initialize(0.0, inputs(3000, 800.0, 3000.0))
     assert s.outputs["friction_torque"] == pytest.approx(float(ds["friction_torque"].values[1, 1, 1]), rel=1e-12)
+    # the fatigue damage rate of every grid point (1 / (3600 L10r_h), speed-proportional at a load) gives the life
+    rate = ds["fatigue_damage_rate"].values
+    assert np.all(np.isfinite(rate)) and np.all(rate > 0.0)
+    assert s.outputs["life_L10r_h"] == pytest.approx(1.0 / (3600.0 * rate[1, 1, 1]), rel=1e-12)
+    assert 1e2 < s.outputs["life_L10r_h"] < 1e9
 
 
 def test_fmu_at_fidelity_map_through_fmpy(smap, tmp_path):

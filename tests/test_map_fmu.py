@@ -45,7 +45,7 @@ def wine_loader():
 # ---- a small map with other axes: fy_N and oil_temperature_C (no rotation), a failed grid point, flags ---------
 def small_map(path: Path) -> str:
     import xarray as xr
-    from bearing_core.session.fidelity import MAP_OUTPUTS, SPEED_SCALED
+    from bearing_core.session.fidelity import MAP_FATIGUE_RATE, MAP_OUTPUTS, SPEED_SCALED
     axes = {"speed_rpm": [800.0, 1500.0, 3000.0, 4200.0], "fx_N": [0.0, 600.0, 1500.0], "fy_N": [-500.0, 500.0],
             "fz_N": [1200.0, 2500.0, 4000.0], "oil_temperature_C": [30.0, 60.0]}
     rng = np.random.default_rng(11)
@@ -71,6 +71,10 @@ def small_map(path: Path) -> str:
             v = v * n
         data[nm] = (list(axes), v)
     data["friction_torque"][1][0, 0, 0, 0, 0] = np.nan     # a failed grid point
+    # the optional fatigue damage rate [1/s] (speed-proportional at a load; 0, an infinite life, at one corner)
+    rate = n * 1e-11 * (1.0 + 1e-3 * grids[1] + 2e-4 * grids[3]) * (1.0 + 0.05 * rng.standard_normal(shape))
+    rate[0, 0, 0, 0, :] = 0.0
+    data[MAP_FATIGUE_RATE] = (list(axes), rate)
     ds = xr.Dataset(data, coords={k: np.array(v) for k, v in axes.items()})
     params = {"bearing": "7218B", "traction_model": "lubricated", "lubrication": "auto", "friction_coefficient": 0.1,
               "cage_friction_coefficient": 0.1, "lubricant": "generic-mineral-oil", "oil": "", "oil_fraction": 0.002,
@@ -412,10 +416,11 @@ def test_calls_in_wrong_state_return_error(built, host, tmp_path):
     assert r.returncode == 0, r.stderr
     st = [ln for ln in r.stdout.splitlines() if ln.startswith(("STATUS", "ROW"))]
     expect = ["STATUS instantiate 0", "ROW 3", "STATUS exit 3", "STATUS getstate 3", "STATUS setup 0",
-              "STATUS enter 0", "STATUS setup 3", "STATUS enter 3", "STATUS exit 0", "STATUS exit 3",
+              "STATUS enter 0", "STATUS setup 3", "STATUS enter 3", "STATUS exit 1", "STATUS exit 3",
               "STATUS set_real 3", "STATUS set_real 3", "STATUS get_real 3", "STATUS set_int 3", "STATUS terminate 0",
-              "ROW 3", "STATUS set_real 3", "STATUS reset 0", "STATUS setup 0", "STATUS enter 0", "STATUS exit 0",
+              "ROW 3", "STATUS set_real 3", "STATUS reset 0", "STATUS setup 0", "STATUS enter 0", "STATUS exit 1",
               "STATUS free 0"]
+    # (initialisation on the shipped map: Warning, 1, its warning that it has no fatigue_damage_rate)
     assert [s[:len(e)] for s, e in zip(st, expect)] == expect, r.stdout
     assert "not allowed" in r.stdout and "fixed parameter" in r.stdout and "unknown value reference" in r.stdout
 
@@ -515,3 +520,49 @@ def test_directional_derivative_equals_bearing_fmu(built):
         assert np.allclose((Kc @ Jc[:5])[np.ix_(free, free)], np.eye(len(free)), atol=1e-8)
     J, _K = _jacobian(built["fmus"]["small"], {}, {"shaft_speed": 2000 * RPM, "Fx": 300.0, "Fz": 2000.0})
     assert J[0] is None
+
+
+def test_fatigue_damage_follows_the_fmu_state(built):
+    """The small map carries fatigue_damage_rate: the C FMU's fatigue_damage grows by rate x h per step, and
+    fmi2GetFMUstate / fmi2SetFMUstate and a serialised state bring it back (the damage is part of the state)."""
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+    fmu = str(built["fmus"]["small"])
+    md = read_model_description(fmu)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    unz = extract(fmu)
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unz, modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName="fat")
+    try:
+        s.instantiate()
+        s.setupExperiment(startTime=0.0)
+        s.enterInitializationMode()
+        s.setReal([vr["oil_temperature"], vr["shaft_speed"], vr["Fx"], vr["Fz"]], [323.15, 2000 * RPM, 700.0, 2600.0])
+        s.exitInitializationMode()
+        get = lambda: s.getReal([vr["life_L10r_h"], vr["fatigue_damage"]])  # noqa: E731
+        L0, d0 = get()
+        assert d0 == 0.0 and 0.0 < L0 < 1e12
+        t, h = 0.0, 0.01
+        for _ in range(5):
+            s.doStep(t, h)
+            t += h
+        L, d5 = get()
+        assert L == L0 and d5 == pytest.approx(5 * h / (3600.0 * L0), rel=1e-12)
+        st = s.getFMUstate()
+        ser = s.serializeFMUstate(st)
+        s.setReal([vr["shaft_speed"]], [4000 * RPM])
+        for _ in range(5):
+            s.doStep(t + 0.0, h)
+            t += h
+        assert get()[1] > 2 * d5
+        s.setFMUstate(st)
+        assert get()[1] == d5
+        st2 = s.deSerializeFMUstate(ser)
+        s.setFMUstate(st2)
+        assert get()[1] == d5
+        s.freeFMUstate(st)
+        s.freeFMUstate(st2)
+        s.terminate()
+    finally:
+        s.freeInstance()
+        shutil.rmtree(unz, ignore_errors=True)

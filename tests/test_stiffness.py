@@ -45,9 +45,10 @@ def _rel(A, K):
 
 
 def test_spec_names_units():
-    from bearing_core.session.cosim_spec import OUTPUT_NAMES, OUTPUT_SPEC, STIFFNESS_NAMES
+    from bearing_core.session.cosim_spec import LIFE_NAMES, OUTPUT_NAMES, OUTPUT_SPEC, STIFFNESS_NAMES
     assert STIFFNESS_NAMES[0] == "stiffness[1,1]" and STIFFNESS_NAMES[-1] == "stiffness[5,5]"
-    assert OUTPUT_NAMES[-25:] == STIFFNESS_NAMES          # appended at the end
+    # appended at the end, followed only by the fatigue outputs appended after them
+    assert OUTPUT_NAMES[-27:-2] == STIFFNESS_NAMES and OUTPUT_NAMES[-2:] == LIFE_NAMES
     units = {n: u for n, u, _ in OUTPUT_SPEC}
     assert units["stiffness[1,1]"] == "N/m" and units["stiffness[2,4]"] == "N/rad"
     assert units["stiffness[4,3]"] == "N.m/m" and units["stiffness[5,5]"] == "N.m/rad"

@@ -12,7 +12,8 @@ Steady levels (``level``):
 
 The map's variables are bearing_core.session.fidelity.MAP_OUTPUTS (what the session reads) plus the 5 x 5
 quasi-static stiffness of the Jones-Harris model at the point (stiffness_<row><col>, rows and columns x, y, z,
-tx, ty: [N/m, N/rad, N m/m, N m/rad]) and skid_class (+1 skidding, 0 pure rolling, -1 over-skidding at the
+tx, ty: [N/m, N/rad, N m/m, N m/rad]), the fatigue damage rate fatigue_damage_rate [1/s] = 1 / (3600 L10r_h) of
+the ISO/TS 16281 reference rating life at the point's steady state (fatigue_damage_rate()) and skid_class (+1 skidding, 0 pure rolling, -1 over-skidding at the
 session's 1 % tolerance).
 """
 from __future__ import annotations
@@ -24,7 +25,7 @@ import math
 import numpy as np
 
 from ..errors import BearingInputError
-from ..session.fidelity import MAP_AXES, MAP_OUTPUTS, REQUIRED_AXES
+from ..session.fidelity import MAP_AXES, MAP_FATIGUE_RATE, MAP_OUTPUTS, REQUIRED_AXES
 from . import sweep as S
 
 LEVELS = ("dynamic", "tribological")
@@ -90,9 +91,25 @@ def steady_outputs(m, mean, point, cage_sd=0.0, steady=True, tau=0.0) -> dict:
     for i, a in enumerate(STIFF_AXES):
         for j, b in enumerate(STIFF_AXES):
             out[f"stiffness_{a}{b}"] = float(k5[i, j])
+    out[MAP_FATIGUE_RATE] = fatigue_damage_rate(m, point["speed_rpm"])
     missing = [k for k in MAP_OUTPUTS if k not in out]
     assert not missing, missing
     return out
+
+
+def fatigue_damage_rate(m, speed_rpm: float) -> float:
+    """The map's fatigue variable [1/s] (fidelity.MAP_FATIGUE_RATE): 1 / (3600 L10r_h) with L10r_h [h] the
+    ISO/TS 16281 reference rating life of the model m's per-ball contact loads and operating contact angles at its
+    current state (the end of the steady window; models.life.rating_life_hours_details_nb, inner ring rotating at
+    speed_rpm [rpm], the same function as the session's output life_L10r_h). 0 where the life is infinite (no
+    loaded ball); NaN where the state cannot be evaluated (as the stiffness: the rest of the point stands)."""
+    from ..models import life as LF
+    try:
+        _, bd = m.evaluate_point()
+        L = LF.rating_life_hours_details_nb(bd, LF.life_parameters(m.g, "inner"), float(speed_rpm))
+    except Exception:
+        return float("nan")
+    return 1.0 / (3600.0 * L) if L < math.inf else 0.0
 
 
 class _MapRun(S._WindowRun):
@@ -251,7 +268,7 @@ def build_map(grid: dict, base: dict | None = None, level: str = "dynamic", opti
     dims = list(grid)
     shape = tuple(len(grid[d]) for d in dims)
     data = {}
-    for name in MAP_OUTPUTS + STIFFNESS_NAMES + ("skid_class",):
+    for name in MAP_OUTPUTS + STIFFNESS_NAMES + (MAP_FATIGUE_RATE, "skid_class"):
         col = df[name].to_numpy(dtype=float) if name in df.columns else np.full(len(df), np.nan)
         col = np.where(df["status"].to_numpy() == "ok", col, np.nan)
         data[name] = (dims, col.reshape(shape))
@@ -271,6 +288,8 @@ def build_map(grid: dict, base: dict | None = None, level: str = "dynamic", opti
                                "my_Nm [N m], oil_temperature_C [degC]")
     for name in MAP_OUTPUTS:
         ds[name].attrs["description"] = "steady value (window mean of the last window)"
+    ds[MAP_FATIGUE_RATE].attrs.update(units="1/s", description="Palmgren-Miner damage rate 1 / (3600 L10r_h), "
+                                      "ISO/TS 16281 reference rating life at the end of the steady window")
     return ds, df
 
 

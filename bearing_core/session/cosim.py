@@ -29,9 +29,10 @@ from ..models.dynamics import DynamicModel, DynamicsOptions
 from ..errors import BearingInputError, ConvergenceError, check_range
 from ..bearing.geometry import load_preset
 from ..models import dynamics_kernels as K
+from ..models import life as LF
 from .cosim_spec import INPUT_NAMES, INPUT_UNITS, OUTPUT_NAMES, OUTPUT_SPEC  # noqa: F401 (re-export)
 from .cosim_spec import INT_OUTPUT_NAMES, INT_OUTPUT_SPEC  # noqa: F401 (re-export)
-from .cosim_spec import P_LIMIT, STEP_AVERAGED_NAMES, parse_inputs
+from .cosim_spec import LIFE_CAP_H, P_LIMIT, STEP_AVERAGED_NAMES, parse_inputs
 from . import session_kernels as SK
 from ..models.skid import SKID_MIN_SPEED, SKID_OVERSKIDDING, SKID_PURE_ROLLING, SKID_SKIDDING, SKID_TOL
 from .output_map import (ALL_OUTPUT_NAMES, CSR_MIN_SPEED, HEAT_CHANNELS, OUTPUT_INDEX,  # noqa: F401 E402
@@ -39,6 +40,10 @@ from .output_map import (ALL_OUTPUT_NAMES, CSR_MIN_SPEED, HEAT_CHANNELS, OUTPUT_
 assert (SKID_SKIDDING, SKID_PURE_ROLLING, SKID_OVERSKIDDING) == (1, 0, -1)   # the codes assemble_outputs writes
 _I_RUNAWAY = OUTPUT_INDEX["thermal_runaway"]
 _I_PMAX = OUTPUT_INDEX["max_contact_pressure"]
+_I_LIFE = OUTPUT_INDEX["life_L10r_h"]
+_I_DAMAGE = OUTPUT_INDEX["fatigue_damage"]
+_CH_SHAFT = K.OUT_INDEX["shaft_speed"]
+_CH_OUTER = K.OUT_INDEX["outer_ring_speed"]
 _INT_SLICE = slice(len(OUTPUT_NAMES), len(ALL_OUTPUT_NAMES))
 
 
@@ -157,6 +162,7 @@ class CoSimSession:
         self._in_key = None         # (inputs as given, model geometry) of the last validated inputs
         self._in_u = None           # ... and their validated values
         self._applied = None        # the validated inputs the model holds (None: apply at the next step)
+        self._life_par = None       # (geometry, models.life.life_parameters of it) for the fatigue outputs
 
     @property
     def outputs(self) -> Outputs:
@@ -491,7 +497,24 @@ class CoSimSession:
         if not ok:
             bad = [n for n, v in zip(ALL_OUTPUT_NAMES, self._new) if not math.isfinite(v)]
             raise StepRejected(f"non-finite outputs {bad} (solver failure)")
+        self._life_outputs(bd, diag, h)
         np.copyto(self.values, self._new)
+
+    def _life_outputs(self, bd, diag, h):
+        """life_L10r_h and fatigue_damage into self._new at the end of a step of h [s] (0: initialisation, the
+        damage starts at 0): the ISO/TS 16281 reference rating life of the per-ball contact loads and operating
+        angles bd at this instant (models.life.rating_life_hours_details_nb, inner ring rotating, at the relative
+        ring speed), and the damage of the step with the life at its end, D += h / L10r_h
+        (models.life.damage_increment_nb). An infinite life (no loaded ball, standstill) is reported as
+        LIFE_CAP_H and adds no damage. Once per communication point, never inside the integration."""
+        g = self.model.g
+        lp = self._life_par
+        if lp is None or lp[0] is not g:
+            lp = self._life_par = (g, LF.life_parameters(g, "inner"))
+        rpm = (diag[_CH_SHAFT] - diag[_CH_OUTER]) * (30.0 / math.pi)
+        L = LF.rating_life_hours_details_nb(bd, lp[1], rpm)
+        self._new[_I_LIFE] = L if L < LIFE_CAP_H else LIFE_CAP_H
+        self._new[_I_DAMAGE] = (self.values[_I_DAMAGE] + LF.damage_increment_nb(h, L)) if h > 0.0 else 0.0
 
     def _check_limits(self):
         p = float(self.values[_I_PMAX])

@@ -105,6 +105,20 @@ OUTPUT_SPEC += tuple(
     (STIFFNESS_NAMES[5 * i + j], f"{ru}/{cu}",
      f"bearing stiffness d({rn} load on the inner ring)/d({cn}) = -d(reaction_{rn})/d({cn}) ({STIFFNESS_DESC})")
     for i, (rn, ru) in enumerate(STIFFNESS_ROWS) for j, (cn, cu) in enumerate(STIFFNESS_COLS))
+# Fatigue (bearing_core.models.life; docs/life.md "In a co-simulation"): the ISO/TS 16281 reference rating life at
+# the current state (per-ball contact loads and operating contact angles, inner ring rotating) and the Palmgren-Miner
+# damage of the run, sum over the communication steps of h / L10r_h (0 at the start; part of the session's state).
+LIFE_CAP_H = 1.0e12
+"""h: the life reported where it is infinite (no loaded ball, standstill); such a step adds no damage."""
+LIFE_NAMES = ("life_L10r_h", "fatigue_damage")
+OUTPUT_SPEC += (
+    ("life_L10r_h", "h", "ISO/TS 16281 reference rating life L10r at the current state (per-ball contact loads and "
+                         "operating contact angles, inner ring rotating; infinite life, no loaded ball or standstill, "
+                         f"reported as {LIFE_CAP_H:g} h; fidelity map: 0 where the map has no "
+                         "fatigue_damage_rate, unknown)"),
+    ("fatigue_damage", "1", "Palmgren-Miner damage of the run: sum over the communication steps of h / L10r (0 at the "
+                            "start; part of the FMU state)"),
+)
 OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUT_SPEC)
 
 # Integer outputs (FMI Integer variables)

@@ -50,7 +50,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import BearingInputError
-from .cosim_spec import INPUT_NAMES, INT_OUTPUT_NAMES, OUTPUT_NAMES, P_LIMIT, parse_inputs
+from .cosim_spec import INPUT_NAMES, INT_OUTPUT_NAMES, LIFE_CAP_H, OUTPUT_NAMES, P_LIMIT, parse_inputs
 # map_kernels (numba) is imported where a level is built, so that the names here (FIDELITIES) load without numba
 # (the FMU's slave class reads them when it is constructed)
 
@@ -63,17 +63,24 @@ MAP_AXES = {"speed_rpm": "shaft_speed", "fx_N": "Fx", "fz_N": "Fz", "fy_N": "Fy"
 """Grid axes a map may have (map name: the session input or parameter it is read at); speed_rpm, fx_N and fz_N
 are required; axes in the file's order."""
 REQUIRED_AXES = ("speed_rpm", "fx_N", "fz_N")
+MAP_FATIGUE_RATE = "fatigue_damage_rate"
+"""The map's optional fatigue variable [1/s]: 1 / (3600 L10r_h) of the grid point's steady state (ISO/TS 16281
+reference rating life, bearing_core.models.life; 0 where the life is infinite), the Palmgren-Miner damage per second
+of running there. At fixed loads it is proportional to the shaft speed (L10r_h = L10r [10^6 rev] 10^6 / (60 n)),
+so it is interpolated per unit speed (SPEED_SCALED). A map without it runs with the fatigue outputs 0."""
 SPEED_SCALED = ("cage_speed", "cage_speed_eq26", "cage_speed_pure_rolling_outer", "cage_speed_pure_rolling_inner",
                 "drive_power", "heat_flux_total", "heat_flux_race_inner", "heat_flux_race_outer", "heat_flux_pocket",
                 "heat_flux_land", "heat_flux_drag", "heat_flux_damping", "heat_flux_churn_cage",
-                "heat_flux_churn_ring", "heat_flux_race_slide", "heat_flux_race_spin", "heat_flux_race_diffslip")
-"""Map outputs interpolated per unit speed (value / speed_rpm): speeds and powers, nearly proportional to the
-shaft speed at a load (power = torque x speed), so that the interpolation error comes only from the slowly
+                "heat_flux_churn_ring", "heat_flux_race_slide", "heat_flux_race_spin", "heat_flux_race_diffslip",
+                MAP_FATIGUE_RATE)
+"""Map outputs interpolated per unit speed (value / speed_rpm): speeds, powers and the fatigue damage rate, nearly
+proportional to the shaft speed at a load (power = torque x speed; damage rate = revolutions per second / L10r),
+so that the interpolation error comes only from the slowly
 varying ratio."""
 MAP_OUTPUTS = ("reaction_Fx", "reaction_Fy", "reaction_Fz", "reaction_Mx", "reaction_My", "friction_torque",
                "friction_torque_outer", "ir_x", "ir_y", "ir_z", "ir_tx", "ir_ty", "max_contact_pressure",
                "alpha_i_mean", "alpha_o_mean", "Q_i_max", "Q_o_max", "film_min_inner", "film_min_outer",
-               "film_parameter_min") + SPEED_SCALED + ("cage_time_constant", "cage_speed_cv", "steady")
+               "film_parameter_min") + SPEED_SCALED[:-1] + ("cage_time_constant", "cage_speed_cv", "steady")
 """Variables a map holds (besides its axes): the session outputs of the steady state at each grid point (window
 means of the dynamic model), 'cage_speed_eq26' the seed 000 Eq. 26 cage speed [rad/s], 'cage_time_constant' [s]
 the relaxation time of the cage speed, 'cage_speed_cv' the cage speed's standard deviation over the last window
@@ -172,17 +179,23 @@ class MapLevel:
             if v.size > 1 and not np.all(np.diff(v) > 0):
                 raise BearingInputError("map_file", path, "increasing axis values", f"axis {a}: {v.tolist()}")
         self._check_parameters(params)
-        self.names = MAP_OUTPUTS
+        # the optional fatigue variable (MAP_FATIGUE_RATE) is read after the required ones; without it the fatigue
+        # outputs hold 0 (SteadySession._life_into) and fatigue_missing says so
+        has_rate = MAP_FATIGUE_RATE in m["vars"]
+        self.names = MAP_OUTPUTS + ((MAP_FATIGUE_RATE,) if has_rate else ())
+        self.fatigue_missing = "" if has_rate else (
+            f"the operating map {m['path']} has no {MAP_FATIGUE_RATE} variable: the outputs life_L10r_h and "
+            "fatigue_damage hold 0 (life unknown); rebuild the map with bearing build-map, which writes it")
         shape = tuple(v.size for v in self.axes)
         npts = int(np.prod(shape))
-        vals = np.empty((npts, len(MAP_OUTPUTS)))
-        for k, nm in enumerate(MAP_OUTPUTS):
+        vals = np.empty((npts, len(self.names)))
+        for k, nm in enumerate(self.names):
             v = np.asarray(m["vars"][nm], dtype=float).reshape(shape)
             if nm in SPEED_SCALED:    # per unit speed [per rpm]
                 v = v / self.axes[0].reshape((-1,) + (1,) * (len(shape) - 1))
             vals[:, k] = v.ravel()
         self.values = np.ascontiguousarray(vals)
-        self.speed_scaled = np.array([1 if nm in SPEED_SCALED else 0 for nm in MAP_OUTPUTS], dtype=np.int64)
+        self.speed_scaled = np.array([1 if nm in SPEED_SCALED else 0 for nm in self.names], dtype=np.int64)
         # validity flags of the grid points
         cage = m["vars"]["cage_speed"].ravel()
         pure = m["vars"]["cage_speed_pure_rolling_outer"].ravel()
@@ -234,7 +247,7 @@ class MapLevel:
         from . import map_kernels as MK
         self._interp = MK.interp_multilinear
         self._interp(self.axes_flat, self.ptr, self.strides, self.values, self.speed_scaled, self.flags,
-                     np.array([v[0] for v in self.axes]), self._idx, self._w, np.zeros(len(MAP_OUTPUTS)))
+                     np.array([v[0] for v in self.axes]), self._idx, self._w, np.zeros(len(self.names)))
         # the same query as arrays, for the one-call step (map_kernels.map_step)
         ix = {n: i for i, n in enumerate(INPUT_NAMES)}
         zero_in = [ix[name] for name, axis in (("Fy", "fy_N"), ("Mx", None), ("My", "my_Nm"))
@@ -491,6 +504,8 @@ class QuasiStaticLevel:
         self._i_eq26 = K.OUT_INDEX["pure_rolling_cage_speed"]
         self._full = np.zeros(len(ALL_OUTPUT_NAMES))
         self._ss0 = np.zeros(len(self.names))     # the steady values at the last solution
+        self._i_life = ix["life_L10r_h"]
+        self._life_par = None                      # models.life.life_parameters of the geometry
         self._out0 = None                          # the solver's outputs there
         self._w0 = 0.0
         self.inertia = 0.0                         # 2 KE / wc^2 of the last solution [kg m^2]
@@ -617,6 +632,14 @@ class QuasiStaticLevel:
             raise ConvergenceError(f"quasi-static level: non-finite outputs at {self.point_text(res.inputs())}")
         self._ss0[:-2] = self._full[self._i_all]
         self._ss0[-2] = res.diag[self._i_eq26]
+        # the fatigue life of the solution (models.life, per-ball loads and operating angles, inner ring rotating),
+        # held between re-solves like the other outputs the solver does not differentiate (SteadySession._life_into)
+        from ..models import life as LF
+        from .cosim_spec import LIFE_CAP_H
+        if self._life_par is None:
+            self._life_par = LF.life_parameters(self.geometry, "inner")
+        L = LF.rating_life_hours_details_nb(res.bd, self._life_par, res.omega * 30.0 / math.pi)
+        self._ss0[self._i_life] = L if L < LIFE_CAP_H else LIFE_CAP_H
         self._out0 = res.outputs.copy()
         self._w0 = res.omega
         from ..models import dynamics_kernels as K
@@ -749,6 +772,40 @@ class SteadySession:
             self.warnings.append(level.stiffness_missing)
         self._i_speed = INPUT_NAMES.index("shaft_speed")
         self._res = np.zeros(2)
+        # the fatigue outputs (_life_into): from the level's damage rate (MapLevel with MAP_FATIGUE_RATE), or its held
+        # life (QuasiStaticLevel: life_L10r_h of its last solution), else they hold 0
+        self._i_life, self._i_damage = OUTPUT_INDEX["life_L10r_h"], OUTPUT_INDEX["fatigue_damage"]
+        self._i_rate = names.index(MAP_FATIGUE_RATE) if MAP_FATIGUE_RATE in names else -1
+        self._map_fatigue = MK.map_fatigue
+        self._i_life_ss = names.index("life_L10r_h") if "life_L10r_h" in names else -1
+        if getattr(level, "fatigue_missing", ""):
+            self.warnings.append(level.fatigue_missing)
+
+    def _life_into(self, h: float):
+        """life_L10r_h [h] and fatigue_damage [-] into self._new at the end of a step of h [s] (h = 0: the start,
+        damage 0), the damage of the run so far in self.values. Inputs held over the step, so the life is that of
+        the step's steady state.
+        Map with MAP_FATIGUE_RATE (the interpolated damage rate r [1/s] in the steady values;
+        map_kernels.map_fatigue):
+            life_L10r_h = min(1 / (3600 r), LIFE_CAP_H) if r > 0 else LIFE_CAP_H
+            fatigue_damage = fatigue_damage + r h        if r > 0 (else unchanged)
+        Quasi-static level (its last solution's life L [h], capped at LIFE_CAP_H, held between re-solves):
+            fatigue_damage = fatigue_damage + h / (3600 L)  if L < LIFE_CAP_H (else unchanged)
+        A map without the rate: both hold 0 (life unknown)."""
+        new = self._new
+        d = self.values[self._i_damage] if h > 0.0 else 0.0
+        if self._i_rate >= 0:
+            self._map_fatigue(self._ss, self._i_rate, d, h, LIFE_CAP_H, self._i_life, self._i_damage, new)
+            return
+        if self._i_life_ss >= 0:
+            L = self._ss[self._i_life_ss]
+            new[self._i_life] = L
+            if L < LIFE_CAP_H:
+                d = d + h / (3600.0 * L)
+        else:
+            new[self._i_life] = 0.0
+            d = 0.0
+        new[self._i_damage] = d
 
     def _validated(self, inputs: dict):
         """(x, cos, sin, shaft speed) of the inputs; checked again only when they changed (a NaN never compares
@@ -783,6 +840,7 @@ class SteadySession:
         self.w_prev = float(u[self._i_speed])
         if self._i_oil >= 0:
             self._new[self._i_oil] = self._oil
+        self._life_into(h)
         self.wc = float(self._res[0])
         np.copyto(self.values, self._new)
         return True
@@ -806,6 +864,7 @@ class SteadySession:
         self._note_flags(fl, x, h)
         if self._i_oil >= 0:
             self._new[self._i_oil] = self._oil
+        self._life_into(h)
         return wc
 
     def _note_flags(self, fl: int, x, h: float):

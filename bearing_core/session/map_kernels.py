@@ -399,3 +399,28 @@ def map_step_stiffness(u, i_speed, i_fx, i_fy, i_oring, zero_in, rotate, rpm, qk
     if not map_stiffness(strides, kvals, idx, w, cs, sn, kbuf, i_k, out):
         return 1
     return 0
+
+
+# ---- the map level's fatigue outputs: an addition of its own (map_step and steady_level_outputs unchanged) ----
+
+@_exact
+def map_fatigue(ss, i_rate, damage0, h, life_cap, i_life, i_damage, out):
+    """The map level's fatigue outputs into out[i_life] (life_L10r_h [h]) and out[i_damage] (fatigue_damage [-]),
+    after the interpolation that left the steady values ss (interp_multilinear, map_step):
+
+    r = ss[i_rate] [1/s], the map's fatigue_damage_rate (fidelity.MAP_FATIGUE_RATE: 1 / (3600 L10r_h) at each grid
+    point, the ISO/TS 16281 reference rating life of its steady state; interpolated per unit speed and multiplied
+    back by the speed, as the other speed-scaled values), held over the step h [s] like the inputs;
+        life_L10r_h    = min(1 / (3600 r), life_cap)   if r > 0, else life_cap (an infinite life)
+        fatigue_damage = damage0 + r h                  if r > 0, else damage0
+    damage0 [-]: the damage of the run before the step (0 at the start, h = 0). Palmgren-Miner: the step's damage is
+    its time over the life in seconds, h / (3600 L10r_h) = r h."""
+    r = ss[i_rate]
+    d = damage0
+    if r > 0.0:
+        L = 1.0 / (3600.0 * r)
+        out[i_life] = L if L < life_cap else life_cap
+        d = d + r * h
+    else:
+        out[i_life] = life_cap
+    out[i_damage] = d

@@ -7,7 +7,7 @@ import numpy as np
 
 from ..models import dynamics_kernels as K
 from ..models.skid import SKID_MIN_SPEED, SKID_TOL
-from .cosim_spec import INT_OUTPUT_NAMES, OUTPUT_NAMES, STEP_AVERAGED_NAMES
+from .cosim_spec import INT_OUTPUT_NAMES, LIFE_NAMES, OUTPUT_NAMES, STEP_AVERAGED_NAMES
 from . import session_kernels as SK
 
 HEAT_CHANNELS = {"race_inner": "P_race_inner", "race_outer": "P_race_outer", "pocket": "P_pocket",
@@ -50,6 +50,8 @@ def _output_map():
         src[name] = [n + K.OUT_INDEX[c] for c in chans]
     for k, name in enumerate(SK.EXTRA_NAMES):
         src[name] = [2 * n + k]
+    for name in LIFE_NAMES:       # no source here (0): the session writes them after this kernel (CoSimSession)
+        src[name] = []
     missing = set(ALL_OUTPUT_NAMES) - set(src)
     assert not missing, f"outputs without a source: {sorted(missing)}"
     ptr = np.zeros(len(ALL_OUTPUT_NAMES) + 1, dtype=np.int64)

@@ -27,7 +27,7 @@ _UNITS = {
     "W": dict(kg=1, m=2, s=-3), "Pa": dict(kg=1, m=-1, s=-2), "N/m": dict(kg=1, s=-2), "Pa.s": dict(kg=1, m=-1, s=-1),
     "K": dict(K=1), "m3/s": dict(m=3, s=-1),
     "N/rad": dict(kg=1, m=1, s=-2, rad=-1), "N.m/m": dict(kg=1, m=1, s=-2), "N.m/rad": dict(kg=1, m=2, s=-2, rad=-1),
-    "1": dict(),
+    "1": dict(), "h": dict(s=1, factor=3600),
 }
 # Modelica unit syntax (FMI 2.0 section 2.2.2) for unit strings written otherwise in the tables
 _MODELICA_UNIT = {"m^3/s": "m3/s", "m^3": "m3", "m/s^2": "m/s2"}

@@ -72,6 +72,11 @@ typedef struct {
     int has_k, i_k;     /* the map holds the stiffness; the output index of stiffness[1,1] */
     double *kvals;      /* n_points x 25: K = d(load)/d(pose) at each grid point, row-major */
     char *stiffness_missing;
+    /* the fatigue outputs (SteadySession._life_into): the damage rate's index in the values (-1: the map has none,
+       life_L10r_h and fatigue_damage hold 0), their output indices, the life reported for an infinite one [h] */
+    int i_rate, i_life, i_damage;
+    double life_cap;
+    char *fatigue_missing;
     int o_reac[5], o_ir[5], i_load[5]; /* reaction_Fx..My, ir_x..ir_ty, inputs Fx..My (directional derivative) */
     int i_speed, i_fx, i_fy, i_oring, rotate, n_zero;
     int zero_in[MAX_IN];
@@ -213,7 +218,7 @@ void model_delete(void *mp) {
     if (!m) return;
     free_strs(m->in_names, m->n_in);
     free(m->flag_text[0]), free(m->flag_text[1]);
-    free(m->kvals), free(m->stiffness_missing);
+    free(m->kvals), free(m->stiffness_missing), free(m->fatigue_missing);
     free(m->guid), free(m->level), free(m->bearing), free(m->map_name), free(m->provenance), free(m->path);
     for (int d = 0; d < MAX_AXES; d++) free(m->ax[d].name);
     free(m->axes);
@@ -406,6 +411,15 @@ static int parse_table(Model *m, Rd *r) {
         if (!r->err[0] && p->check == CHECK_OIL_AXIS && (m->i_axis_oil < 0 || p->type != VT_REAL))
             bad(r, "an oil temperature axis", "parameter check", p->check);
     }
+    m->i_rate = rd_i32(r, "i_rate");
+    m->i_life = rd_i32(r, "i_life");
+    m->i_damage = rd_i32(r, "i_damage");
+    m->life_cap = rd_f64(r, "life_cap");
+    m->fatigue_missing = rd_str(r, "fatigue warning");
+    RANGE(m->i_rate, -1, m->n_vals - 1, "i_rate");
+    RANGE(m->i_life, 0, m->n_out_real - 1, "i_life");
+    RANGE(m->i_damage, 0, m->n_out_real - 1, "i_damage");
+    if (!r->err[0] && !(isfinite(m->life_cap) && m->life_cap > 0.0)) bad(r, "finite, > 0", "life_cap", 0);
     unsigned end = rd_u32(r, "end mark");
     if (!r->err[0] && end != END_MARK) bad(r, "the end mark", "end mark", end);
     if (!r->err[0] && r->off != r->n) bad(r, "the end of the file", "trailing bytes", (long long)(r->n - r->off));
@@ -952,6 +966,31 @@ static int note_flags(Instance *c, Model *m, int fl, const double *x, double h) 
     return warned;
 }
 
+/* map_kernels.map_fatigue (SteadySession._life_into, map level): life_L10r_h [h] and fatigue_damage [-] into
+   new_out at the end of a step of h [s] (h = 0: the start, damage 0), the damage so far in out (the model's
+   state). With the interpolated damage
+   rate r = ss[i_rate] [1/s] (the map's fatigue_damage_rate, per unit speed times the speed):
+       life_L10r_h = min(1 / (3600 r), life_cap) if r > 0 else life_cap
+       fatigue_damage = fatigue_damage + r h      if r > 0 (else unchanged)
+   A map without the rate (i_rate -1): both 0 (life unknown). */
+static void life_into(Model *m, double h) {
+    double d = h > 0.0 ? m->out[m->i_damage] : 0.0;
+    if (m->i_rate >= 0) {
+        double r = m->ss[m->i_rate];
+        if (r > 0.0) {
+            double L = 1.0 / (3600.0 * r);
+            m->new_out[m->i_life] = L < m->life_cap ? L : m->life_cap;
+            d = d + r * h;
+        } else {
+            m->new_out[m->i_life] = m->life_cap;
+        }
+    } else {
+        m->new_out[m->i_life] = 0.0;
+        d = 0.0;
+    }
+    m->new_out[m->i_damage] = d;
+}
+
 /* SteadySession._evaluate: the outputs at the inputs into new_out; the cage speed, or NaN with the message */
 static double evaluate(Instance *c, Model *m, double h, int *warned, char *err, size_t n) {
     double cs, sn;
@@ -987,6 +1026,7 @@ static double evaluate(Instance *c, Model *m, double h, int *warned, char *err, 
     }
     *warned = note_flags(c, m, fl, x, h);
     if (m->i_oil >= 0) m->new_out[m->i_oil] = m->oil_fraction;
+    life_into(m, h);
     return wc;
 }
 
@@ -1010,6 +1050,10 @@ int model_initialize(Instance *c, void *mp, double t0, char *err, size_t n) {
     if (!isfinite(wc)) return fmi2Error;
     if (m->stiffness_missing[0]) {
         fmu_log(c, fmi2Warning, "%s", m->stiffness_missing);
+        warned = 1;
+    }
+    if (m->fatigue_missing[0]) {
+        fmu_log(c, fmi2Warning, "%s", m->fatigue_missing);
         warned = 1;
     }
     if (m->pending[0]) fmu_log(c, fmi2Warning, "%s", m->pending);
@@ -1048,7 +1092,8 @@ int model_step(Instance *c, void *mp, double t, double h, char *err, size_t n) {
     return warned ? fmi2Warning : fmi2OK;
 }
 
-/* ---- FMU state: version, counts, t, wc, w_prev, flags, inputs, outputs, parameters (little-endian) ---------- */
+/* ---- FMU state: version, counts, t, wc, w_prev, flags, inputs, outputs, parameters (little-endian) ----------
+   The outputs include fatigue_damage, the Palmgren-Miner sum of the run (life_into adds to it): the state carries it. */
 size_t model_state_size(void *mp) {
     Model *m = (Model *)mp;
     return 16 + 24 + 4 + 8 * (size_t)m->n_in + 8 * (size_t)m->n_out + (size_t)m->n_par * (8 + STR_CAP);
