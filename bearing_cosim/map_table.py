@@ -125,7 +125,7 @@ def pinned_parameters(built: dict, axis_names) -> list:
     description). Their values are the map's: a master may set them (scripts written for BearingFMU at fidelity
     'map' set them), and fmi2ExitInitializationMode refuses any other value, as MapLevel does."""
     from bearing_core.session.cosim import CoSimParameters
-    from bearing_core.session.fidelity import FIXED_PARAMETERS, MAP_PARAMETERS
+    from bearing_core.session.fidelity import FIXED_PARAMETERS, MAP_PARAMETERS, fixed_parameter_reason
     defaults = CoSimParameters()
     out = [("fidelity", str, CHECK_FIDELITY, "map", "'map'", "this FMU is the pure-C 'map' level; BearingFMU "
             "has the other levels", (), "model fidelity: map only (the operating map embedded in this FMU)"),
@@ -145,15 +145,7 @@ def pinned_parameters(built: dict, axis_names) -> list:
                     "(a constant of this FMU)"))
     for k, want in FIXED_PARAMETERS.items():
         typ = type(getattr(defaults, k))
-        if k == "coupling":
-            what = ("displacement coupling: the map gives the steady state of a load-driven bearing, not the forces "
-                    "of a prescribed ring pose; use fidelity 'dynamic'")
-        elif k in ("oil_flow_rate", "lubrication_method", "oil_level"):
-            what = ("the map's cavity oil content is its oil_fraction parameter, not an oil supply's (whose oil "
-                    "content follows the speed); use fidelity 'dynamic' for an oil supply")
-        else:
-            what = ("the map is of an isothermal bearing with its definition's geometry, outer ring fixed and inner "
-                    "ring free to tilt")
+        what = fixed_parameter_reason(k)
         out.append((k, typ, CHECK_FIXED, want, repr(want), what, (), f"{k}: {want!r} at the map level"))
     # BearingFMU's other parameters: accepted, no effect at the map level (as in BearingFMU at fidelity = map)
     from .fmu_src.bearing_fmu import _GEOMETRY_PARAMS, _PARAMS

@@ -118,6 +118,19 @@ FIXED_PARAMETERS = {"coupling": "load", "outer_mounting": "fixed", "fixed_tilt":
 ring free to tilt, isothermal, with the bearing definition's geometry."""
 
 
+def fixed_parameter_reason(name: str) -> str:
+    """Why the map level requires the value FIXED_PARAMETERS[name] (the detail of its refusal; the C map FMU's
+    table carries the same words, bearing_cosim.map_table)."""
+    if name == "coupling":
+        return ("displacement coupling: the map gives the steady state of a load-driven bearing, not the forces of a "
+                "prescribed ring pose; use fidelity 'dynamic'")
+    if name in ("oil_flow_rate", "lubrication_method", "oil_level"):
+        return ("the map's cavity oil content is its oil_fraction parameter, not an oil supply's (whose oil content "
+                "follows the speed); use fidelity 'dynamic' for an oil supply")
+    return ("the map is of an isothermal bearing with its definition's geometry, outer ring fixed and inner ring "
+            "free to tilt")
+
+
 def read_map(path) -> dict:
     """An operating map from a NetCDF file (scipy.io.netcdf_file: NetCDF3, no xarray): {'axes': [(name,
     values)], 'vars': {name: array (grid shape)}, 'attrs': {name: str}}."""
@@ -325,16 +338,7 @@ class MapLevel:
         for k, want in FIXED_PARAMETERS.items():
             v = getattr(p, k)
             if v != want:
-                if k == "coupling":
-                    what = ("displacement coupling: the map gives the steady state of a load-driven bearing, not the "
-                            "forces of a prescribed ring pose; use fidelity 'dynamic'")
-                elif k in ("oil_flow_rate", "lubrication_method", "oil_level"):
-                    what = ("the map's cavity oil content is its oil_fraction parameter, not an oil supply's (whose "
-                            "oil content follows the speed); use fidelity 'dynamic' for an oil supply")
-                else:
-                    what = ("the map is of an isothermal bearing with its definition's geometry, outer ring fixed "
-                            "and inner ring free to tilt")
-                raise BearingInputError(k, v, f"{want!r} at fidelity 'map'", what)
+                raise BearingInputError(k, v, f"{want!r} at fidelity 'map'", fixed_parameter_reason(k))
 
     def ranges(self) -> list:
         """(input, lo, hi, unit) of each axis read from an input, in input units."""

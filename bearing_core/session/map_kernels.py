@@ -15,6 +15,24 @@ _exact = njit(cache=True, error_model="numpy")
 
 
 @_exact
+def cell_corner(c, idx, w, strides):
+    """Corner c (bit d: the upper node along axis d) of the interpolation cell idx with weights w: its multilinear
+    weight (the product over the axes of w[d] or 1 - w[d], 0 as soon as a factor makes it 0) and its flat index."""
+    wt = 1.0
+    off = 0
+    for d in range(idx.shape[0]):
+        if (c >> d) & 1:
+            wt *= w[d]
+            off += (idx[d] + 1) * strides[d]
+        else:
+            wt *= 1.0 - w[d]
+            off += idx[d] * strides[d]
+        if wt == 0.0:
+            return 0.0, off
+    return wt, off
+
+
+@_exact
 def interp_multilinear(axes, ptr, strides, values, speed_scaled, flags, x, idx, w, out):
     """Multilinear interpolation of all outputs of a map at the point x (one coordinate per axis).
 
@@ -51,17 +69,7 @@ def interp_multilinear(axes, ptr, strides, values, speed_scaled, flags, x, idx, 
         out[k] = 0.0
     fl = 0
     for c in range(1 << nd):
-        wt = 1.0
-        off = 0
-        for d in range(nd):
-            if (c >> d) & 1:
-                wt *= w[d]
-                off += (idx[d] + 1) * strides[d]
-            else:
-                wt *= 1.0 - w[d]
-                off += idx[d] * strides[d]
-            if wt == 0.0:
-                break
+        wt, off = cell_corner(c, idx, w, strides)
         if wt == 0.0:
             continue
         fl |= flags[off]
@@ -339,17 +347,7 @@ def map_stiffness(strides, kvals, idx, w, cs, sn, kbuf, i_k, out):
     for k in range(25):
         kbuf[k] = 0.0
     for c in range(1 << nd):
-        wt = 1.0
-        off = 0
-        for d in range(nd):
-            if (c >> d) & 1:
-                wt *= w[d]
-                off += (idx[d] + 1) * strides[d]
-            else:
-                wt *= 1.0 - w[d]
-                off += idx[d] * strides[d]
-            if wt == 0.0:
-                break
+        wt, off = cell_corner(c, idx, w, strides)
         if wt == 0.0:
             continue
         for k in range(25):
