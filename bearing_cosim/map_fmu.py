@@ -274,6 +274,9 @@ def build_map_fmu(map_file, dest="dist", platforms=None) -> Path:
         platforms = [p for p in PLATFORMS if p in found]
         if not platforms:
             raise BuildError("no C compiler found; install " + " or ".join(MISSING.values()))
+    platforms = list(dict.fromkeys(platforms))
+    if not platforms:
+        raise BearingInputError("--platforms", "", "one or more of " + ", ".join(PLATFORMS))
     for p in platforms:
         if p not in PLATFORMS:
             raise BearingInputError("--platforms", p, ", ".join(PLATFORMS))

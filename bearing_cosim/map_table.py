@@ -34,7 +34,8 @@ Format version 1 (every integer little-endian; f64 IEEE 754 little-endian; str =
       str flag texts[2]                        the warning's words for flag 1 (gross skid) and 2 (unsteady cage)
       u32 has_k; i32 i_k; f64 kvals[n_points * 25] if has_k   the stiffness K = d(load)/d(pose) at each grid point
                                                (row-major 5 x 5) and the output index of stiffness[1,1]
-      str stiffness_missing                    the warning of a map without stiffness variables ('' if it has them)
+      str stiffness_missing                    the warning of a map without stiffness variables ('' if it has them;
+                                               the map's file written as {map})
       str output names[n_out_real + n_out_int]; i32 src[n_out]
       u32 n_rot; i32 rot[2 n_rot]; u32 n_ib; i32 ib[n_ib]
       f64 temps[7], inertia [kg m^2], csr_min [rad/s], skid_tol, skid_min [rad/s]
@@ -241,7 +242,7 @@ def build_table(map_path, guid: str = "") -> tuple[bytes, dict]:
     else:
         w.u32(0)
         w.i32(-1)
-    w.str(getattr(lv, "stiffness_missing", ""))
+    w.str(getattr(lv, "stiffness_missing", "").replace(lv.path, "{map}"))   # the C FMU names its own table
     for nm in OUTPUT_NAMES + INT_OUTPUT_NAMES:
         w.str(nm)
     w.i32a(st._src)
@@ -270,7 +271,7 @@ def build_table(map_path, guid: str = "") -> tuple[bytes, dict]:
     from bearing_core.session.cosim_spec import LIFE_CAP_H
     w.i32(st._i_rate, st._i_life, st._i_damage)
     w.f64(LIFE_CAP_H)
-    w.str(getattr(lv, "fatigue_missing", ""))
+    w.str(getattr(lv, "fatigue_missing", "").replace(lv.path, "{map}"))
     w.u32(END_MARK)
     body = w.bytes()
     size = HEADER + len(body)

@@ -461,6 +461,9 @@ def test_cli_build_and_simulate(built, tmp_path):
     r = subprocess.run([str(exe), "build-map-fmu", str(MAPS["oil"]), "--platforms", "darwin64"], capture_output=True,
                        text=True, timeout=300)
     assert r.returncode == 2 and "--platforms = 'darwin64' is invalid; allowed: linux64, win64" in r.stderr
+    r = subprocess.run([str(exe), "build-map-fmu", str(MAPS["oil"]), "--platforms", ""], capture_output=True,
+                       text=True, timeout=300)
+    assert r.returncode == 2 and "--platforms = '' is invalid; allowed: one or more of linux64, win64" in r.stderr
     env = dict(os.environ, PATH="/nonexistent")          # no cross compiler on this PATH
     r = subprocess.run([str(exe), "build-map-fmu", str(MAPS["oil"]), "--platforms", "win64", "--dest",
                         str(tmp_path / "w")], capture_output=True, text=True, timeout=300, env=env)

@@ -1048,14 +1048,16 @@ int model_initialize(Instance *c, void *mp, double t0, char *err, size_t n) {
     double wc = evaluate(c, m, 0.0, &warned, err, n);
     m->defer = 0;
     if (!isfinite(wc)) return fmi2Error;
-    if (m->stiffness_missing[0]) {
-        fmu_log(c, fmi2Warning, "%s", m->stiffness_missing);
-        warned = 1;
-    }
-    if (m->fatigue_missing[0]) {
-        fmu_log(c, fmi2Warning, "%s", m->fatigue_missing);
-        warned = 1;
-    }
+    const char *missing[2] = {m->stiffness_missing, m->fatigue_missing};
+    for (int k = 0; k < 2; k++)
+        if (missing[k][0]) { /* the table writes the map's file as {map}: this FMU's own table */
+            const char *at = strstr(missing[k], "{map}");
+            if (at)
+                fmu_log(c, fmi2Warning, "%.*s%s%s", (int)(at - missing[k]), missing[k], m->path, at + 5);
+            else
+                fmu_log(c, fmi2Warning, "%s", missing[k]);
+            warned = 1;
+        }
     if (m->pending[0]) fmu_log(c, fmi2Warning, "%s", m->pending);
     m->wc = wc;
     m->w_prev = m->u[m->i_speed];
