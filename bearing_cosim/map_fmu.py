@@ -268,7 +268,7 @@ def build_map_fmu(map_file, dest="dist", platforms=None) -> Path:
     PLATFORMS to build (None: every platform whose compiler is found); a requested platform without its compiler
     raises BuildError naming it."""
     from bearing_core.errors import BearingInputError
-    from .map_table import TABLE_NAME, build_table
+    from .map_table import TABLE_NAME, build_table, with_guid
     found = _cross_compilers()
     if platforms is None:
         platforms = [p for p in PLATFORMS if p in found]
@@ -282,11 +282,11 @@ def build_map_fmu(map_file, dest="dist", platforms=None) -> Path:
             raise BearingInputError("--platforms", p, ", ".join(PLATFORMS))
         if p not in found:
             raise BuildError(f"--platforms {p}: no compiler found; install {MISSING[p]}")
-    table0, desc = build_table(map_file, guid="")
+    table0, desc = build_table(map_file)
     code = b"".join(s.read_bytes() for s in C_SOURCES)
     digest = hashlib.sha256(table0 + code).hexdigest()
     guid = "{" + str(uuid.UUID(digest[:32])) + "}"
-    table, desc = build_table(map_file, guid=guid)
+    table = with_guid(table0, guid)
     xml = model_description(desc, guid)
     md = parseString(tostring(xml, "UTF-8")).toprettyxml(encoding="UTF-8")
     dest = Path(dest)

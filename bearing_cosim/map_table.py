@@ -274,12 +274,25 @@ def build_table(map_path, guid: str = "") -> tuple[bytes, dict]:
     w.str(getattr(lv, "fatigue_missing", "").replace(lv.path, "{map}"))
     w.u32(END_MARK)
     body = w.bytes()
-    size = HEADER + len(body)
-    header = MAGIC + struct.pack("<IIQII", VERSION, HEADER, size, zlib.crc32(body) & 0xFFFFFFFF, 0x01020304)
-    header += b"\0" * (HEADER - len(header))
     desc = {"axes": [(nm, float(qlo[d]), float(qhi[d]), int(ptr[d + 1] - ptr[d]))
                      for d, nm in enumerate(lv.axis_names)],
             "ranges": lv.ranges(), "parameters": params, "enums": enum_twins(), "attrs": prov, "built": built, "rotate": bool(rotate),
             "n_points": n_points, "map_name": Path(map_path).name}
-    return header + body, desc
+    return _framed(body), desc
+
+
+def _framed(body: bytes) -> bytes:
+    """The table: its header (size, CRC-32 of the body) and the body."""
+    header = MAGIC + struct.pack("<IIQII", VERSION, HEADER, HEADER + len(body), zlib.crc32(body) & 0xFFFFFFFF,
+                                 0x01020304)
+    return header + b"\0" * (HEADER - len(header)) + body
+
+
+def with_guid(table: bytes, guid: str) -> bytes:
+    """The table written with guid "" (build_table), its GUID set (the body's first field)."""
+    body = table[HEADER:]
+    if struct.unpack_from("<I", body, 0)[0] != 0:
+        raise ValueError("with_guid takes a table written without a GUID")
+    g = guid.encode("utf-8")
+    return _framed(struct.pack("<I", len(g)) + g + body[4:])
 
